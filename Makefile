@@ -1,0 +1,54 @@
+# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
+BUILD    ?= build
+B        := $(BUILD)$(if $(SANITIZE),/sanitize)
+PROGRAMS := $(LESSONS:%=$(B)/%)
+LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
+LES_SRC  := $(wildcard lessons/*/*.c)
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c)) $(B)/obj/lessons.o
+ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(LES_SRC:%.c=$(B)/fast/%.o)
+LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
+nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
+
+CFLAGS   ?= -O2 -g
+CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
+LDLIBS   += $(PKG_LIBS)
+ifdef SANITIZE
+CFLAGS   += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+LDFLAGS  += -fsanitize=address,undefined
+endif
+
+all: $(PROGRAMS)
+.PHONY: all run test figures bench clean deps-test deps-bench
+.SECONDEXPANSION:
+
+ifneq ($(MAKECMDGOALS),clean)
+include $(B)/config.mk
+endif
+$(B)/config.mk: src/deps.sh ; @sh src/deps.sh build $@
+deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
+
+# Lessons are compiled twice: narrated for the programs and tests, fast
+# (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
+$(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
+$(B)/libtristep.a: $(LIB_OBJ) ; $(AR) rcs $@ $^
+$(PROGRAMS): $(B)/%: $$(addprefix $(B)/obj/,$$(subst .c,.o,$$(wildcard lessons/$$*/*.c))) $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/libtristep.a
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# Every lesson, both builds, listed for the tests and the bench.
+$(B)/lessons.c: Makefile | $(B)/config.mk
+	@printf '#include "lesson.h"\n' > $@
+	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
+	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
+	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
+$(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
+$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
+
+run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
+test: deps-test all $(B)/tristep-tests
+	TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
+clean: ; rm -rf $(BUILD)
+
+-include $(shell find $(B) -name '*.d' 2>/dev/null)

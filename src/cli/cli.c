@@ -1,0 +1,331 @@
+/* cli.c - lesson_main: options, headless modes, exit codes. */
+#define _POSIX_C_SOURCE 200809L   /* mkstemp, fileno, fsync */
+
+#include "cli.h"
+
+#include <cairo.h>
+#include <errno.h>
+#include <getopt.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "app/app.h"
+#include "draw/figure.h"
+#include "trace/replay.h"
+
+const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)
+{
+    for (int i = 0; i < l->nvariants; i++)
+        if (strcmp(l->variants[i].name, name) == 0)
+            return &l->variants[i];
+    return NULL;
+}
+
+/* --- writing files ------------------------------------------------------------ */
+
+bool write_file_atomic(const char *path, bool (*write)(FILE *out, void *ctx), void *ctx,
+                       char *err, size_t errlen)
+{
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (!tmp) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return false;
+    }
+    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        free(tmp);
+        return false;
+    }
+    FILE *out = fdopen(fd, "wb");
+    if (!out) {
+        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        close(fd);
+        unlink(tmp);
+        free(tmp);
+        return false;
+    }
+    bool ok = write(out, ctx);
+    ok = fflush(out) == 0 && ok && !ferror(out);
+    int saved = errno;
+    if (fclose(out) != 0)
+        ok = false;
+    /* mkstemp creates the file 0600; give it the usual permissions */
+    if (ok) {
+        mode_t mask = umask(0);
+        umask(mask);
+        chmod(tmp, 0666 & ~mask);
+    }
+    if (ok && rename(tmp, path) != 0) {
+        saved = errno;
+        ok = false;
+    }
+    if (!ok) {
+        snprintf(err, errlen, "%s: cannot write: %s", path, saved ? strerror(saved) : "write failed");
+        unlink(tmp);
+    }
+    free(tmp);
+    return ok;
+}
+
+bool write_coverage_pgm(FILE *out, const struct target *fb)
+{
+    fprintf(out, "P5\n%d %d\n255\n", fb->w, fb->h);
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    return fwrite(fb->count, 1, n, out) == n;
+}
+
+static cairo_status_t png_to_file(void *closure, const unsigned char *data, unsigned int len)
+{
+    return fwrite(data, 1, len, closure) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+bool write_color_png(FILE *out, const struct target *fb)
+{
+    /* the colour buffer is already cairo's ARGB32 (opaque, so premultiplied) */
+    int stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, fb->w);
+    if (stride != fb->w * 4)
+        return false;
+    cairo_surface_t *s = cairo_image_surface_create_for_data(
+        (unsigned char *)fb->color, CAIRO_FORMAT_ARGB32, fb->w, fb->h, stride);
+    cairo_status_t st = cairo_surface_write_to_png_stream(s, png_to_file, out);
+    cairo_surface_destroy(s);
+    return st == CAIRO_STATUS_SUCCESS;
+}
+
+static bool pgm_writer(FILE *out, void *ctx) { return write_coverage_pgm(out, ctx); }
+static bool png_writer(FILE *out, void *ctx) { return write_color_png(out, ctx); }
+
+/* --- options --------------------------------------------------------------------- */
+
+static void usage(const struct lesson *l, FILE *out)
+{
+    fprintf(out,
+        "Usage: %s [OPTION]...\n"
+        "%s.\n"
+        "Without a headless option, opens the interactive explorer.\n"
+        "\n"
+        "  --scene FILE            use this scene (or builtin:NAME) instead of builtin:%s\n"
+        "  --variant NAME          run a variant of the algorithm (see below)\n"
+        "  --dump-coverage FILE    headless: write coverage counts as a binary PGM\n"
+        "  --dump-image FILE       headless: write the final colour buffer as PNG\n"
+        "  --figure FILE           headless: export the explorer's view (.png, .svg, .pdf)\n"
+        "  --step N|end            the step to show (figure and explorer; default 0)\n"
+        "  --view NAME             the view to show (figure and explorer)\n"
+        "  --size WxH              figure or window size in pixels (default 1280x800)\n"
+        "  --zoom PX               screen pixels per scene pixel (default: fit)\n"
+        "  --scale F               interface scale for text and panels (default 1)\n"
+        "  --block-size Q          block size for block lessons (4, 8 or 16)\n"
+        "  --subpixel-bits N       snap vertices to N fractional bits, 0..8 (default 8)\n"
+        "  --keys FILE             explorer: read key names from FILE, one per line\n"
+        "  --list-scenes           list the built-in scenes\n"
+        "  --help                  show this help\n"
+        "  --version               show the version\n"
+        "\n"
+        "Variants:\n",
+        l->id, l->title, l->builtin_scene);
+    for (int i = 0; i < l->nvariants; i++)
+        fprintf(out, "  %-22s  %s%s\n", l->variants[i].name, l->variants[i].what,
+                i == 0 ? " (default)" : "");
+    fprintf(out,
+        "\nExit status: 0 success, 1 failure while running, 2 bad command line or input.\n");
+}
+
+static int bad_usage(const struct lesson *l, const char *fmt, const char *arg)
+{
+    fprintf(stderr, "%s: ", l->id);
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\nTry '%s --help' for more information.\n", l->id);
+    return EXIT_USAGE;
+}
+
+static bool parse_uint(const char *s, uint64_t max, uint64_t *out)
+{
+    if (!*s || s[strspn(s, "0123456789")] != '\0' || strlen(s) > 18)
+        return false;
+    unsigned long long v = strtoull(s, NULL, 10);
+    if (v > max)
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool parse_positive(const char *s, double max, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno || !(v > 0) || v > max)
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool has_suffix(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n > m && strcmp(s + n - m, suffix) == 0;
+}
+
+enum {
+    OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_BLOCK, OPT_BITS, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_HELP, OPT_VERSION,
+};
+
+static const struct option long_options[] = {
+    { "scene", required_argument, NULL, OPT_SCENE },
+    { "variant", required_argument, NULL, OPT_VARIANT },
+    { "dump-coverage", required_argument, NULL, OPT_DUMP_COVERAGE },
+    { "dump-image", required_argument, NULL, OPT_DUMP_IMAGE },
+    { "figure", required_argument, NULL, OPT_FIGURE },
+    { "step", required_argument, NULL, OPT_STEP },
+    { "view", required_argument, NULL, OPT_VIEW },
+    { "size", required_argument, NULL, OPT_SIZE },
+    { "zoom", required_argument, NULL, OPT_ZOOM },
+    { "scale", required_argument, NULL, OPT_SCALE },
+    { "block-size", required_argument, NULL, OPT_BLOCK },
+    { "subpixel-bits", required_argument, NULL, OPT_BITS },
+    { "keys", required_argument, NULL, OPT_KEYS },
+    { "list-scenes", no_argument, NULL, OPT_LIST_SCENES },
+    { "help", no_argument, NULL, OPT_HELP },
+    { "version", no_argument, NULL, OPT_VERSION },
+    { NULL, 0, NULL, 0 },
+};
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_options(const struct lesson *l, int argc, char **argv, struct cli_options *o)
+{
+    *o = (struct cli_options){ .variant = &l->variants[0],
+                               .params = { .subpixel_bits = SUBPIXEL_BITS } };
+    opterr = 0;   /* our own messages, in the same form as every other error */
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":", long_options, NULL)) != -1) {
+        uint64_t u;
+        switch (c) {
+        case OPT_SCENE: o->scene_path = optarg; break;
+        case OPT_VARIANT:
+            o->variant = lesson_variant(l, optarg);
+            if (!o->variant)
+                return bad_usage(l, "no variant '%s' (see --help)", optarg);
+            break;
+        case OPT_DUMP_COVERAGE: o->dump_coverage = optarg; break;
+        case OPT_DUMP_IMAGE: o->dump_image = optarg; break;
+        case OPT_FIGURE:
+            if (!has_suffix(optarg, ".png") && !has_suffix(optarg, ".svg") && !has_suffix(optarg, ".pdf"))
+                return bad_usage(l, "--figure '%s': the name must end in .png, .svg or .pdf", optarg);
+            o->figure = optarg;
+            break;
+        case OPT_STEP:
+            if (strcmp(optarg, "end") == 0)
+                o->step_end = true;
+            else if (parse_uint(optarg, UINT64_MAX / 2, &u))
+                o->step = u, o->step_end = false;
+            else
+                return bad_usage(l, "--step '%s': expected a step number or 'end'", optarg);
+            break;
+        case OPT_VIEW: o->view = optarg; break;
+        case OPT_SIZE: {
+            int w, h, n = 0;
+            if (sscanf(optarg, "%dx%d%n", &w, &h, &n) != 2 || optarg[n] || w < 64 || h < 64
+                || w > 8192 || h > 8192)
+                return bad_usage(l, "--size '%s': expected WxH, each 64..8192", optarg);
+            o->width = w, o->height = h;
+            break;
+        }
+        case OPT_ZOOM:
+            if (!parse_positive(optarg, 1024, &o->zoom))
+                return bad_usage(l, "--zoom '%s': expected screen pixels per pixel, up to 1024", optarg);
+            break;
+        case OPT_SCALE:
+            if (!parse_positive(optarg, 8, &o->scale) || o->scale < 0.25)
+                return bad_usage(l, "--scale '%s': expected a factor in 0.25..8", optarg);
+            break;
+        case OPT_BLOCK:
+            if (!parse_uint(optarg, 64, &u) || (u != 4 && u != 8 && u != 16))
+                return bad_usage(l, "--block-size '%s': expected 4, 8 or 16", optarg);
+            o->params.block_size = (int)u;
+            break;
+        case OPT_BITS:
+            if (!parse_uint(optarg, SUBPIXEL_BITS, &u))
+                return bad_usage(l, "--subpixel-bits '%s': expected 0..8", optarg);
+            o->params.subpixel_bits = (int)u;
+            break;
+        case OPT_KEYS: o->keys = optarg; break;
+        case OPT_LIST_SCENES:
+            for (int i = 0; i < builtin_scene_count; i++)
+                printf("builtin:%-14s %s\n", builtin_scenes[i].name, builtin_scenes[i].what);
+            return EXIT_OK;
+        case OPT_HELP: usage(l, stdout); return EXIT_OK;
+        case OPT_VERSION: printf("tristep %s, lesson %s\n", TRISTEP_VERSION, l->id); return EXIT_OK;
+        case ':':
+            return bad_usage(l, "option '%s' needs a value", argv[optind - 1]);
+        default:
+            return bad_usage(l, "unknown option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind < argc)
+        return bad_usage(l, "unexpected argument '%s' (scenes are given with --scene)", argv[optind]);
+    return -1;
+}
+
+/* --- the program ------------------------------------------------------------------- */
+
+static int dump(const struct cli_options *o, const struct scene *s)
+{
+    struct target fb;
+    if (!render_scene(s, o->variant, &o->params, &fb)) {
+        fprintf(stderr, "out of memory for a %d x %d target\n", s->w, s->h);
+        return EXIT_RUN;
+    }
+    char err[512];
+    int status = EXIT_OK;
+    if (o->dump_coverage && !write_file_atomic(o->dump_coverage, pgm_writer, &fb, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_RUN;
+    }
+    if (status == EXIT_OK && o->dump_image
+        && !write_file_atomic(o->dump_image, png_writer, &fb, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_RUN;
+    }
+    /* all or nothing: a failed second file takes the first one with it */
+    if (status != EXIT_OK && o->dump_coverage)
+        unlink(o->dump_coverage);
+    target_free(&fb);
+    return status;
+}
+
+int lesson_main(const struct lesson *l, int argc, char **argv)
+{
+    struct cli_options o;
+    int status = parse_options(l, argc, argv, &o);
+    if (status >= 0)
+        return status;
+
+    struct scene s;
+    char err[512];
+    bool loaded = o.scene_path ? scene_load(&s, o.scene_path, err, sizeof err)
+                               : scene_builtin(&s, l->builtin_scene, err, sizeof err);
+    if (!loaded) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_USAGE;
+    }
+    o.params.checker = s.checker;
+
+    bool headless = o.dump_coverage || o.dump_image || o.figure;
+    status = EXIT_OK;
+    if (o.dump_coverage || o.dump_image)
+        status = dump(&o, &s);
+    if (status == EXIT_OK && o.figure)
+        status = figure_export(l, &o, &s);
+    if (!headless)
+        status = explorer_run(l, &o, &s);
+    scene_free(&s);
+    return status;
+}

@@ -1,0 +1,225 @@
+/* raster.c - snapping, triangle setup, the render target, the reference. */
+#include "raster.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int32_t snap_coord(double v, int bits)
+{
+    if (!(v > -COORD_LIMIT))            /* also catches NaN */
+        v = -COORD_LIMIT;
+    if (v > COORD_LIMIT)
+        v = COORD_LIMIT;
+    if (bits < 0)
+        bits = 0;
+    if (bits > SUBPIXEL_BITS)
+        bits = SUBPIXEL_BITS;
+    /* lrint rounds to nearest, ties to even, in the default rounding mode */
+    long coarse = lrint(ldexp(v, bits));
+    return (int32_t)(coarse * (1L << (SUBPIXEL_BITS - bits)));
+}
+
+/* Floor and ceiling of a / b for b > 0, correct for negative a. */
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+static int64_t ceil_div(int64_t a, int64_t b)
+{
+    return -floor_div(-a, b);
+}
+
+static int64_t min3(int64_t a, int64_t b, int64_t c)
+{
+    int64_t m = a < b ? a : b;
+    return m < c ? m : c;
+}
+
+static int64_t max3(int64_t a, int64_t b, int64_t c)
+{
+    int64_t m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
+bool tri_setup_bits(struct tri_setup *t, const struct vertex v[3], int w, int h, int bits)
+{
+    memset(t, 0, sizeof *t);
+    t->target_w = w;
+    t->target_h = h;
+    for (int i = 0; i < 3; i++) {
+        t->v[i] = v[i];
+        t->x[i] = snap_coord(v[i].x, bits);
+        t->y[i] = snap_coord(v[i].y, bits);
+    }
+
+    /* Orientation: twice the signed area is |AB x AC|. Negative means the
+     * vertices run the other way round; exchanging B and C makes every edge
+     * value positive inside, so one test serves both windings. */
+    int64_t area2 = (int64_t)(t->x[1] - t->x[0]) * (t->y[2] - t->y[0])
+                  - (int64_t)(t->y[1] - t->y[0]) * (t->x[2] - t->x[0]);
+    if (area2 < 0) {
+        struct vertex tv = t->v[1]; t->v[1] = t->v[2]; t->v[2] = tv;
+        int32_t tx = t->x[1]; t->x[1] = t->x[2]; t->x[2] = tx;
+        int32_t ty = t->y[1]; t->y[1] = t->y[2]; t->y[2] = ty;
+        area2 = -area2;
+        t->swapped = true;
+    }
+    t->area2 = area2;
+
+    for (int k = 0; k < 3; k++) {
+        int a = k, b = (k + 1) % 3;
+        t->I[k] = (int64_t)t->y[a] - t->y[b];
+        t->J[k] = (int64_t)t->x[b] - t->x[a];
+        t->K[k] = (int64_t)t->x[a] * t->y[b] - (int64_t)t->y[a] * t->x[b];
+        t->bias[k] = is_top_left(t->I[k], t->J[k]) ? 0 : -1;
+    }
+
+    /* Pixel px is a candidate when its centre px*256 + 128 lies in [xmin, xmax]. */
+    int64_t minx = ceil_div(min3(t->x[0], t->x[1], t->x[2]) - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    int64_t maxx = floor_div(max3(t->x[0], t->x[1], t->x[2]) - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    int64_t miny = ceil_div(min3(t->y[0], t->y[1], t->y[2]) - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    int64_t maxy = floor_div(max3(t->y[0], t->y[1], t->y[2]) - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    t->minx = (int)(minx < 0 ? 0 : minx);
+    t->miny = (int)(miny < 0 ? 0 : miny);
+    t->maxx = (int)(maxx > w - 1 ? w - 1 : maxx);
+    t->maxy = (int)(maxy > h - 1 ? h - 1 : maxy);
+
+    t->empty = area2 == 0 || t->minx > t->maxx || t->miny > t->maxy;
+    return !t->empty;
+}
+
+bool tri_setup(struct tri_setup *t, const struct vertex v[3], int w, int h)
+{
+    return tri_setup_bits(t, v, w, h, SUBPIXEL_BITS);
+}
+
+/* --- render target ------------------------------------------------------------ */
+
+bool target_init(struct target *fb, int w, int h, uint32_t background)
+{
+    memset(fb, 0, sizeof *fb);
+    if (w < 1 || h < 1 || w > TARGET_MAX || h > TARGET_MAX)
+        return false;
+    size_t n = (size_t)w * (size_t)h;
+    fb->w = w;
+    fb->h = h;
+    fb->background = background;
+    fb->color = malloc(n * sizeof *fb->color);
+    fb->depth = malloc(n * sizeof *fb->depth);
+    fb->count = malloc(n);
+    if (!fb->color || !fb->depth || !fb->count) {
+        target_free(fb);
+        return false;
+    }
+    target_clear(fb);
+    return true;
+}
+
+void target_clear(struct target *fb)
+{
+    size_t n = (size_t)fb->w * (size_t)fb->h;
+    for (size_t i = 0; i < n; i++) {
+        fb->color[i] = fb->background;
+        fb->depth[i] = INFINITY;
+    }
+    memset(fb->count, 0, n);
+}
+
+void target_free(struct target *fb)
+{
+    free(fb->color);
+    free(fb->depth);
+    free(fb->count);
+    memset(fb, 0, sizeof *fb);
+}
+
+bool target_copy(struct target *dst, const struct target *src)
+{
+    if (dst->w != src->w || dst->h != src->h || !dst->color) {
+        target_free(dst);
+        if (!target_init(dst, src->w, src->h, src->background))
+            return false;
+    }
+    size_t n = (size_t)src->w * (size_t)src->h;
+    memcpy(dst->color, src->color, n * sizeof *dst->color);
+    memcpy(dst->depth, src->depth, n * sizeof *dst->depth);
+    memcpy(dst->count, src->count, n);
+    dst->background = src->background;
+    return true;
+}
+
+/* --- reference ------------------------------------------------------------------ */
+
+/* |P0P1 x P0P| (seed 001, formula 2), P given in 1/256 units. */
+static int64_t cross_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int64_t px, int64_t py)
+{
+    return ((int64_t)x1 - x0) * (py - y0) - (px - x0) * ((int64_t)y1 - y0);
+}
+
+void reference_coverage(const struct tri_setup *t,
+                        void (*cover)(void *ctx, int x, int y), void *ctx)
+{
+    const int32_t *X = t->x, *Y = t->y;
+    int64_t area2 = cross_at(X[0], Y[0], X[1], Y[1], X[2], Y[2]);
+    if (area2 <= 0)   /* setup normalised the orientation: <= 0 means degenerate */
+        return;
+
+    /* A generous box: every pixel touched by the vertices' extent, one more
+     * on each side, clamped to the target. Cheap to get right. */
+    int64_t x0 = floor_div(min3(X[0], X[1], X[2]), SUBPIXEL_ONE) - 1;
+    int64_t x1 = floor_div(max3(X[0], X[1], X[2]), SUBPIXEL_ONE) + 1;
+    int64_t y0 = floor_div(min3(Y[0], Y[1], Y[2]), SUBPIXEL_ONE) - 1;
+    int64_t y1 = floor_div(max3(Y[0], Y[1], Y[2]), SUBPIXEL_ONE) + 1;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > t->target_w - 1) x1 = t->target_w - 1;
+    if (y1 > t->target_h - 1) y1 = t->target_h - 1;
+
+    for (int64_t py = y0; py <= y1; py++) {
+        for (int64_t px = x0; px <= x1; px++) {
+            int64_t cx = px * SUBPIXEL_ONE + SUBPIXEL_HALF;
+            int64_t cy = py * SUBPIXEL_ONE + SUBPIXEL_HALF;
+            bool inside = true;
+            for (int k = 0; k < 3 && inside; k++) {
+                int a = k, b = (k + 1) % 3;
+                int64_t f = cross_at(X[a], Y[a], X[b], Y[b], cx, cy);
+                bool on_edge_ok = f == 0 && is_top_left((int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
+                inside = f > 0 || on_edge_ok;
+            }
+            if (inside)
+                cover(ctx, (int)px, (int)py);
+        }
+    }
+}
+
+void reference_shade(const struct tri_setup *t, int px, int py, bool perspective,
+                     double *z, double rgb[3], double st[2])
+{
+    int64_t f[3];
+    for (int k = 0; k < 3; k++)
+        f[k] = edge_value(t, k, px, py);
+    double b[3];
+    barycentric(t, f, b);
+    const struct vertex *v = t->v;
+
+    if (!perspective) {
+        *z = b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z;
+        rgb[0] = b[0] * v[0].r + b[1] * v[1].r + b[2] * v[2].r;
+        rgb[1] = b[0] * v[0].g + b[1] * v[1].g + b[2] * v[2].g;
+        rgb[2] = b[0] * v[0].b + b[1] * v[1].b + b[2] * v[2].b;
+        st[0] = b[0] * v[0].s + b[1] * v[1].s + b[2] * v[2].s;
+        st[1] = b[0] * v[0].t + b[1] * v[1].t + b[2] * v[2].t;
+        return;
+    }
+    /* 1/z is linear in screen space; so is a/z for any attribute a. */
+    double q[3] = { b[0] / v[0].z, b[1] / v[1].z, b[2] / v[2].z };
+    double inv_z = q[0] + q[1] + q[2];
+    *z = 1.0 / inv_z;
+    rgb[0] = (q[0] * v[0].r + q[1] * v[1].r + q[2] * v[2].r) * *z;
+    rgb[1] = (q[0] * v[0].g + q[1] * v[1].g + q[2] * v[2].g) * *z;
+    rgb[2] = (q[0] * v[0].b + q[1] * v[1].b + q[2] * v[2].b) * *z;
+    st[0] = (q[0] * v[0].s + q[1] * v[1].s + q[2] * v[2].s) * *z;
+    st[1] = (q[0] * v[0].t + q[1] * v[1].t + q[2] * v[2].t) * *z;
+}

@@ -1,0 +1,302 @@
+/* scene.c - the scene file parser and writer. */
+#include "scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_TOKENS 32   /* more than the longest line needs (tri + 24 numbers) */
+
+struct parser {
+    const char *name;
+    int line;
+    char *err;
+    size_t errlen;
+};
+
+static bool fail(struct parser *p, const char *fmt, ...)
+{
+    int n = snprintf(p->err, p->errlen, "%s:%d: ", p->name, p->line);
+    if (n < 0 || (size_t)n >= p->errlen)
+        return false;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+/* Decimal numbers only: digits, sign, point and exponent. strtod alone would
+ * also take "nan", "inf" and hexadecimal, none of which belongs in a scene. */
+static bool parse_number(struct parser *p, const char *tok, double *out)
+{
+    if (tok[strspn(tok, "0123456789+-.eE")] != '\0' || !strpbrk(tok, "0123456789"))
+        return fail(p, "'%.40s' is not a number", tok);
+    char *end;
+    errno = 0;
+    double v = strtod(tok, &end);
+    if (*end != '\0' || end == tok)
+        return fail(p, "'%.40s' is not a number", tok);
+    if ((errno == ERANGE && fabs(v) > 1) || !isfinite(v))
+        return fail(p, "'%.40s' is too large", tok);
+    *out = v;
+    return true;
+}
+
+static bool parse_int(struct parser *p, const char *tok, const char *what,
+                      int lo, int hi, int *out)
+{
+    if (tok[strspn(tok, "0123456789")] != '\0' || strlen(tok) > 9)
+        return fail(p, "%s '%.40s' is not a whole number in %d..%d", what, tok, lo, hi);
+    long v = strtol(tok, NULL, 10);
+    if (v < lo || v > hi)
+        return fail(p, "%s %ld out of range %d..%d", what, v, lo, hi);
+    *out = (int)v;
+    return true;
+}
+
+static bool in_unit(double v)
+{
+    return v >= 0.0 && v <= 1.0;
+}
+
+static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
+{
+    if (n != 18 && n != 24)
+        return fail(p, "'tri' needs 18 numbers (x y z r g b for each vertex) "
+                       "or 24 (x y z r g b s t), got %d", n);
+    int per = n / 3;
+    double num[24];
+    for (int i = 0; i < n; i++)
+        if (!parse_number(p, tok[i], &num[i]))
+            return false;
+
+    struct vertex v[3];
+    static const char *const names = "xyzrgbst";
+    for (int i = 0; i < 3; i++) {
+        const double *d = num + i * per;
+        for (int c = 0; c < 2; c++)
+            if (!(d[c] >= -COORD_LIMIT && d[c] < COORD_LIMIT))
+                return fail(p, "vertex %d: %c = %g is outside [-%d, %d)",
+                            i + 1, names[c], d[c], COORD_LIMIT, COORD_LIMIT);
+        if (!(d[2] > 0))
+            return fail(p, "vertex %d: z = %g must be positive (view-space depth)", i + 1, d[2]);
+        for (int c = 3; c < 6; c++)
+            if (!in_unit(d[c]))
+                return fail(p, "vertex %d: %c = %g is outside [0, 1]", i + 1, names[c], d[c]);
+        v[i] = (struct vertex){ .x = d[0], .y = d[1], .z = d[2],
+                                .r = d[3], .g = d[4], .b = d[5],
+                                .s = per == 8 ? d[6] : 0, .t = per == 8 ? d[7] : 0 };
+    }
+    if (per == 8)
+        s->has_st = true;
+    if (!scene_add(s, v))
+        return fail(p, "out of memory after %d triangles", s->ntris);
+    return true;
+}
+
+bool scene_add(struct scene *s, const struct vertex v[3])
+{
+    if (s->ntris == s->cap) {
+        int cap = s->cap ? s->cap * 2 : 64;
+        if (cap < s->cap)
+            return false;
+        struct scene_tri *t = realloc(s->tris, (size_t)cap * sizeof *t);
+        if (!t)
+            return false;
+        s->tris = t;
+        s->cap = cap;
+    }
+    memcpy(s->tris[s->ntris++].v, v, 3 * sizeof *v);
+    return true;
+}
+
+/* One line, comments already cut, split into tokens. */
+static bool parse_line(struct parser *p, struct scene *s, char **tok, int n,
+                       int *size_line, int *bg_line)
+{
+    const char *kw = tok[0];
+    if (strcmp(kw, "size") == 0) {
+        if (*size_line)
+            return fail(p, "'size' given twice (first on line %d)", *size_line);
+        if (n != 3)
+            return fail(p, "'size' needs 2 whole numbers (width height), got %d", n - 1);
+        if (!parse_int(p, tok[1], "width", 1, TARGET_MAX, &s->w) ||
+            !parse_int(p, tok[2], "height", 1, TARGET_MAX, &s->h))
+            return false;
+        *size_line = p->line;
+        return true;
+    }
+    if (strcmp(kw, "background") == 0) {
+        if (*bg_line)
+            return fail(p, "'background' given twice (first on line %d)", *bg_line);
+        if (n != 4)
+            return fail(p, "'background' needs 3 numbers (r g b), got %d", n - 1);
+        for (int i = 0; i < 3; i++) {
+            if (!parse_number(p, tok[1 + i], &s->background[i]))
+                return false;
+            if (!in_unit(s->background[i]))
+                return fail(p, "background %c = %g is outside [0, 1]", "rgb"[i], s->background[i]);
+        }
+        *bg_line = p->line;
+        return true;
+    }
+    if (strcmp(kw, "texture") == 0) {
+        if (n != 3 || strcmp(tok[1], "checker") != 0)
+            return fail(p, "expected 'texture checker N'");
+        return parse_int(p, tok[2], "checker squares", 1, 4096, &s->checker);
+    }
+    if (strcmp(kw, "tri") == 0) {
+        if (!*size_line)
+            return fail(p, "'tri' before 'size' (the size must come first)");
+        return parse_tri(p, s, tok + 1, n - 1);
+    }
+    return fail(p, "unknown keyword '%.40s' (expected size, background, texture or tri)", kw);
+}
+
+bool scene_parse(struct scene *s, const char *name, const char *text, size_t len,
+                 char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    struct parser p = { .name = name, .line = 0, .err = err, .errlen = errlen };
+    int size_line = 0, bg_line = 0;
+    char *buf = NULL;
+    size_t bufcap = 0;
+    bool ok = true;
+
+    for (size_t pos = 0; pos < len && ok;) {
+        p.line++;
+        size_t end = pos;
+        while (end < len && text[end] != '\n')
+            end++;
+        size_t n = end - pos;
+        if (n + 1 > bufcap) {
+            char *nb = realloc(buf, n + 1);
+            if (!nb) {
+                ok = fail(&p, "out of memory");
+                break;
+            }
+            buf = nb;
+            bufcap = n + 1;
+        }
+        memcpy(buf, text + pos, n);
+        buf[n] = '\0';
+        pos = end + 1;
+
+        if (memchr(buf, '\0', n)) {
+            ok = fail(&p, "NUL byte in the line (is this a text file?)");
+            break;
+        }
+        char *hash = strchr(buf, '#');
+        if (hash)
+            *hash = '\0';
+        char *tok[MAX_TOKENS];
+        int ntok = 0;
+        for (char *t = strtok(buf, " \t\r\v\f"); t; t = strtok(NULL, " \t\r\v\f")) {
+            if (ntok == MAX_TOKENS) {
+                ok = fail(&p, "too many values on one line (at most %d)", MAX_TOKENS - 1);
+                break;
+            }
+            tok[ntok++] = t;
+        }
+        if (ok && ntok > 0)
+            ok = parse_line(&p, s, tok, ntok, &size_line, &bg_line);
+    }
+    free(buf);
+    if (ok && !size_line) {
+        if (p.line == 0)
+            p.line = 1;
+        ok = fail(&p, "missing 'size W H' (the framebuffer size is required)");
+    }
+    if (!ok)
+        scene_free(s);
+    return ok;
+}
+
+bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
+{
+    if (strncmp(path, "builtin:", 8) == 0)
+        return scene_builtin(s, path + 8, err, errlen);
+    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
+        return false;
+    }
+    char *text = NULL;
+    size_t len = 0, cap = 0;
+    bool ok = true;
+    for (;;) {
+        if (len == cap) {
+            cap = cap ? cap * 2 : 65536;
+            char *nt = realloc(text, cap);
+            if (!nt) {
+                ok = false;
+                snprintf(err, errlen, "%s:0: out of memory", path);
+                break;
+            }
+            text = nt;
+        }
+        size_t got = fread(text + len, 1, cap - len, f);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    if (ok && ferror(f)) {
+        ok = false;
+        snprintf(err, errlen, "%s:0: cannot read: %s", path, strerror(errno));
+    }
+    if (f != stdin)
+        fclose(f);
+    if (ok)
+        ok = scene_parse(s, path, text, len, err, errlen);
+    free(text);
+    return ok;
+}
+
+/* Shortest text that reads back as the same double. */
+static void put_number(FILE *out, double v)
+{
+    char buf[40];
+    for (int prec = 6; prec <= 17; prec++) {
+        snprintf(buf, sizeof buf, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    fprintf(out, " %s", buf);
+}
+
+bool scene_write(const struct scene *s, FILE *out)
+{
+    fprintf(out, "size %d %d\n", s->w, s->h);
+    fprintf(out, "background");
+    for (int i = 0; i < 3; i++)
+        put_number(out, s->background[i]);
+    fputc('\n', out);
+    if (s->checker)
+        fprintf(out, "texture checker %d\n", s->checker);
+    for (int i = 0; i < s->ntris; i++) {
+        fputs("tri", out);
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s->tris[i].v[k];
+            double d[8] = { v->x, v->y, v->z, v->r, v->g, v->b, v->s, v->t };
+            fputs(" ", out);
+            for (int c = 0; c < (s->has_st ? 8 : 6); c++)
+                put_number(out, d[c]);
+        }
+        fputc('\n', out);
+    }
+    return !ferror(out);
+}
+
+void scene_free(struct scene *s)
+{
+    free(s->tris);
+    memset(s, 0, sizeof *s);
+}
+
+uint32_t scene_background(const struct scene *s)
+{
+    return pack_rgb(s->background[0], s->background[1], s->background[2]);
+}

@@ -1,0 +1,120 @@
+/* trace.h - the narration: what a lesson says it does while it rasterizes.
+ *
+ * A lesson is an ordinary rasterizer loop that narrates itself:
+ *
+ *     NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = 4, .x = x, .y = y,
+ *             .e = { f01, f02, f03 }, .flags = inside ? TRACE_INSIDE : 0);
+ *
+ * The explorer never re-implements an algorithm: it replays the narration.
+ * "Step N" means the first N events of the run have happened and the rest
+ * have not: the trace delivers those N events to a sink and, from event N on,
+ * it is frozen, so the lesson's writes (PLOT, FILL) no longer reach the
+ * target. The picture at step N is therefore exactly the lesson's own output
+ * stopped after N events, without storing any event.
+ *
+ * Events are numbered per triangle: the driver (replay.h) runs one triangle
+ * at a time, so a scene of 200,000 triangles needs the event count of each
+ * triangle (one int each), never every event at once.
+ *
+ * Compiled without TRISTEP_NARRATE (the fast build that `make bench` times)
+ * every macro here is the bare operation or nothing at all.
+ */
+#ifndef TRISTEP_TRACE_H
+#define TRISTEP_TRACE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "raster/raster.h"
+
+enum trace_kind {
+    TRACE_SETUP,        /* triangle set up: box, edges, area */
+    TRACE_ROW,          /* a new row (y) starts; x..x1 is the range walked */
+    TRACE_SPAN,         /* a span x..x1 on row y (scanline lessons) */
+    TRACE_BLOCK,        /* a q x q block at (x, y), size x1 - x + 1, class in klass */
+    TRACE_PIXEL_TEST,   /* pixel (x, y) tested: edge values e, flags & TRACE_INSIDE */
+    TRACE_PIXEL_WRITE,  /* pixel (x, y) written: z, rgba, flags & TRACE_DEPTH_PASS */
+    TRACE_KIND_COUNT
+};
+
+enum trace_flags {
+    TRACE_INSIDE = 1,       /* the pixel test said covered */
+    TRACE_DEPTH_PASS = 2,   /* the fragment was nearer than the depth buffer */
+};
+
+enum block_class { BLOCK_EMPTY, BLOCK_FULL, BLOCK_PARTIAL, BLOCK_CLASS_COUNT };
+
+/* Running counts of what the algorithm did, as llvmpipe's LP_COUNT does. */
+struct trace_counters {
+    uint64_t events;
+    uint64_t tested, covered, written;      /* pixels */
+    uint64_t blocks[BLOCK_CLASS_COUNT];
+    uint64_t rows, spans;
+    uint64_t mul, add;                      /* arithmetic the lesson declared */
+};
+
+struct trace_event {
+    uint8_t kind;       /* enum trace_kind */
+    uint8_t line;       /* line of the lesson's pseudo-code, 0-based */
+    uint8_t flags;      /* enum trace_flags */
+    uint8_t klass;      /* enum block_class, for TRACE_BLOCK */
+    int32_t x, y;       /* pixel; row start; span start; block origin */
+    int32_t x1, y1;     /* span end; block's last pixel (inclusive) */
+    int64_t e[3];       /* edge values F01, F02, F03 (1/65536 px^2) */
+    float bary[3];      /* u, v, w: the weights of A, B, C */
+    float z;            /* depth (z, not 1/z) */
+    uint32_t rgba;      /* 0xAARRGGBB */
+    uint16_t mask[3];   /* block corner masks per edge (checkw, checku, checkv) */
+    float aux[6];       /* lesson-specific values, named by lesson->aux_names */
+    /* filled in by trace_emit: */
+    uint32_t tri;       /* index of the triangle in the scene */
+    uint32_t index;     /* event number within the triangle */
+    uint64_t mul, add;  /* arithmetic so far in this triangle */
+};
+
+struct trace {
+    uint32_t tri;                   /* triangle being run */
+    uint64_t count;                 /* events emitted so far in this triangle */
+    uint64_t limit;                 /* events numbered >= limit have not happened */
+    bool frozen;                    /* an event at or past the limit was emitted */
+    struct trace_counters c;        /* counts over the events that happened */
+    void (*sink)(void *ctx, const struct trace_event *ev);   /* may be NULL */
+    void *ctx;
+};
+
+/* Begin a triangle: nothing has happened yet, the first `limit` events will. */
+void trace_begin(struct trace *tr, uint32_t tri, uint64_t limit);
+/* Deliver one event (or freeze). Lessons use NARRATE, not this. */
+void trace_emit(struct trace *tr, struct trace_event *ev);
+/* Narrated write of one covered pixel: a TRACE_PIXEL_WRITE event, then the
+ * write itself unless the trace is frozen. */
+void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
+                float z, uint32_t rgba);
+
+#define TRACE_UNLIMITED UINT64_MAX
+
+#ifdef TRISTEP_NARRATE
+/* Say what happens; the fields are a designated initializer list. */
+#define NARRATE(tr, ...) \
+    do { if (tr) trace_emit((tr), &(struct trace_event){ __VA_ARGS__ }); } while (0)
+/* Declare arithmetic done: m multiplications, a additions or subtractions. */
+#define COUNT_OPS(tr, m, a) \
+    do { if ((tr) && !(tr)->frozen) { (tr)->c.mul += (m); (tr)->c.add += (a); } } while (0)
+/* Write a covered pixel as a step of its own. */
+#define PLOT(fb, tr, line, x, y, z, rgba) \
+    do { if (tr) trace_plot((tr), (fb), (line), (x), (y), (z), (rgba)); \
+         else target_write((fb), (x), (y), (z), (rgba)); } while (0)
+/* Write a covered pixel that belongs to the step just narrated (a block
+ * filled in one step): no event, but nothing is written once frozen. */
+#define FILL(fb, tr, x, y, z, rgba) \
+    do { if (!(tr) || !(tr)->frozen) target_write((fb), (x), (y), (z), (rgba)); } while (0)
+#define NARRATING 1
+#else
+#define NARRATE(tr, ...) ((void)(tr))
+#define COUNT_OPS(tr, m, a) ((void)(tr))
+#define PLOT(fb, tr, line, x, y, z, rgba) target_write((fb), (x), (y), (z), (rgba))
+#define FILL(fb, tr, x, y, z, rgba) target_write((fb), (x), (y), (z), (rgba))
+#define NARRATING 0
+#endif
+
+#endif
