@@ -1,0 +1,55 @@
+/* test_readme.c - the README's lesson catalogue lists exactly the lessons
+ * that exist, each with its program name and title. */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lesson.h"
+
+extern const struct lesson *const all_lessons[];
+
+static char *read_readme(void)
+{
+    FILE *f = fopen("README.md", "rb");
+    cr_assert_not_null(f, "README.md not found (run the tests from the project's top folder)");
+    static char text[1 << 16];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    return text;
+}
+
+/* The catalogue: the lines between the two markers. */
+static char *catalogue(char *text)
+{
+    char *begin = strstr(text, "<!-- catalogue:");
+    char *end = strstr(text, "<!-- end of catalogue -->");
+    cr_assert(begin && end && begin < end, "README.md has no catalogue markers");
+    *end = '\0';
+    return begin;
+}
+
+Test(readme, catalogue_lists_every_lesson_with_its_program_and_title)
+{
+    char *cat = catalogue(read_readme());
+    for (int i = 0; all_lessons[i]; i++) {
+        const struct lesson *l = all_lessons[i];
+        char row[256];
+        snprintf(row, sizeof row, "| [%.2s](lessons/%s/README.md) | `build/%s` | %s |",
+                 l->id, l->id, l->id, l->title);
+        cr_expect(strstr(cat, row) != NULL, "README catalogue lacks the row:\n%s", row);
+    }
+}
+
+Test(readme, catalogue_lists_no_lesson_that_does_not_exist)
+{
+    char *cat = catalogue(read_readme());
+    int rows = 0;
+    for (char *p = strstr(cat, "\n| ["); p; p = strstr(p + 1, "\n| ["))
+        rows++;
+    int lessons = 0;
+    while (all_lessons[lessons])
+        lessons++;
+    cr_expect_eq(rows, lessons, "README catalogue has %d rows for %d lessons", rows, lessons);
+}
