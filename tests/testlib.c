@@ -327,8 +327,8 @@ bool coverage_equal(const uint8_t *expected, const uint8_t *actual, int w, int h
     int y0 = fy - ART_RADIUS < 0 ? 0 : fy - ART_RADIUS;
     int y1 = fy + ART_RADIUS >= h ? h - 1 : fy + ART_RADIUS;
     int cols = x1 - x0 + 1;
-    fprintf(stderr, "  %5s  %-*s  %-*s  %s\n", "y\\x", cols, "expected", cols, "actual", "diff");
-    fprintf(stderr, "  %5d  %-*d  %-*d  %d\n", x0, cols, x0, cols, x0, x0);
+    fprintf(stderr, "  columns x = %d..%d, rows y = %d..%d\n", x0, x1, y0, y1);
+    fprintf(stderr, "  %5s  %-*s  %-*s  %s\n", "y", cols, "expected", cols, "actual", "diff");
     for (int y = y0; y <= y1; y++) {
         fprintf(stderr, "  %5d  ", y);
         for (int pass = 0; pass < 3; pass++) {
