@@ -82,6 +82,16 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  38.75 23 1  0.81 0.75 0.42  47 21.5 1  0.95 0.75 0.3  37 30 1  0.81 0.9 0.42\n"
         "tri  47 21.5 1  0.95 0.75 0.3  47 30 1  0.95 0.9 0.3  37 30 1  0.81 0.9 0.42\n"
     },
+    { "floor", "a receding textured floor of two triangles (lesson 04)",
+        "# a floor seen from height 1 by a camera of focal length 32 px, horizon at y = 2:\n"
+        "# the floor point (X, Z) appears at x = 32 + 32 X / Z, y = 2 + 32 / Z.\n"
+        "# Corners X = -1, +1 at Z = 1 (near) and Z = 8 (far); s = (X + 1) / 2, t = (Z - 1) / 7\n"
+        "size 64 40\n"
+        "background 0.08 0.08 0.1\n"
+        "texture checker 8\n"
+        "tri  0 34 1  0.95 0.85 0.6 0 0   64 34 1  0.95 0.85 0.6 1 0   36 6 8  0.6 0.75 0.95 1 1\n"
+        "tri  0 34 1  0.95 0.85 0.6 0 0   36 6 8  0.6 0.75 0.95 1 1   28 6 8  0.6 0.75 0.95 0 1\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);

@@ -1,0 +1,441 @@
+/* Lesson 04: SIMD vectors of (1/z, w, u, v), perspective-correct.
+ *
+ * What it shows: seed 001, section 4. Screen-space barycentrics are not
+ * what a perspective camera needs: along a floor that recedes from the eye,
+ * equal steps on the screen are ever larger steps on the floor. What IS
+ * linear in screen space is 1/z (and a/z for any attribute a), so the lesson
+ * steps 1/z next to the three edge values, recovers z = 1 / (1/z) at each
+ * covered pixel and weights every attribute by 1/z (formula 23).
+ *
+ * The source packs the four linear quantities of one pixel into one SSE
+ * register, (F00, F01, F02, F03) / Area2 = (1/z, w, u, v), and walks the
+ * bounding box with one vector add per pixel (Cx += I) and one per row
+ * (Cy += J). That register walk is written twice, side by side: once with
+ * SSE intrinsics and once as its scalar twin on four floats (the code
+ * non-x86 builds run). A second layout closes the lesson: four PIXELS per
+ * register instead of four quantities of one pixel.
+ *
+ * New since lesson 03: the fourth lane (1/z, formulas 16 to 22), the
+ * perspective-correct attributes (23), the depth test written the right way
+ * round, and SIMD. What stays: lesson 03's exact integer edge stepping
+ * decides coverage; the float lanes only interpolate.
+ *
+ *                  (1/z)  (w)   (u)   (v)
+ *     Cx       = [ F00 | F01 | F02 | F03 ] / Area2     one pixel, one register
+ *     I        = [ I00 | I01 | I02 | I03 ] / Area2     added once per pixel
+ *     J        = [ J00 | J01 | J02 | J03 ] / Area2     added once per row
+ *
+ * Lanes as the text names them: w = F01 / Area2 is the weight of C (edge AB
+ * is opposite C), u = F02 / Area2 the weight of A, v = F03 / Area2 that of B.
+ */
+#include "lesson.h"
+
+static const char *const pseudocode[] = {
+    "[minX, maxX, minY, maxY], I0k, J0k, K0k of edges AB, BC, CA",   /* 0 */
+    "I00, J00, K00 = I02/ZA + I03/ZB + I01/ZC, ...   (19)-(21)",     /* 1 */
+    "F = (I * minX + J * minY + K) / Area2  = (1/z, w, u, v)",       /* 2 */
+    "I = I / Area2;  J = J / Area2;  Cy = F",                        /* 3 */
+    "loop y = minY to maxY:  Cx = Cy",                               /* 4 */
+    "  loop x = minX to maxX:",                                      /* 5 */
+    "    if F01, F02, F03 inside (exact, top-left rule):",          /* 6 */
+    "      Depth = 1 / Cx[0]",                                       /* 7 */
+    "      P = (u PA/ZA + v PB/ZB + w PC/ZC) * Depth   (23)",        /* 8 */
+    "      if Depth < DepthBuffer(x, y): write Depth, colour",       /* 9 */
+    "    Cx += I",                                                   /* 10 */
+    "  Cy += J",                                                     /* 11 */
+    NULL,
+};
+
+enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ATTR, L_WRITE,
+       L_STEP_X, L_STEP_Y };
+
+/* The lanes, in the source's order. */
+enum { LANE_INV_Z, LANE_W, LANE_U, LANE_V };
+
+/* Attributes interpolated by (23): r, g, b, s, t, padded to two registers. */
+enum { ATTR_R, ATTR_G, ATTR_B, ATTR_S, ATTR_T, ATTR_COUNT = 8 };
+
+static const char *const aux_names[] = { "1/z", "w", "u", "v", "s", "t", NULL };
+
+/* Everything the pixel loops need, computed once per triangle. */
+struct persp_setup {
+    /* (1/z, w, u, v) at the centre of (minX, minY), per pixel to the right,
+     * per row down: the source's F, I and J after the division by Area2. */
+    double F[4], I[4], J[4];
+    /* Per vertex A, B, C: (r, g, b, s, t) / Z for formula (23), or the bare
+     * attributes when the run interpolates affinely (the exhibit). */
+    float Q[3][ATTR_COUNT];
+    /* Exact edge values F01, F02, F03 at (minX, minY) and their integer
+     * steps: these, not the float lanes, decide coverage. */
+    int64_t e[3], ex[3], ey[3];
+};
+
+/* Formulas (18) to (22): the depth function is built from the edge
+ * functions exactly as each barycentric weight is,
+ *
+ *     D(x, y) = F02 / ZA + F03 / ZB + F01 / ZC = Area2 / Zp          (18)
+ *
+ * and since every F0k = I0k x + J0k y + K0k is linear, so is D:
+ *
+ *     I00 = I02/ZA + I03/ZB + I01/ZC                                   (19)
+ *     J00 = J02/ZA + J03/ZB + J01/ZC                                   (20)
+ *     K00 = K02/ZA + K03/ZB + K01/ZC                                   (21)
+ *     F00 = I00 x + J00 y + K00                                        (22)
+ *
+ * tristep's edge coefficients are in 1/256 pixel units (raster.h): x and y
+ * below are the fixed-point pixel centre, and one pixel to the right adds
+ * 256 * I. Lanes 1 to 3 start from the exact integer edge values; lane 0 is
+ * (22) in double precision, whose rounding (about |K| * 2^-53, under 2^-6
+ * of one edge unit for vertices inside +-16384 px) is far below what the
+ * float lanes keep. */
+static void persp_setup(const struct tri_setup *t, const struct raster_params *p,
+                        struct persp_setup *s)
+{
+    const struct vertex *a = &t->v[0], *b = &t->v[1], *c = &t->v[2];
+    double ZA = a->z, ZB = b->z, ZC = c->z;
+    double X = (double)pixel_centre(t->minx), Y = (double)pixel_centre(t->miny);
+
+    double I00 = t->I[EDGE_BC] / ZA + t->I[EDGE_CA] / ZB + t->I[EDGE_AB] / ZC;  /* (19) */
+    double J00 = t->J[EDGE_BC] / ZA + t->J[EDGE_CA] / ZB + t->J[EDGE_AB] / ZC;  /* (20) */
+    double K00 = t->K[EDGE_BC] / ZA + t->K[EDGE_CA] / ZB + t->K[EDGE_AB] / ZC;  /* (21) */
+
+    for (int k = 0; k < 3; k++) {
+        s->e[k] = edge_value(t, k, t->minx, t->miny);
+        s->ex[k] = t->I[k] * SUBPIXEL_ONE;
+        s->ey[k] = t->J[k] * SUBPIXEL_ONE;
+    }
+
+    /* the vectors I, J and F = I * minX + J * minY + K, divided by Area2 */
+    double A = (double)t->area2;
+    double F[4] = { I00 * X + J00 * Y + K00,                           /* (22) */
+                    (double)s->e[EDGE_AB], (double)s->e[EDGE_BC], (double)s->e[EDGE_CA] };
+    double I[4] = { I00, (double)t->I[EDGE_AB], (double)t->I[EDGE_BC], (double)t->I[EDGE_CA] };
+    double J[4] = { J00, (double)t->J[EDGE_AB], (double)t->J[EDGE_BC], (double)t->J[EDGE_CA] };
+    for (int lane = 0; lane < 4; lane++) {
+        s->F[lane] = F[lane] / A;
+        s->I[lane] = I[lane] * SUBPIXEL_ONE / A;
+        s->J[lane] = J[lane] * SUBPIXEL_ONE / A;
+    }
+
+    /* (23) divides each vertex's attribute by its Z once, here; the affine
+     * exhibit keeps the bare attribute and, below, skips the "* Depth". */
+    for (int i = 0; i < 3; i++) {
+        const struct vertex *v = &t->v[i];
+        double q = p->affine ? 1.0 : 1.0 / v->z;
+        float *Q = s->Q[i];
+        Q[ATTR_R] = (float)(v->r * q);
+        Q[ATTR_G] = (float)(v->g * q);
+        Q[ATTR_B] = (float)(v->b * q);
+        Q[ATTR_S] = (float)(v->s * q);
+        Q[ATTR_T] = (float)(v->t * q);
+        Q[5] = Q[6] = Q[7] = 0;
+    }
+}
+
+static bool covered(const struct tri_setup *t, const int64_t e[3])
+{
+    return edge_inside(t, EDGE_AB, e[0]) && edge_inside(t, EDGE_BC, e[1])
+        && edge_inside(t, EDGE_CA, e[2]);
+}
+
+static void narrate_setup(const struct tri_setup *t, const struct persp_setup *s,
+                          struct trace *tr)
+{
+    NARRATE(tr, .kind = TRACE_SETUP, .line = L_F, .x = t->minx, .y = t->miny,
+            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 },
+            .aux = { (float)s->F[0], (float)s->F[1], (float)s->F[2], (float)s->F[3] });
+    (void)t;
+    (void)s;
+}
+
+/* --- the source's layout, scalar twin ---------------------------------------------
+ *
+ * The four lanes as four floats, every step written out. This is the
+ * reference for the SSE function below (same operations, same order, same
+ * rounding) and what builds without SSE run. */
+static void rasterize_scalar(const struct tri_setup *t, const struct raster_params *p,
+                             struct target *fb, struct trace *tr)
+{
+    struct persp_setup s;
+    if (t->empty) {
+        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
+                .x1 = t->maxx, .y1 = t->maxy);
+        return;
+    }
+    persp_setup(t, p, &s);
+    narrate_setup(t, &s, tr);
+    const float *QA = s.Q[0], *QB = s.Q[1], *QC = s.Q[2];
+    float I[4], Cy[4];
+    for (int lane = 0; lane < 4; lane++) {
+        I[lane] = (float)s.I[lane];
+        Cy[lane] = (float)s.F[lane];
+    }
+    float Jv[4] = { (float)s.J[0], (float)s.J[1], (float)s.J[2], (float)s.J[3] };
+    int64_t ey[3] = { s.e[0], s.e[1], s.e[2] };
+
+    for (int y = t->miny; y <= t->maxy; y++) {
+        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
+        float Cx[4] = { Cy[0], Cy[1], Cy[2], Cy[3] };
+        int64_t e[3] = { ey[0], ey[1], ey[2] };
+        for (int x = t->minx; x <= t->maxx; x++) {
+            bool in = covered(t, e);
+            float attr[ATTR_COUNT] = { 0 };
+            float depth = 0;
+            if (in) {
+                depth = 1.0f / Cx[LANE_INV_Z];
+                float u = Cx[LANE_U], v = Cx[LANE_V], w = Cx[LANE_W];
+                float m = p->affine ? 1.0f : depth;
+                for (int i = 0; i < ATTR_COUNT; i++)
+                    attr[i] = (u * QA[i] + v * QB[i] + w * QC[i]) * m;   /* (23) */
+                COUNT_OPS(tr, 1 + 5 * 4, 5 * 2);
+            }
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
+                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
+                    .bary = { Cx[LANE_U], Cx[LANE_V], Cx[LANE_W] }, .z = depth,
+                    .aux = { Cx[0], Cx[1], Cx[2], Cx[3], attr[ATTR_S], attr[ATTR_T] });
+            if (in)
+                PLOT(fb, tr, L_WRITE, x, y, depth,
+                     shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                                 attr[ATTR_S], attr[ATTR_T]));
+            for (int lane = 0; lane < 4; lane++)      /* Cx += I */
+                Cx[lane] += I[lane];
+            for (int k = 0; k < 3; k++)
+                e[k] += s.ex[k];
+            COUNT_OPS(tr, 0, 4 + 3);
+        }
+        for (int lane = 0; lane < 4; lane++)          /* Cy += J */
+            Cy[lane] += Jv[lane];
+        for (int k = 0; k < 3; k++)
+            ey[k] += s.ey[k];
+        COUNT_OPS(tr, 0, 4 + 3);
+    }
+}
+
+/* --- SSE ------------------------------------------------------------------------------
+ *
+ * One #if chooses what the SIMD variants run: SSE2 on x86 (the baseline of
+ * every x86-64 compiler), their scalar twins elsewhere. */
+#if defined(__SSE2__)
+#include <immintrin.h>   /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
+
+/* The lanes of one register, broadcast: lane i copied into all four. */
+#define BROADCAST(r, i) _mm_shuffle_ps((r), (r), _MM_SHUFFLE(i, i, i, i))
+
+/* The source's layout: one pixel's (1/z, w, u, v) in one register.
+ *
+ *     Cx  [ 1/z |  w  |  u  |  v  ]
+ *            |     |     |     |
+ *     +  I [ I00 | I01 | I02 | I03 ] / Area2      one _mm_add_ps per pixel
+ */
+static void rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
+                          struct target *fb, struct trace *tr)
+{
+    struct persp_setup s;
+    if (t->empty) {
+        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
+                .x1 = t->maxx, .y1 = t->maxy);
+        return;
+    }
+    persp_setup(t, p, &s);
+    narrate_setup(t, &s, tr);
+    /* _mm_set_ps lists lanes from the highest down: lane 0 is the last argument */
+    __m128 I = _mm_set_ps((float)s.I[3], (float)s.I[2], (float)s.I[1], (float)s.I[0]);
+    __m128 J = _mm_set_ps((float)s.J[3], (float)s.J[2], (float)s.J[1], (float)s.J[0]);
+    __m128 Cy = _mm_set_ps((float)s.F[3], (float)s.F[2], (float)s.F[1], (float)s.F[0]);
+    __m128 QA0 = _mm_loadu_ps(s.Q[0]), QA1 = _mm_loadu_ps(s.Q[0] + 4);
+    __m128 QB0 = _mm_loadu_ps(s.Q[1]), QB1 = _mm_loadu_ps(s.Q[1] + 4);
+    __m128 QC0 = _mm_loadu_ps(s.Q[2]), QC1 = _mm_loadu_ps(s.Q[2] + 4);
+    const __m128 one = _mm_set1_ps(1.0f);
+    int64_t ey[3] = { s.e[0], s.e[1], s.e[2] };
+
+    for (int y = t->miny; y <= t->maxy; y++) {
+        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
+        __m128 Cx = Cy;
+        int64_t e[3] = { ey[0], ey[1], ey[2] };
+        for (int x = t->minx; x <= t->maxx; x++) {
+            bool in = covered(t, e);
+            float attr[ATTR_COUNT] = { 0 }, lane[4] = { 0 };
+            float depth = 0;
+            if (in) {
+                depth = _mm_cvtss_f32(_mm_div_ss(one, Cx));       /* 1 / Cx[0] */
+                __m128 u = BROADCAST(Cx, LANE_U), v = BROADCAST(Cx, LANE_V);
+                __m128 w = BROADCAST(Cx, LANE_W);
+                __m128 m = _mm_set1_ps(p->affine ? 1.0f : depth);
+                __m128 P0 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, QA0), _mm_mul_ps(v, QB0)),
+                                       _mm_mul_ps(w, QC0));        /* (23): r, g, b, s */
+                __m128 P1 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, QA1), _mm_mul_ps(v, QB1)),
+                                       _mm_mul_ps(w, QC1));        /* (23): t */
+                _mm_storeu_ps(attr, _mm_mul_ps(P0, m));
+                _mm_storeu_ps(attr + 4, _mm_mul_ps(P1, m));
+                COUNT_OPS(tr, 1 + 5 * 4, 5 * 2);
+            }
+            if (NARRATING)
+                _mm_storeu_ps(lane, Cx);
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
+                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
+                    .bary = { lane[LANE_U], lane[LANE_V], lane[LANE_W] }, .z = depth,
+                    .aux = { lane[0], lane[1], lane[2], lane[3], attr[ATTR_S], attr[ATTR_T] });
+            if (in)
+                PLOT(fb, tr, L_WRITE, x, y, depth,
+                     shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                                 attr[ATTR_S], attr[ATTR_T]));
+            Cx = _mm_add_ps(Cx, I);                               /* Cx += I */
+            for (int k = 0; k < 3; k++)
+                e[k] += s.ex[k];
+            COUNT_OPS(tr, 0, 4 + 3);
+        }
+        Cy = _mm_add_ps(Cy, J);                                   /* Cy += J */
+        for (int k = 0; k < 3; k++)
+            ey[k] += s.ey[k];
+        COUNT_OPS(tr, 0, 4 + 3);
+    }
+}
+
+/* Beyond the source: four PIXELS per register, one register per quantity.
+ *
+ *                pixel x    x+1     x+2     x+3
+ *     D     = [ 1/z    | 1/z    | 1/z    | 1/z    ]    += 4 * I00 / Area2
+ *     W     = [ w      | w      | w      | w      ]    += 4 * I01 / Area2
+ *     U, V  likewise
+ *     edges = exact int64 F01, F02, F03, two pixels per register, six registers
+ *
+ * Four pixels cost the same four vector adds one pixel costs above, the
+ * division 1 / D serves four pixels at once, and (23) needs no broadcasts.
+ * The last group of a row may reach past maxX: those lanes are masked off. */
+static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_params *p,
+                               struct target *fb, struct trace *tr)
+{
+    struct persp_setup s;
+    if (t->empty) {
+        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
+                .x1 = t->maxx, .y1 = t->maxy);
+        return;
+    }
+    persp_setup(t, p, &s);
+    narrate_setup(t, &s, tr);
+
+    /* quantity q at pixels minX .. minX+3 of row minY: F + (0, 1, 2, 3) * I */
+    __m128 Cy[4], I4[4], J[4];
+    for (int q = 0; q < 4; q++) {
+        Cy[q] = _mm_set_ps((float)(s.F[q] + 3 * s.I[q]), (float)(s.F[q] + 2 * s.I[q]),
+                           (float)(s.F[q] + s.I[q]), (float)s.F[q]);
+        I4[q] = _mm_set1_ps((float)(4 * s.I[q]));
+        J[q] = _mm_set1_ps((float)s.J[q]);
+    }
+    __m128 QA[ATTR_T + 1], QB[ATTR_T + 1], QC[ATTR_T + 1];
+    for (int i = 0; i <= ATTR_T; i++) {
+        QA[i] = _mm_set1_ps(s.Q[0][i]);
+        QB[i] = _mm_set1_ps(s.Q[1][i]);
+        QC[i] = _mm_set1_ps(s.Q[2][i]);
+    }
+    /* exact edge values: register lo holds pixels (x, x+1), hi holds (x+2, x+3);
+     * _mm_set_epi64x lists the high lane first */
+    __m128i Ey_lo[3], Ey_hi[3], EX4[3], EY[3], bias[3];
+    for (int k = 0; k < 3; k++) {
+        int64_t e = s.e[k], dx = s.ex[k];
+        Ey_lo[k] = _mm_set_epi64x(e + dx, e);
+        Ey_hi[k] = _mm_set_epi64x(e + 3 * dx, e + 2 * dx);
+        EX4[k] = _mm_set1_epi64x(4 * dx);
+        EY[k] = _mm_set1_epi64x(s.ey[k]);
+        bias[k] = _mm_set1_epi64x(t->bias[k]);
+    }
+    const __m128 one = _mm_set1_ps(1.0f);
+
+    for (int y = t->miny; y <= t->maxy; y++) {
+        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
+        __m128 D = Cy[LANE_INV_Z], W = Cy[LANE_W], U = Cy[LANE_U], V = Cy[LANE_V];
+        __m128i E_lo[3] = { Ey_lo[0], Ey_lo[1], Ey_lo[2] };
+        __m128i E_hi[3] = { Ey_hi[0], Ey_hi[1], Ey_hi[2] };
+        for (int x = t->minx; x <= t->maxx; x += 4) {
+            /* A pixel is outside when some F + bias < 0: the sign bit of each
+             * 64-bit lane, OR-ed over the three edges, read by movemask. */
+            __m128i out_lo = _mm_setzero_si128(), out_hi = _mm_setzero_si128();
+            for (int k = 0; k < 3; k++) {
+                out_lo = _mm_or_si128(out_lo, _mm_add_epi64(E_lo[k], bias[k]));
+                out_hi = _mm_or_si128(out_hi, _mm_add_epi64(E_hi[k], bias[k]));
+            }
+            int outside = _mm_movemask_pd(_mm_castsi128_pd(out_lo))
+                        | _mm_movemask_pd(_mm_castsi128_pd(out_hi)) << 2;
+            int valid = t->maxx - x >= 3 ? 4 : t->maxx - x + 1;  /* lanes inside the box */
+            int inside = ~outside & ((1 << valid) - 1);
+            COUNT_OPS(tr, 0, 6 * 2);
+
+            float depth[4] = { 0 }, attr[ATTR_T + 1][4] = { { 0 } };
+            if (inside) {
+                __m128 Z = _mm_div_ps(one, D);                     /* four depths at once */
+                __m128 M = p->affine ? one : Z;
+                _mm_storeu_ps(depth, Z);
+                for (int i = 0; i <= ATTR_T; i++)                  /* (23), four pixels */
+                    _mm_storeu_ps(attr[i], _mm_mul_ps(_mm_add_ps(_mm_add_ps(
+                        _mm_mul_ps(U, QA[i]), _mm_mul_ps(V, QB[i])), _mm_mul_ps(W, QC[i])), M));
+                COUNT_OPS(tr, 4 + 4 * 5 * 4, 4 * 5 * 2);
+            }
+            float lanes[4][4] = { { 0 } };
+            int64_t e[3][4] = { { 0 } };
+            if (NARRATING) {
+                _mm_storeu_ps(lanes[LANE_INV_Z], D);
+                _mm_storeu_ps(lanes[LANE_W], W);
+                _mm_storeu_ps(lanes[LANE_U], U);
+                _mm_storeu_ps(lanes[LANE_V], V);
+                for (int k = 0; k < 3; k++) {
+                    _mm_storeu_si128((__m128i *)&e[k][0], E_lo[k]);
+                    _mm_storeu_si128((__m128i *)&e[k][2], E_hi[k]);
+                }
+            }
+            for (int i = 0; i < valid; i++) {
+                bool in = inside >> i & 1;
+                NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x + i, .y = y,
+                        .e = { e[0][i], e[1][i], e[2][i] }, .flags = in ? TRACE_INSIDE : 0,
+                        .bary = { lanes[LANE_U][i], lanes[LANE_V][i], lanes[LANE_W][i] },
+                        .z = depth[i],
+                        .aux = { lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i],
+                                 attr[ATTR_S][i], attr[ATTR_T][i] });
+                if (in)
+                    PLOT(fb, tr, L_WRITE, x + i, y, depth[i],
+                         shade_pixel(p, attr[ATTR_R][i], attr[ATTR_G][i], attr[ATTR_B][i],
+                                     attr[ATTR_S][i], attr[ATTR_T][i]));
+            }
+            D = _mm_add_ps(D, I4[LANE_INV_Z]);
+            W = _mm_add_ps(W, I4[LANE_W]);
+            U = _mm_add_ps(U, I4[LANE_U]);
+            V = _mm_add_ps(V, I4[LANE_V]);
+            for (int k = 0; k < 3; k++) {
+                E_lo[k] = _mm_add_epi64(E_lo[k], EX4[k]);
+                E_hi[k] = _mm_add_epi64(E_hi[k], EX4[k]);
+            }
+            COUNT_OPS(tr, 0, 4 * 4 + 4 * 3);
+        }
+        for (int q = 0; q < 4; q++)
+            Cy[q] = _mm_add_ps(Cy[q], J[q]);
+        for (int k = 0; k < 3; k++) {
+            Ey_lo[k] = _mm_add_epi64(Ey_lo[k], EY[k]);
+            Ey_hi[k] = _mm_add_epi64(Ey_hi[k], EY[k]);
+        }
+        COUNT_OPS(tr, 0, 4 * 4 + 6);
+    }
+}
+#else
+/* No SSE: both SIMD variants run the scalar twin of the source's layout. */
+#define rasterize_sse rasterize_scalar
+#define rasterize_row4_sse rasterize_scalar
+#endif
+
+static const struct lesson_variant variants[] = {
+    { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
+      rasterize_sse, false },
+    { "scalar", "the same steps on four floats: the twin that non-x86 builds run",
+      rasterize_scalar, false },
+    { "row4", "four pixels per register, one register per quantity", rasterize_row4_sse, false },
+};
+
+const struct lesson lesson_04 = {
+    .id = "04-simd-perspective",
+    .title = "SIMD vectors of (1/z, w, u, v), perspective-correct",
+    .pseudocode = pseudocode,
+    .builtin_scene = "floor",
+    .exhibit_scene = "floor",
+    .perspective = true,
+    .variants = variants,
+    .nvariants = sizeof variants / sizeof variants[0],
+    .aux_names = aux_names,
+};
