@@ -82,6 +82,21 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  38.75 23 1  0.81 0.75 0.42  47 21.5 1  0.95 0.75 0.3  37 30 1  0.81 0.9 0.42\n"
         "tri  47 21.5 1  0.95 0.75 0.3  47 30 1  0.95 0.9 0.3  37 30 1  0.81 0.9 0.42\n"
     },
+    { "edge-steps", "one triangle small enough to read every edge value as it is stepped",
+        "# lesson 03's triangle: A red, B green, C blue, vertices off the pixel centres\n"
+        "size 20 14\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  2.3 1.6 1  0.95 0.2 0.15   18.6 5.2 2  0.2 0.85 0.3   6.4 12.7 1.5  0.2 0.35 0.95\n"
+    },
+    { "float-drift", "two large triangles sharing an edge through pixel centres, for float stepping",
+        "# edges AB and BC pass through a pixel centre every few pixels; exact stepping\n"
+        "# leaves those centres to one triangle (top-left rule), single-precision\n"
+        "# float stepping rounds the rule's -1 away and draws them twice\n"
+        "size 256 192\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  2.5 3.5 1  1 0.55 0.1   250.5 65.5 1  1 0.75 0.2   50.5 185.5 1  0.9 0.4 0.1\n"
+        "tri  250.5 65.5 1  0.2 0.5 1   253.5 188.5 1  0.3 0.7 1   50.5 185.5 1  0.2 0.4 0.9\n"
+    },
     { "floor", "a receding textured floor of two triangles (lesson 04)",
         "# a floor seen from height 1 by a camera of focal length 32 px, horizon at y = 2:\n"
         "# the floor point (X, Z) appears at x = 32 + 32 X / Z, y = 2 + 32 / Z.\n"
