@@ -37,8 +37,9 @@ $(B)/libtristep.a: $(LIB_OBJ) ; $(AR) rcs $@ $^
 $(PROGRAMS): $(B)/%: $$(addprefix $(B)/obj/,$$(subst .c,.o,$$(wildcard lessons/$$*/*.c))) $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-# Every lesson, both builds, listed for the tests and the bench.
-$(B)/lessons.c: Makefile | $(B)/config.mk
+# Every lesson, both builds, listed for the tests and the bench (again when
+# a lesson folder appears: that changes the mtime of lessons/).
+$(B)/lessons.c: Makefile lessons | $(B)/config.mk
 	@printf '#include "lesson.h"\n' > $@
 	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
 	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
