@@ -107,6 +107,34 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  0 34 1  0.95 0.85 0.6 0 0   64 34 1  0.95 0.85 0.6 1 0   36 6 8  0.6 0.75 0.95 1 1\n"
         "tri  0 34 1  0.95 0.85 0.6 0 0   36 6 8  0.6 0.75 0.95 1 1   28 6 8  0.6 0.75 0.95 0 1\n"
     },
+    { "cases-a-b", "seed 002's two cases side by side: middle vertex left [A], right [B]",
+        "# left: case [A], the middle vertex lies left of the long edge 1-2;\n"
+        "# right: case [B], the middle vertex lies right of the long edge 1-3.\n"
+        "# Vertices off the pixel centres, so every edge needs its prestep.\n"
+        "size 40 24\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  10.3 2.6 1  0.95 0.2 0.15   14.6 21.4 2  0.2 0.35 0.95   3.2 12.7 1.5  0.2 0.85 0.3\n"
+        "tri  26.2 2.3 1  0.95 0.2 0.15   37.4 9.8 1.5  0.2 0.85 0.3   24.7 21.6 2  0.2 0.35 0.95\n"
+    },
+    { "offgrid-strip", "twelve triangles sharing edges, vertices off the pixel grid",
+        "# a 3 x 2 strip of quads, two triangles each, no vertex on a pixel centre\n"
+        "# or a pixel corner: walking an edge from its vertex without a prestep\n"
+        "# samples it at the wrong height, and neighbours disagree on their seams\n"
+        "size 32 20\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  1.4 1.6 1  1 0.55 0.1   11.3 1.6 1  1 0.55 0.1   10.6 8.7 1  1 0.55 0.1\n"
+        "tri  1.4 1.6 1  0.2 0.5 1   10.6 8.7 1  0.2 0.5 1   1.4 10.2 1  0.2 0.5 1\n"
+        "tri  11.3 1.6 1  0.95 0.75 0.2   20.7 1.6 1  0.95 0.75 0.2   10.6 8.7 1  0.95 0.75 0.2\n"
+        "tri  20.7 1.6 1  0.3 0.75 0.95   21.2 9.8 1  0.3 0.75 0.95   10.6 8.7 1  0.3 0.75 0.95\n"
+        "tri  20.7 1.6 1  1 0.55 0.1   30.6 1.6 1  1 0.55 0.1   30.6 10.6 1  1 0.55 0.1\n"
+        "tri  20.7 1.6 1  0.2 0.5 1   30.6 10.6 1  0.2 0.5 1   21.2 9.8 1  0.2 0.5 1\n"
+        "tri  1.4 10.2 1  0.95 0.75 0.2   10.6 8.7 1  0.95 0.75 0.2   11.7 18.4 1  0.95 0.75 0.2\n"
+        "tri  1.4 10.2 1  0.3 0.75 0.95   11.7 18.4 1  0.3 0.75 0.95   1.4 18.4 1  0.3 0.75 0.95\n"
+        "tri  10.6 8.7 1  1 0.55 0.1   21.2 9.8 1  1 0.55 0.1   11.7 18.4 1  1 0.55 0.1\n"
+        "tri  21.2 9.8 1  0.2 0.5 1   19.6 18.4 1  0.2 0.5 1   11.7 18.4 1  0.2 0.5 1\n"
+        "tri  21.2 9.8 1  0.95 0.75 0.2   30.6 10.6 1  0.95 0.75 0.2   30.6 18.4 1  0.95 0.75 0.2\n"
+        "tri  21.2 9.8 1  0.3 0.75 0.95   30.6 18.4 1  0.3 0.75 0.95   19.6 18.4 1  0.3 0.75 0.95\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);
