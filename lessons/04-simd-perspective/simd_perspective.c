@@ -39,15 +39,16 @@ static const char *const pseudocode[] = {
     "  loop x = minX to maxX:",                                      /* 5 */
     "    if F01, F02, F03 inside (exact, top-left rule):",          /* 6 */
     "      Depth = 1 / Cx[0]",                                       /* 7 */
-    "      P = (u PA/ZA + v PB/ZB + w PC/ZC) * Depth   (23)",        /* 8 */
-    "      if Depth < DepthBuffer(x, y): write Depth, colour",       /* 9 */
-    "    Cx += I",                                                   /* 10 */
-    "  Cy += J",                                                     /* 11 */
+    "      if Depth < DepthBuffer(x, y):   (the nearer wins)",       /* 8 */
+    "        P = (u PA/ZA + v PB/ZB + w PC/ZC) * Depth   (23)",      /* 9 */
+    "        write Depth and the colour of P",                       /* 10 */
+    "    Cx += I",                                                   /* 11 */
+    "  Cy += J",                                                     /* 12 */
     NULL,
 };
 
-enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ATTR, L_WRITE,
-       L_STEP_X, L_STEP_Y };
+enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ZTEST, L_ATTR,
+       L_WRITE, L_STEP_X, L_STEP_Y };
 
 /* The lanes, in the source's order. */
 enum { LANE_INV_Z, LANE_W, LANE_U, LANE_V };
@@ -181,22 +182,26 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
             bool in = covered(t, e);
             float attr[ATTR_COUNT] = { 0 };
             float depth = 0;
-            if (in) {
+            if (in)
                 depth = 1.0f / Cx[LANE_INV_Z];
+            bool shows = in && target_depth_pass(fb, x, y, depth);
+            if (shows) {                                /* shade only what will show */
                 float u = Cx[LANE_U], v = Cx[LANE_V], w = Cx[LANE_W];
                 float m = p->affine ? 1.0f : depth;
                 for (int i = 0; i < ATTR_COUNT; i++)
                     attr[i] = (u * QA[i] + v * QB[i] + w * QC[i]) * m;   /* (23) */
-                COUNT_OPS(tr, 1 + 5 * 4, 5 * 2);
+                COUNT_OPS(tr, 5 * 4, 5 * 2);
             }
+            COUNT_OPS(tr, in, 0);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
                     .bary = { Cx[LANE_U], Cx[LANE_V], Cx[LANE_W] }, .z = depth,
                     .aux = { Cx[0], Cx[1], Cx[2], Cx[3], attr[ATTR_S], attr[ATTR_T] });
+            /* a hidden fragment is still counted (PLOT), its colour never written */
             if (in)
                 PLOT(fb, tr, L_WRITE, x, y, depth,
-                     shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
-                                 attr[ATTR_S], attr[ATTR_T]));
+                     shows ? shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                                         attr[ATTR_S], attr[ATTR_T]) : 0);
             for (int lane = 0; lane < 4; lane++)      /* Cx += I */
                 Cx[lane] += I[lane];
             for (int k = 0; k < 3; k++)
@@ -256,8 +261,10 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
             bool in = covered(t, e);
             float attr[ATTR_COUNT] = { 0 }, lane[4] = { 0 };
             float depth = 0;
-            if (in) {
+            if (in)
                 depth = _mm_cvtss_f32(_mm_div_ss(one, Cx));       /* 1 / Cx[0] */
+            bool shows = in && target_depth_pass(fb, x, y, depth);
+            if (shows) {                                /* shade only what will show */
                 __m128 u = BROADCAST(Cx, LANE_U), v = BROADCAST(Cx, LANE_V);
                 __m128 w = BROADCAST(Cx, LANE_W);
                 __m128 m = _mm_set1_ps(p->affine ? 1.0f : depth);
@@ -267,18 +274,20 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
                                        _mm_mul_ps(w, QC1));        /* (23): t */
                 _mm_storeu_ps(attr, _mm_mul_ps(P0, m));
                 _mm_storeu_ps(attr + 4, _mm_mul_ps(P1, m));
-                COUNT_OPS(tr, 1 + 5 * 4, 5 * 2);
+                COUNT_OPS(tr, 5 * 4, 5 * 2);
             }
+            COUNT_OPS(tr, in, 0);
             if (NARRATING)
                 _mm_storeu_ps(lane, Cx);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
                     .bary = { lane[LANE_U], lane[LANE_V], lane[LANE_W] }, .z = depth,
                     .aux = { lane[0], lane[1], lane[2], lane[3], attr[ATTR_S], attr[ATTR_T] });
+            /* a hidden fragment is still counted (PLOT), its colour never written */
             if (in)
                 PLOT(fb, tr, L_WRITE, x, y, depth,
-                     shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
-                                 attr[ATTR_S], attr[ATTR_T]));
+                     shows ? shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                                         attr[ATTR_S], attr[ATTR_T]) : 0);
             Cx = _mm_add_ps(Cx, I);                               /* Cx += I */
             for (int k = 0; k < 3; k++)
                 e[k] += s.ex[k];
@@ -361,14 +370,21 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
             COUNT_OPS(tr, 0, 6 * 2);
 
             float depth[4] = { 0 }, attr[ATTR_T + 1][4] = { { 0 } };
+            int shows = 0;                      /* inside and nearer than the buffer */
             if (inside) {
                 __m128 Z = _mm_div_ps(one, D);                     /* four depths at once */
-                __m128 M = p->affine ? one : Z;
                 _mm_storeu_ps(depth, Z);
+                for (int i = 0; i < valid; i++)
+                    if (inside >> i & 1 && target_depth_pass(fb, x + i, y, depth[i]))
+                        shows |= 1 << i;
+                COUNT_OPS(tr, 4, 0);
+            }
+            if (shows) {
+                __m128 M = p->affine ? one : _mm_loadu_ps(depth);
                 for (int i = 0; i <= ATTR_T; i++)                  /* (23), four pixels */
                     _mm_storeu_ps(attr[i], _mm_mul_ps(_mm_add_ps(_mm_add_ps(
                         _mm_mul_ps(U, QA[i]), _mm_mul_ps(V, QB[i])), _mm_mul_ps(W, QC[i])), M));
-                COUNT_OPS(tr, 4 + 4 * 5 * 4, 4 * 5 * 2);
+                COUNT_OPS(tr, 4 * 5 * 4, 4 * 5 * 2);
             }
             float lanes[4][4] = { { 0 } };
             int64_t e[3][4] = { { 0 } };
@@ -392,8 +408,9 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                                  attr[ATTR_S][i], attr[ATTR_T][i] });
                 if (in)
                     PLOT(fb, tr, L_WRITE, x + i, y, depth[i],
-                         shade_pixel(p, attr[ATTR_R][i], attr[ATTR_G][i], attr[ATTR_B][i],
-                                     attr[ATTR_S][i], attr[ATTR_T][i]));
+                         shows >> i & 1 ? shade_pixel(p, attr[ATTR_R][i], attr[ATTR_G][i],
+                                                      attr[ATTR_B][i], attr[ATTR_S][i],
+                                                      attr[ATTR_T][i]) : 0);
             }
             D = _mm_add_ps(D, I4[LANE_INV_Z]);
             W = _mm_add_ps(W, I4[LANE_W]);
