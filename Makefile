@@ -46,10 +46,17 @@ $(B)/lessons.c: Makefile lessons | $(B)/config.mk
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
 $(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
+# The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
+OSMESA   := $(shell pkg-config --exists osmesa 2>/dev/null && echo -lOSMesa)
+$(B)/obj/tests/bench/%.o: CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
+$(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
+bench: deps-bench all $(B)/tristep-bench
+	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
 clean: ; rm -rf $(BUILD)
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

@@ -1,0 +1,582 @@
+/* bench.c - `make bench`: every lesson's fast build timed on the same work,
+ * beside Mesa's llvmpipe and the memory-bandwidth limit of this machine.
+ *
+ * What is timed, per lesson variant (variants[0] and every exact twin) and
+ * per scene: tri_setup + rasterize for every triangle of the scene, into a
+ * 1920 x 1080 RGBA8 target with a float depth buffer (test LESS, with
+ * write), Gouraud colour. The target is cleared between runs, outside the
+ * clock. One warm-up run, then the median of N runs with their spread.
+ *
+ * What is checked, untimed, on every scene it times: the coverage count of
+ * every pixel equals the exact reference's, and llvmpipe's (0 differing
+ * pixels, or the exit status is 1).
+ *
+ * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/utsname.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench.h"
+#include "lesson.h"
+
+extern const struct lesson *const all_lessons_fast[];
+
+#define NSCENES 3
+#define MAX_ROWS 64
+#define SCENE_LARGE 0
+#define SCENE_SMALL 1
+#define SCENE_MIXED 2
+
+/* Targets of the benchmark issue, single thread, medians. */
+#define TARGET_LARGE_X 2.0      /* lesson 05 vs llvmpipe, Mpix/s on large */
+#define TARGET_SMALL_X 5.0      /* ... Mtri/s on small */
+#define TARGET_MIXED_X 2.0      /* ... on mixed */
+#define TARGET_BANDWIDTH 0.25   /* lesson 05 on large, share of the memory limit */
+#define TARGET_FRAME_MS 16.0    /* explorer frame at 1280 x 800 */
+
+struct options {
+    bool quick, exhibits, peer;
+    int runs;
+    uint64_t seed;
+    const char *out;            /* directory for bench.csv/svg/png */
+    const char *only;           /* run only lessons whose id starts with this */
+    const char *figures_cmd;    /* command that runs `make figures`, timed */
+};
+
+/* One line of the table: a lesson variant or a peer, on every scene. */
+struct row {
+    const char *program;        /* "02-barycentric", "llvmpipe" */
+    const char *variant;        /* "top-left", "1 thread" */
+    bool exhibit, peer;
+    struct bench_timing t[NSCENES];
+};
+
+static struct row rows[MAX_ROWS];
+static int nrows;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void bench_timing_stats(struct bench_timing *bt)
+{
+    double s[BENCH_MAX_RUNS];
+    memcpy(s, bt->t, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    int n = bt->runs;
+    bt->median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    bt->lo = s[0];
+    bt->hi = s[n - 1];
+}
+
+/* Pixels whose counts differ. */
+static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
+{
+    int64_t d = 0;
+    for (size_t i = 0; i < n; i++)
+        d += a[i] != b[i];
+    return d;
+}
+
+/* --- the lessons ------------------------------------------------------------ */
+
+static void draw_scene(const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, struct target *fb)
+{
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        v->rasterize(&t, p, fb, NULL);
+    }
+}
+
+static void time_variant(struct row *row, const struct lesson_variant *v,
+                         struct bench_scene *sc, uint8_t *const peer_cov[],
+                         const struct options *o)
+{
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    for (int i = 0; i < NSCENES; i++) {
+        const struct scene *s = &sc[i].s;
+        struct target fb;
+        if (!target_init(&fb, s->w, s->h, scene_background(s))) {
+            fprintf(stderr, "tristep-bench: out of memory\n");
+            exit(1);
+        }
+        /* timed: the target does not count coverage (count == NULL) */
+        struct target timed = fb;
+        timed.count = NULL;
+        struct bench_timing *bt = &row->t[i];
+        bt->runs = o->runs;
+        for (int r = -1; r < o->runs; r++) {
+            target_clear(&fb);
+            double t0 = now();
+            draw_scene(s, v, &p, &timed);
+            if (r >= 0)
+                bt->t[r] = now() - t0;
+        }
+        bench_timing_stats(bt);
+
+        /* untimed: the same code once more, counting coverage */
+        target_clear(&fb);
+        draw_scene(s, v, &p, &fb);
+        size_t n = (size_t)s->w * (size_t)s->h;
+        bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
+        bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
+        target_free(&fb);
+    }
+}
+
+/* --- the memory limit ----------------------------------------------------- */
+
+/* The least work a fill must do per pixel: read and write colour and depth.
+ * One pass over buffers of the scene's size, on one core; returns Mpix/s. */
+static double bandwidth_limit(int w, int h, int runs, double *gbs)
+{
+    size_t n = (size_t)w * (size_t)h;
+    uint32_t *c = malloc(n * sizeof *c);
+    float *d = malloc(n * sizeof *d);
+    if (!c || !d) {
+        free(c);
+        free(d);
+        return 0;
+    }
+    for (size_t i = 0; i < n; i++) {
+        c[i] = (uint32_t)i;
+        d[i] = (float)(i & 1023);
+    }
+    struct bench_timing bt = { .runs = runs };
+    for (int r = -1; r < runs; r++) {
+        double t0 = now();
+        for (size_t i = 0; i < n; i++) {
+            c[i] ^= 0x00010101u;
+            d[i] += 1.0f;
+        }
+        if (r >= 0)
+            bt.t[r] = now() - t0;
+    }
+    bench_timing_stats(&bt);
+    /* keep the result alive so the passes are not optimised away */
+    volatile uint32_t sink = c[n / 2] + (uint32_t)d[n / 3];
+    (void)sink;
+    free(c);
+    free(d);
+    *gbs = 16.0 * (double)n / bt.median * 1e-9;
+    return (double)n / bt.median * 1e-6;
+}
+
+/* --- make figures --------------------------------------------------------- */
+
+/* Seconds `cmd` took, 0 when make has nothing to do for it (no recipe yet),
+ * -1 when it failed. */
+static double time_command(const char *cmd, char *note, size_t notelen)
+{
+    char dry[512];
+    snprintf(dry, sizeof dry, "%s -n 2>&1", cmd);
+    FILE *p = popen(dry, "r");
+    int lines = 0;
+    char line[512];
+    while (p && fgets(line, sizeof line, p))
+        lines += strstr(line, "Nothing to be done") == NULL && strstr(line, "make") != line;
+    if (p)
+        pclose(p);
+    if (lines == 0) {
+        snprintf(note, notelen, "no recipe for it yet");
+        return 0;
+    }
+    fflush(NULL);
+    double t0 = now();
+    int status = system(cmd);
+    double t = now() - t0;
+    if (status != 0) {
+        snprintf(note, notelen, "failed (status %d)", status);
+        return -1;
+    }
+    snprintf(note, notelen, "%s", cmd);
+    return t;
+}
+
+/* --- reporting ------------------------------------------------------------ */
+
+static void cpu_model(char *out, size_t len)
+{
+    snprintf(out, len, "unknown CPU");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[256];
+    while (f && fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) == 0) {
+            char *v = strchr(line, ':');
+            if (v) {
+                v += strspn(v, ": \t");
+                v[strcspn(v, "\n")] = 0;
+                snprintf(out, len, "%s", v);
+            }
+            break;
+        }
+    }
+    if (f)
+        fclose(f);
+}
+
+static double mtri(const struct bench_scene *sc, const struct bench_timing *t)
+{
+    return sc->s.ntris / t->median * 1e-6;
+}
+
+static double mpix(const struct bench_scene *sc, const struct bench_timing *t)
+{
+    return (double)sc->pixels / t->median * 1e-6;
+}
+
+static const struct row *find_row(const char *prefix, const char *variant)
+{
+    for (int i = 0; i < nrows; i++)
+        if (strncmp(rows[i].program, prefix, strlen(prefix)) == 0
+            && (!variant || strcmp(rows[i].variant, variant) == 0))
+            return &rows[i];
+    return NULL;
+}
+
+static void print_diff(char *buf, size_t len, int64_t d)
+{
+    if (d < 0)
+        snprintf(buf, len, "-");
+    else
+        snprintf(buf, len, "%lld", (long long)d);
+}
+
+static void print_table(const struct bench_scene *sc, double limit)
+{
+    const struct row *base = find_row("02-", NULL);
+    for (int i = 0; i < NSCENES; i++) {
+        const struct scene *s = &sc[i].s;
+        printf("\nscene %s: %d x %d, %d triangles, %llu covered pixels (%.1f x the screen); %s\n",
+               sc[i].name, s->w, s->h, s->ntris, (unsigned long long)sc[i].pixels,
+               (double)sc[i].pixels / ((double)s->w * s->h), sc[i].what);
+        printf("  %-26s %-15s %10s %7s %9s %9s %7s %6s %9s %9s\n", "program", "variant",
+               "median ms", "spread", "Mtri/s", "Mpix/s", "x L02", "% mem", "diff ref", "diff llvm");
+        for (int k = 0; k < nrows; k++) {
+            const struct row *r = &rows[k];
+            const struct bench_timing *t = &r->t[i];
+            char ratio[16] = "-", dref[24], dpeer[24];
+            if (base)
+                snprintf(ratio, sizeof ratio, "%.2f", base->t[i].median / t->median);
+            print_diff(dref, sizeof dref, t->diff_ref);
+            print_diff(dpeer, sizeof dpeer, t->diff_peer);
+            printf("  %-26s %-15s %10.2f %6.1f%% %9.3f %9.1f %7s %5.1f%% %9s %9s%s\n", r->program,
+                   r->variant, t->median * 1e3, 100 * (t->hi - t->lo) / t->median, mtri(&sc[i], t),
+                   mpix(&sc[i], t), ratio, limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, dref,
+                   dpeer, r->exhibit ? "  (exhibit)" : "");
+        }
+    }
+    printf("\n(spread = (slowest - fastest) / median; Mpix/s counts covered pixels, overdraw "
+           "included; diff = pixels whose coverage count differs)\n");
+}
+
+static bool write_csv(const char *path, const struct bench_scene *sc, double limit,
+                      const char *cpu, const char *date)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return false;
+    const struct row *base = find_row("02-", NULL);
+    fprintf(f, "# tristep bench, %s, %s\n", cpu, date);
+    fprintf(f, "scene,width,height,triangles,pixels,program,variant,exhibit,runs,median_s,min_s,"
+               "max_s,mtri_s,mpix_s,ratio_l02,pct_memory_limit,diff_ref,diff_llvmpipe\n");
+    for (int i = 0; i < NSCENES; i++)
+        for (int k = 0; k < nrows; k++) {
+            const struct row *r = &rows[k];
+            const struct bench_timing *t = &r->t[i];
+            fprintf(f, "%s,%d,%d,%d,%llu,%s,%s,%d,%d,%.6f,%.6f,%.6f,%.4f,%.2f,%.4f,%.2f,%lld,%lld\n",
+                    sc[i].name, sc[i].s.w, sc[i].s.h, sc[i].s.ntris,
+                    (unsigned long long)sc[i].pixels, r->program, r->variant, r->exhibit, t->runs,
+                    t->median, t->lo, t->hi, mtri(&sc[i], t), mpix(&sc[i], t),
+                    base ? base->t[i].median / t->median : 0.0,
+                    limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, (long long)t->diff_ref,
+                    (long long)t->diff_peer);
+        }
+    for (int i = 0; i < NSCENES; i++)
+        fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1\n",
+                sc[i].name, sc[i].s.w, sc[i].s.h, (unsigned long long)sc[i].pixels, limit);
+    bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
+    if (!ok)
+        remove(tmp);
+    return ok;
+}
+
+static bool write_chart(const char *dir, const struct bench_scene *sc, double limit,
+                        const char *title)
+{
+    static struct chart_panel panels[NSCENES];
+    for (int i = 0; i < NSCENES; i++) {
+        struct chart_panel *p = &panels[i];
+        bool pixels = i == SCENE_LARGE;
+        p->title = sc[i].name;
+        p->unit = pixels ? "Mpixels/s" : "Mtriangles/s";
+        p->nbars = 0;
+        p->limit = pixels ? limit : 0;
+        p->limit_label = "memory limit";
+        for (int k = 0; k < nrows && p->nbars < 48; k++) {
+            static char labels[NSCENES][MAX_ROWS][64];
+            const struct row *r = &rows[k];
+            if (r->exhibit)
+                continue;
+            snprintf(labels[i][k], sizeof labels[i][k], "%.2s %s", r->program, r->variant);
+            if (r->peer)
+                snprintf(labels[i][k], sizeof labels[i][k], "llvmpipe %s", r->variant);
+            p->bars[p->nbars++] = (struct chart_bar){
+                labels[i][k], pixels ? mpix(&sc[i], &r->t[i]) : mtri(&sc[i], &r->t[i]), r->peer,
+            };
+        }
+    }
+    char svg[1024], png[1024], err[256];
+    snprintf(svg, sizeof svg, "%s/bench.svg", dir);
+    snprintf(png, sizeof png, "%s/bench.png", dir);
+    if (!chart_write(panels, NSCENES, title, svg, png, err, sizeof err)) {
+        fprintf(stderr, "tristep-bench: chart: %s\n", err);
+        return false;
+    }
+    return true;
+}
+
+/* One target line: measured ratio against the goal, met or missed by how much. */
+static void print_target(const char *what, double got, double goal, const char *unit)
+{
+    if (got <= 0) {
+        printf("  %-52s not measured\n", what);
+        return;
+    }
+    bool met = got >= goal;
+    printf("  %-52s %7.2f%s (goal %.2f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
+           met ? "met" : "MISSED", met ? 100 * (got / goal - 1) : 100 * (1 - got / goal));
+}
+
+static void print_targets(const struct bench_scene *sc, double limit)
+{
+    const struct row *l05 = find_row("05-", NULL);
+    const struct row *lp = find_row("llvmpipe", "1 thread");
+    printf("\ntargets (single thread, medians; lesson 05 = %s %s, llvmpipe = LP_NUM_THREADS=0):\n",
+           l05 ? l05->program : "(not built)", l05 ? l05->variant : "");
+    double x[NSCENES] = { 0, 0, 0 };
+    for (int i = 0; i < NSCENES; i++)
+        if (l05 && lp)
+            x[i] = lp->t[i].median / l05->t[i].median;
+    print_target("lesson 05 vs llvmpipe on large (Mpix/s)", x[SCENE_LARGE], TARGET_LARGE_X, "x");
+    print_target("lesson 05 vs llvmpipe on small (Mtri/s)", x[SCENE_SMALL], TARGET_SMALL_X, "x");
+    print_target("lesson 05 vs llvmpipe on mixed (Mtri/s)", x[SCENE_MIXED], TARGET_MIXED_X, "x");
+    double bw = l05 && limit > 0 ? mpix(&sc[SCENE_LARGE], &l05->t[SCENE_LARGE]) / limit : 0;
+    print_target("lesson 05 on large, share of the memory limit", 100 * bw,
+                 100 * TARGET_BANDWIDTH, "%");
+    /* the fastest exact variant of lesson 05 on each scene, for the record */
+    for (int i = 0; i < NSCENES && lp; i++) {
+        const struct row *best = NULL;
+        for (int k = 0; k < nrows; k++)
+            if (strncmp(rows[k].program, "05-", 3) == 0 && !rows[k].exhibit
+                && (!best || rows[k].t[i].median < best->t[i].median))
+                best = &rows[k];
+        if (best)
+            printf("  fastest lesson 05 variant on %-6s %-16s %.2fx llvmpipe\n", sc[i].name,
+                   best->variant, lp->t[i].median / best->t[i].median);
+    }
+}
+
+/* --- main ------------------------------------------------------------------- */
+
+static int usage(FILE *f, int status)
+{
+    fprintf(f,
+        "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--lesson NN]\n"
+        "                     [--exhibits] [--no-llvmpipe] [--figures-cmd CMD]\n"
+        "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
+        "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
+        "  --quick        tiny scenes, 3 runs (what `make test` runs)\n"
+        "  --runs N       timed runs after one warm-up (default 7, at least 5)\n"
+        "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
+        "  --lesson NN    only lessons whose id starts with NN\n"
+        "  --exhibits     also run the exhibits (their coverage is expected to differ)\n"
+        "  --figures-cmd  the command that runs `make figures`, timed\n"
+        "Exit status: 0 all exact, 1 a coverage difference or a failure, 2 bad usage.\n");
+    return status;
+}
+
+static bool parse(struct options *o, int argc, char **argv)
+{
+    *o = (struct options){ .peer = true, .runs = 0, .seed = 2024, .out = "build" };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        char *end;
+        if (strcmp(a, "--quick") == 0) {
+            o->quick = true;
+        } else if (strcmp(a, "--exhibits") == 0) {
+            o->exhibits = true;
+        } else if (strcmp(a, "--no-llvmpipe") == 0) {
+            o->peer = false;
+        } else if (val && strcmp(a, "--runs") == 0) {
+            errno = 0;
+            long n = strtol(val, &end, 10);
+            if (errno || *end || n < 1 || n > BENCH_MAX_RUNS)
+                return false;
+            o->runs = (int)n;
+            i++;
+        } else if (val && strcmp(a, "--seed") == 0) {
+            errno = 0;
+            o->seed = strtoull(val, &end, 10);
+            if (errno || *end || !*val)
+                return false;
+            i++;
+        } else if (val && strcmp(a, "--out") == 0) {
+            o->out = argv[++i];
+        } else if (val && strcmp(a, "--lesson") == 0) {
+            o->only = argv[++i];
+        } else if (val && strcmp(a, "--figures-cmd") == 0) {
+            o->figures_cmd = argv[++i];
+        } else {
+            return false;
+        }
+    }
+    if (!o->runs)
+        o->runs = o->quick ? 3 : 7;
+    return true;
+}
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0)
+            return usage(stdout, 0);
+    if (!parse(&o, argc, argv))
+        return usage(stderr, 2);
+
+    double start = now();
+    char cpu[160], date[64];
+    cpu_model(cpu, sizeof cpu);
+    time_t tnow = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%d %H:%M %Z", localtime(&tnow));
+    struct utsname un;
+    uname(&un);
+    printf("tristep bench%s, %s\nCPU: %s, %ld cores online, %s %s\nseed %llu, %d timed runs "
+           "after 1 warm-up, single thread unless said\n",
+           o.quick ? " (quick mode: tiny scenes, not a measurement)" : "", date, cpu,
+           sysconf(_SC_NPROCESSORS_ONLN), un.sysname, un.release, (unsigned long long)o.seed,
+           o.runs);
+
+    static struct bench_scene sc[NSCENES];
+    if (!bench_scenes_make(sc, o.seed, o.quick)) {
+        fprintf(stderr, "tristep-bench: out of memory making the scenes\n");
+        return 1;
+    }
+
+    /* the peer first: its coverage is the second oracle for every lesson */
+    uint8_t *peer_cov[NSCENES] = { NULL };
+    bool have_peer = false;
+    if (o.peer) {
+        static const struct { int threads; const char *name; } cfg[] = {
+            { 0, "1 thread" }, { -1, "default threads" },
+        };
+        for (int i = 0; i < NSCENES; i++)
+            peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
+        for (int c = 0; c < 2; c++) {
+            struct row *r = &rows[nrows];
+            char why[256];
+            uint8_t *cov[NSCENES];
+            for (int i = 0; i < NSCENES; i++)
+                cov[i] = c == 0 ? peer_cov[i] : malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
+            if (peer_run(sc, NSCENES, cfg[c].threads, 1, o.runs, r->t, cov, why, sizeof why)) {
+                r->program = "llvmpipe";
+                r->variant = cfg[c].name;
+                r->peer = true;
+                for (int i = 0; i < NSCENES; i++) {
+                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+                    r->t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
+                    r->t[i].diff_peer = count_diff(cov[i], peer_cov[i], n);
+                }
+                nrows++;
+                have_peer = c == 0 ? true : have_peer;
+            } else {
+                printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
+            }
+            for (int i = 0; c == 1 && i < NSCENES; i++)
+                free(cov[i]);
+            if (c == 0 && !have_peer)
+                break;
+        }
+        if (have_peer)
+            printf("peer: %s\n", peer_renderer);
+    } else {
+        printf("llvmpipe: not run (--no-llvmpipe)\n");
+    }
+
+    for (const struct lesson *const *l = all_lessons_fast; *l; l++) {
+        if (o.only && strncmp((*l)->id, o.only, strlen(o.only)) != 0)
+            continue;
+        for (int v = 0; v < (*l)->nvariants && nrows < MAX_ROWS; v++) {
+            const struct lesson_variant *var = &(*l)->variants[v];
+            if (var->exhibit && !o.exhibits)
+                continue;
+            struct row *r = &rows[nrows++];
+            *r = (struct row){ (*l)->id, var->name, var->exhibit, false, { { .runs = 0 } } };
+            fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
+            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o);
+        }
+    }
+
+    double gbs = 0;
+    double limit = bandwidth_limit(sc[0].s.w, sc[0].s.h, o.runs < 5 ? 5 : o.runs, &gbs);
+    print_table(sc, limit);
+    printf("\nmemory limit: one read-modify-write pass over colour + depth (%d x %d, 8 bytes "
+           "a pixel), one core: %.1f Mpix/s (%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, limit, gbs);
+
+    printf("\nexplorer frame (1280 x 800, 64 x 48 grid, numbers shown): not measured here yet\n");
+    if (o.figures_cmd) {
+        char note[512];
+        double t = time_command(o.figures_cmd, note, sizeof note);
+        if (t > 0)
+            printf("make figures: %.1f s (%s)\n", t, note);
+        else
+            printf("make figures: %s\n", note);
+    }
+
+    print_targets(sc, limit);
+
+    /* verdict on exactness: every exact variant, every scene */
+    int64_t bad = 0;
+    for (int k = 0; k < nrows; k++)
+        for (int i = 0; i < NSCENES; i++)
+            if (!rows[k].exhibit)
+                bad += rows[k].t[i].diff_ref + (rows[k].t[i].diff_peer > 0 ? rows[k].t[i].diff_peer : 0);
+    printf("\ncoverage check: %s (%d programs x %d scenes against the reference%s)\n",
+           bad ? "DIFFERENCES FOUND" : "0 differing pixels", nrows, NSCENES,
+           have_peer ? " and llvmpipe" : "; llvmpipe not available");
+
+    char path[1024], title[320];
+    snprintf(path, sizeof path, "%s/bench.csv", o.out);
+    bool ok = write_csv(path, sc, limit, cpu, date);
+    if (!ok)
+        fprintf(stderr, "tristep-bench: cannot write %s: %s\n", path, strerror(errno));
+    snprintf(title, sizeof title, "tristep bench, %s, %s%s", cpu, date, o.quick ? " (quick)" : "");
+    ok = write_chart(o.out, sc, limit, title) && ok;
+    printf("wrote %s/bench.csv, bench.svg, bench.png; %.0f s in all\n", o.out, now() - start);
+
+    for (int i = 0; i < NSCENES; i++)
+        free(peer_cov[i]);
+    bench_scenes_free(sc);
+    return bad || !ok ? 1 : 0;
+}

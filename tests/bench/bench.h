@@ -1,0 +1,65 @@
+/* bench.h - the pieces of `make bench`: seeded scenes, the llvmpipe peer and
+ * the chart. bench.c times every lesson's fast build; see its header. */
+#ifndef TRISTEP_BENCH_H
+#define TRISTEP_BENCH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "scene/scene.h"
+
+#define BENCH_MAX_RUNS 32
+
+/* One benchmark scene and what the exact reference says it covers. */
+struct bench_scene {
+    const char *name;           /* "large", "small", "mixed" */
+    const char *what;           /* one line for the table */
+    struct scene s;             /* w x h, triangles (both windings, Gouraud, z in [1.5, 99.5]) */
+    uint64_t pixels;            /* covered pixels, overdraw included */
+    uint8_t *coverage;          /* w * h reference counts, saturating at 255 */
+};
+
+/* Fill the three scenes from a seed. `quick` makes them tiny. */
+bool bench_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick);
+void bench_scenes_free(struct bench_scene sc[3]);
+
+/* Times of one program on one scene, seconds, and its coverage check. */
+struct bench_timing {
+    double t[BENCH_MAX_RUNS];
+    int runs;
+    double median, lo, hi;      /* over the timed runs (warm-up excluded) */
+    int64_t diff_ref;           /* pixels whose coverage count differs from the reference */
+    int64_t diff_peer;          /* ... from llvmpipe's, or -1 when llvmpipe did not run */
+};
+void bench_timing_stats(struct bench_timing *bt);
+
+/* Mesa's llvmpipe through OSMesa, drawing the same scenes with the same
+ * state. threads = 0 is LP_NUM_THREADS=0 (single-threaded), -1 llvmpipe's
+ * default. Runs in a child process because llvmpipe reads its thread count
+ * once per process. On success fills out[i] (times) and coverage[i] (w * h
+ * counts, from an untimed stencil pass) for every scene. On failure returns
+ * false and says why (OSMesa missing, no GL_ARB_clip_control, ...). */
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
+              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen);
+/* "Mesa 22.3.6 llvmpipe (LLVM 15, 256 bits)" after a successful peer_run. */
+extern char peer_renderer[160];
+
+/* A bar of the chart: one program on one scene. */
+struct chart_bar {
+    const char *label;
+    double value;               /* in the panel's unit */
+    bool peer;                  /* llvmpipe: drawn in another colour */
+};
+struct chart_panel {
+    const char *title, *unit;
+    struct chart_bar bars[48];
+    int nbars;
+    double limit;               /* a dashed line (bandwidth ceiling), 0 = none */
+    const char *limit_label;
+};
+/* Write the panels side by side as SVG and PNG. */
+bool chart_write(const struct chart_panel *p, int npanels, const char *title,
+                 const char *svg_path, const char *png_path, char *err, size_t errlen);
+
+#endif

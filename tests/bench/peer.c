@@ -1,0 +1,283 @@
+/* peer.c - Mesa's llvmpipe, through OSMesa, as the bench's real peer and its
+ * second oracle.
+ *
+ * Same scenes, same state as the lessons: Gouraud colour, depth test LESS
+ * with depth write, RGBA8 colour. Three things make llvmpipe decide exactly
+ * the pixels our top-left rule decides (FACTS.md):
+ *
+ *  - glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE): llvmpipe applies
+ *    the top-left rule with y growing down its surface's rows;
+ *  - those rows are stored top-down while GL numbers window rows from the
+ *    bottom: scene row y is GL window row y_w = H - y, and glReadPixels'
+ *    rows come back reversed (a pixel centre y + 0.5 lands on y_w + 0.5,
+ *    and a horizontal edge's "top" stays the top);
+ *  - every transform step is exact for positions on the 1/256 grid: the
+ *    viewport is S = 8192 pixels square (a power of two) placed at
+ *    (-3072, -3072), vertices go in already divided (w = 1, identity
+ *    matrices), and
+ *
+ *        x_d = (x - 1024) / 4096            x_w = 4096 x_d + 1024 = x
+ *        y_d = (y - (H - 1024)) / 4096      y_w = 1024 - 4096 y_d = H - y
+ *
+ *    are exact in float (|x| < 2^13 with 8 fractional bits is 21 bits).
+ *    Vertices inside [-3072, 5120) (and y inside (H - 5120, H + 3072])
+ *    never reach the clipper.
+ *
+ * Without the clip control, or with y_w = y, horizontal edges through pixel
+ * centres go the other way (the bottom-left rule): the bench's scenes put a
+ * quarter of their vertices on the half-pixel grid to catch exactly that.
+ *
+ * llvmpipe reads LP_NUM_THREADS once, when OSMesa makes its screen, so each
+ * thread setting runs in a child process; results come back through shared
+ * memory.
+ */
+#define _DEFAULT_SOURCE  /* MAP_ANONYMOUS */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench.h"
+
+char peer_renderer[160];
+
+#ifndef TRISTEP_OSMESA
+
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
+              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+{
+    (void)sc, (void)nscenes, (void)threads, (void)warmup, (void)runs, (void)out, (void)coverage;
+    snprintf(why, whylen, "OSMesa was not found when the bench was built "
+             "(Debian: apt-get install libosmesa6-dev, then make bench)");
+    return false;
+}
+
+#else
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#define VIEW_SIZE   8192        /* viewport side: a power of two */
+#define VIEW_ORIGIN (-3072)     /* its corner, so [-3072, 5120) is unclipped */
+#define VIEW_HALF   (VIEW_SIZE / 2)
+#define VIEW_CENTRE (VIEW_ORIGIN + VIEW_HALF)
+#define Z_NEAR 1.5              /* the scenes' depth range, mapped to [-1, 1] */
+#define Z_FAR  99.5
+
+struct gl_vertex {
+    float pos[4];
+    uint8_t rgba[4];
+};
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static uint8_t unorm8(double c)
+{
+    return (uint8_t)(c <= 0 ? 0 : c >= 1 ? 255 : c * 255.0 + 0.5);
+}
+
+/* The exact transform of the header: pixels (snapped to 1/256) to NDC. */
+static void to_gl(struct gl_vertex *g, const struct vertex *v, int h)
+{
+    double x = (double)snap_coord(v->x, SUBPIXEL_BITS) / SUBPIXEL_ONE;
+    double y = (double)snap_coord(v->y, SUBPIXEL_BITS) / SUBPIXEL_ONE;
+    g->pos[0] = (float)((x - VIEW_CENTRE) / VIEW_HALF);
+    g->pos[1] = (float)((y - (h - VIEW_CENTRE)) / VIEW_HALF);
+    g->pos[2] = (float)((2 * v->z - Z_NEAR - Z_FAR) / (Z_FAR - Z_NEAR));
+    g->pos[3] = 1.0f;
+    g->rgba[0] = unorm8(v->r);
+    g->rgba[1] = unorm8(v->g);
+    g->rgba[2] = unorm8(v->b);
+    g->rgba[3] = 255;
+}
+
+struct shared {
+    char why[256];
+    char renderer[160];
+    int ok;
+    struct bench_timing t[8];
+};
+
+/* Everything the child does; returns false with shared->why on failure. */
+static bool child(const struct bench_scene *sc, int nscenes, int warmup, int runs,
+                  struct shared *sh, uint8_t *cov)
+{
+    const int attribs[] = {
+        OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
+        OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0,
+    };
+    OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, NULL);
+    if (!ctx) {
+        snprintf(sh->why, sizeof sh->why, "OSMesaCreateContextAttribs failed");
+        return false;
+    }
+    int maxw = sc[0].s.w, maxh = sc[0].s.h;
+    for (int i = 1; i < nscenes; i++) {
+        maxw = sc[i].s.w > maxw ? sc[i].s.w : maxw;
+        maxh = sc[i].s.h > maxh ? sc[i].s.h : maxh;
+    }
+    uint8_t *pixels = malloc((size_t)maxw * (size_t)maxh * 4);
+    uint8_t *stencil = malloc((size_t)maxw * (size_t)maxh);
+    if (!pixels || !stencil || !OSMesaMakeCurrent(ctx, pixels, GL_UNSIGNED_BYTE, maxw, maxh)) {
+        snprintf(sh->why, sizeof sh->why, "OSMesaMakeCurrent failed");
+        return false;
+    }
+    snprintf(sh->renderer, sizeof sh->renderer, "%s %s", (const char *)glGetString(GL_VERSION),
+             (const char *)glGetString(GL_RENDERER));
+    PFNGLCLIPCONTROLPROC clip_control =
+        (PFNGLCLIPCONTROLPROC)OSMesaGetProcAddress("glClipControl");
+    const char *ext = (const char *)glGetString(GL_EXTENSIONS);
+    if (!clip_control || !ext || !strstr(ext, "GL_ARB_clip_control")) {
+        snprintf(sh->why, sizeof sh->why, "%s has no glClipControl", sh->renderer);
+        return false;
+    }
+    clip_control(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glShadeModel(GL_SMOOTH);
+
+    for (int i = 0; i < nscenes; i++) {
+        const struct scene *s = &sc[i].s;
+        /* the framebuffer is the scene's size: OSMesa draws into the first
+         * w x h pixels when told the smaller size */
+        if (!OSMesaMakeCurrent(ctx, pixels, GL_UNSIGNED_BYTE, s->w, s->h)) {
+            snprintf(sh->why, sizeof sh->why, "OSMesaMakeCurrent %dx%d failed", s->w, s->h);
+            return false;
+        }
+        glViewport(VIEW_ORIGIN, VIEW_ORIGIN, VIEW_SIZE, VIEW_SIZE);
+        size_t nv = (size_t)s->ntris * 3;
+        struct gl_vertex *gv = malloc(nv * sizeof *gv);
+        if (!gv) {
+            snprintf(sh->why, sizeof sh->why, "out of memory");
+            return false;
+        }
+        for (int t = 0; t < s->ntris; t++)
+            for (int k = 0; k < 3; k++)
+                to_gl(&gv[3 * (size_t)t + (size_t)k], &s->tris[t].v[k], s->h);
+        GLuint vbo;
+        glGenBuffers(1, &vbo);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * sizeof *gv), gv, GL_STATIC_DRAW);
+        free(gv);
+        glVertexPointer(4, GL_FLOAT, sizeof *gv, (const void *)offsetof(struct gl_vertex, pos));
+        glColorPointer(4, GL_UNSIGNED_BYTE, sizeof *gv, (const void *)offsetof(struct gl_vertex, rgba));
+
+        /* timed: colour and depth cleared (untimed), then the whole scene */
+        glClearColor((float)s->background[0], (float)s->background[1], (float)s->background[2], 1);
+        glClearDepth(1.0);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        struct bench_timing *bt = &sh->t[i];
+        bt->runs = runs;
+        for (int r = -warmup; r < runs; r++) {
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glFinish();
+            double t0 = now();
+            glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
+            glFinish();
+            if (r >= 0)
+                bt->t[r] = now() - t0;
+        }
+
+        /* untimed: coverage counted by a saturating stencil increment */
+        glDisable(GL_DEPTH_TEST);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_ALWAYS, 0, 0xff);
+        glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
+        glClearStencil(0);
+        glClear(GL_STENCIL_BUFFER_BIT);
+        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
+        glReadPixels(0, 0, s->w, s->h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+        for (int y = 0; y < s->h; y++)     /* window row H - 1 - y is scene row y */
+            memcpy(cov + (size_t)y * (size_t)s->w,
+                   stencil + (size_t)(s->h - 1 - y) * (size_t)s->w, (size_t)s->w);
+        cov += (size_t)s->w * (size_t)s->h;
+        glDisable(GL_STENCIL_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDeleteBuffers(1, &vbo);
+        GLenum err = glGetError();
+        if (err != GL_NO_ERROR) {
+            snprintf(sh->why, sizeof sh->why, "GL error 0x%x on scene %s", err, sc[i].name);
+            return false;
+        }
+    }
+    OSMesaDestroyContext(ctx);
+    free(pixels);
+    free(stencil);
+    return true;
+}
+
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
+              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+{
+    size_t covsize = 0;
+    for (int i = 0; i < nscenes; i++)
+        covsize += (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+    if (nscenes > 8 || runs > BENCH_MAX_RUNS) {
+        snprintf(why, whylen, "too many scenes or runs");
+        return false;
+    }
+    size_t size = sizeof(struct shared) + covsize;
+    void *mem = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (mem == MAP_FAILED) {
+        snprintf(why, whylen, "mmap: %s", strerror(errno));
+        return false;
+    }
+    struct shared *sh = mem;
+    memset(sh, 0, sizeof *sh);
+    uint8_t *cov = (uint8_t *)mem + sizeof *sh;
+
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(why, whylen, "fork: %s", strerror(errno));
+        munmap(mem, size);
+        return false;
+    }
+    if (pid == 0) {
+        setenv("GALLIUM_DRIVER", "llvmpipe", 1);
+        if (threads >= 0) {
+            char n[16];
+            snprintf(n, sizeof n, "%d", threads);
+            setenv("LP_NUM_THREADS", n, 1);
+        } else {
+            unsetenv("LP_NUM_THREADS");
+        }
+        sh->ok = child(sc, nscenes, warmup, runs, sh, cov);
+        _exit(0);
+    }
+    int status = 0;
+    bool ok = waitpid(pid, &status, 0) == pid && WIFEXITED(status) && sh->ok;
+    if (ok) {
+        snprintf(peer_renderer, sizeof peer_renderer, "%s", sh->renderer);
+        for (int i = 0; i < nscenes; i++) {
+            out[i] = sh->t[i];
+            bench_timing_stats(&out[i]);
+            size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+            memcpy(coverage[i], cov, n);
+            cov += n;
+        }
+    } else if (sh->why[0]) {
+        snprintf(why, whylen, "%s", sh->why);
+    } else {
+        snprintf(why, whylen, "the llvmpipe process ended abnormally (status 0x%x)", status);
+    }
+    munmap(mem, size);
+    return ok;
+}
+
+#endif

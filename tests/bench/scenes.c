@@ -1,0 +1,206 @@
+/* scenes.c - the bench's three scenes, generated from a seed.
+ *
+ *   large  random triangles with vertices spread over three times the
+ *          screen each way, added until they cover the screen 16 times;
+ *   small  200,000 triangles of about 10 pixels each;
+ *   mixed  100,000 triangles: 95% of about 10 pixels, 4% of 100, 0.9% of
+ *          1,000 and 0.1% of 20,000.
+ *
+ * Every triangle has its own colour per vertex (Gouraud) and depths in
+ * [1.5, 99.5]; half of them are wound the other way. Small and mixed
+ * triangles lie wholly on the screen, a quarter of them with vertices on
+ * the half-pixel grid so that edges pass through pixel centres. The quick mode makes the same kinds
+ * of scene at 320 x 176 with fewer triangles.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+
+#define SCREEN_W 1920
+#define SCREEN_H 1080
+#define QUICK_W 320
+#define QUICK_H 176
+#define LARGE_OVERDRAW 16
+#define Z_MIN 1.5
+#define Z_MAX 99.5
+#define TAU 6.283185307179586
+
+/* splitmix64: small, seedable, the same numbers on every machine */
+struct rng {
+    uint64_t s;
+};
+
+static uint64_t rng_next(struct rng *r)
+{
+    uint64_t z = (r->s += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return z ^ (z >> 31);
+}
+
+/* uniform in [lo, hi) */
+static double rng_range(struct rng *r, double lo, double hi)
+{
+    return lo + (hi - lo) * (double)(rng_next(r) >> 11) * 0x1p-53;
+}
+
+static void random_colour(struct rng *r, struct vertex *v)
+{
+    v->r = rng_range(r, 0, 1);
+    v->g = rng_range(r, 0, 1);
+    v->b = rng_range(r, 0, 1);
+}
+
+static bool add_random_winding(struct rng *r, struct scene *s, struct vertex v[3])
+{
+    if (rng_next(r) & 1) {
+        struct vertex tmp = v[1];
+        v[1] = v[2];
+        v[2] = tmp;
+    }
+    return scene_add(s, v);
+}
+
+/* A triangle of about `area` square pixels, wholly on the screen: three
+ * points around a centre, roughly 120 degrees apart, scaled to the area. */
+static bool add_sized(struct rng *r, struct scene *s, double area)
+{
+    double a[3], rad[3];
+    a[0] = rng_range(r, 0, TAU);
+    for (int k = 1; k < 3; k++)
+        a[k] = a[k - 1] + TAU / 3 + rng_range(r, -0.6, 0.6);
+    for (int k = 0; k < 3; k++)
+        rad[k] = rng_range(r, 0.7, 1.3);
+    double ux[3], uy[3];
+    for (int k = 0; k < 3; k++) {
+        ux[k] = rad[k] * cos(a[k]);
+        uy[k] = rad[k] * sin(a[k]);
+    }
+    double unit = fabs((ux[1] - ux[0]) * (uy[2] - uy[0]) - (ux[2] - ux[0]) * (uy[1] - uy[0])) / 2;
+    double scale = sqrt(area * rng_range(r, 0.7, 1.3) / unit);
+    double margin = 1.3 * scale + 1;
+    double cx = 2 * margin < s->w ? rng_range(r, margin, s->w - margin) : s->w / 2.0;
+    double cy = 2 * margin < s->h ? rng_range(r, margin, s->h - margin) : s->h / 2.0;
+    double z = rng_range(r, Z_MIN + 0.5, Z_MAX - 0.5);
+    struct vertex v[3];
+    memset(v, 0, sizeof v);
+    /* a quarter of them on the half-pixel grid: edges through pixel
+     * centres, where only the fill rule decides */
+    double grid = rng_next(r) % 4 == 0 ? 2 : SUBPIXEL_ONE * 64;
+    for (int k = 0; k < 3; k++) {
+        v[k].x = round((cx + scale * ux[k]) * grid) / grid;
+        v[k].y = round((cy + scale * uy[k]) * grid) / grid;
+        v[k].z = z + rng_range(r, -0.5, 0.5);
+        random_colour(r, &v[k]);
+    }
+    return add_random_winding(r, s, v);
+}
+
+struct counting {
+    uint8_t *cov;
+    int w;
+    uint64_t n;
+};
+
+static void count_pixel(void *ctx, int x, int y)
+{
+    struct counting *c = ctx;
+    uint8_t *p = &c->cov[(size_t)y * (size_t)c->w + (size_t)x];
+    if (*p < 255)
+        (*p)++;
+    c->n++;
+}
+
+/* Coverage of one triangle, by the reference rasterizer. */
+static void count_triangle(const struct scene *s, int i, struct counting *c)
+{
+    struct tri_setup t;
+    tri_setup(&t, s->tris[i].v, s->w, s->h);
+    reference_coverage(&t, count_pixel, c);
+}
+
+static bool make_large(struct rng *r, struct bench_scene *b, struct counting *c)
+{
+    struct scene *s = &b->s;
+    uint64_t goal = (uint64_t)LARGE_OVERDRAW * (uint64_t)s->w * (uint64_t)s->h;
+    while (c->n < goal) {
+        struct vertex v[3];
+        memset(v, 0, sizeof v);
+        for (int k = 0; k < 3; k++) {
+            v[k].x = rng_range(r, -s->w, 2.0 * s->w);
+            v[k].y = rng_range(r, -s->h, 2.0 * s->h);
+            v[k].z = rng_range(r, Z_MIN, Z_MAX);
+            random_colour(r, &v[k]);
+        }
+        if (!add_random_winding(r, s, v))
+            return false;
+        count_triangle(s, s->ntris - 1, c);
+    }
+    return true;
+}
+
+static bool make_sized(struct rng *r, struct bench_scene *b, int n, const double *area,
+                       const double *share, int nsizes)
+{
+    for (int i = 0; i < n; i++) {
+        double u = rng_range(r, 0, 1);
+        int k = 0;
+        while (k < nsizes - 1 && u >= share[k]) {
+            u -= share[k];
+            k++;
+        }
+        if (!add_sized(r, &b->s, area[k]))
+            return false;
+    }
+    return true;
+}
+
+bool bench_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
+{
+    static const double small_area[] = { 10 };
+    static const double small_share[] = { 1 };
+    static const double mixed_area[] = { 10, 100, 1000, 20000 };
+    static const double mixed_area_quick[] = { 10, 100, 1000, 4000 };
+    static const double mixed_share[] = { 0.95, 0.04, 0.009, 0.001 };
+    const char *names[3] = { "large", "small", "mixed" };
+    const char *what[3] = {
+        "a few large triangles covering the screen 16 times",
+        "triangles of about 10 pixels",
+        "mostly 10 pixels, some 100, 1,000 and 20,000",
+    };
+    int w = quick ? QUICK_W : SCREEN_W, h = quick ? QUICK_H : SCREEN_H;
+
+    memset(sc, 0, 3 * sizeof *sc);
+    for (int i = 0; i < 3; i++) {
+        struct rng r = { seed * 3 + (uint64_t)i };
+        sc[i].name = names[i];
+        sc[i].what = what[i];
+        sc[i].s.w = w;
+        sc[i].s.h = h;
+        sc[i].coverage = calloc((size_t)w * (size_t)h, 1);
+        if (!sc[i].coverage)
+            return false;
+        struct counting c = { sc[i].coverage, w, 0 };
+        bool ok = i == 0 ? make_large(&r, &sc[i], &c)
+                : i == 1 ? make_sized(&r, &sc[i], quick ? 2000 : 200000, small_area, small_share, 1)
+                : make_sized(&r, &sc[i], quick ? 2000 : 100000,
+                             quick ? mixed_area_quick : mixed_area, mixed_share, 4);
+        if (!ok)
+            return false;
+        if (i > 0)
+            for (int t = 0; t < sc[i].s.ntris; t++)
+                count_triangle(&sc[i].s, t, &c);
+        sc[i].pixels = c.n;
+    }
+    return true;
+}
+
+void bench_scenes_free(struct bench_scene sc[3])
+{
+    for (int i = 0; i < 3; i++) {
+        scene_free(&sc[i].s);
+        free(sc[i].coverage);
+    }
+}

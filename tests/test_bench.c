@@ -1,0 +1,154 @@
+/* test_bench.c - `make bench`'s program runs in its quick mode, so it cannot
+ * rot: it finishes, writes its CSV and chart, finds every exact lesson
+ * variant exact on every scene, and its coverage check is not blind (the
+ * exhibits are caught). No timing is asserted here. */
+#define _POSIX_C_SOURCE 200809L
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "testlib.h"
+
+#define MAX_CSV_ROWS 256
+
+struct csv_row {
+    char scene[16], program[64], variant[64];
+    int exhibit;
+    double median;
+    long long diff_ref, diff_peer;
+};
+
+static int run(const char *args, const char *outdir)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "'%s/tristep-bench' %s --out '%s' >'%s/stdout.txt' 2>'%s/stderr.txt'",
+             test_build_dir(), args, outdir, outdir, outdir);
+    int status = system(cmd);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static int read_csv(const char *path, struct csv_row *rows, int max)
+{
+    FILE *f = fopen(path, "r");
+    cr_assert(f, "%s was not written", path);
+    char line[1024];
+    int n = 0;
+    while (fgets(line, sizeof line, f) && n < max) {
+        if (line[0] == '#' || strncmp(line, "scene,", 6) == 0)
+            continue;
+        struct csv_row *r = &rows[n];
+        /* scene,width,height,triangles,pixels,program,variant,exhibit,runs,median_s,... */
+        char *field[18];
+        int k = 0;
+        for (char *p = strtok(line, ",\n"); p && k < 18; p = strtok(NULL, ",\n"))
+            field[k++] = p;
+        cr_assert_eq(k, 18, "a CSV row has %d fields", k);
+        snprintf(r->scene, sizeof r->scene, "%s", field[0]);
+        snprintf(r->program, sizeof r->program, "%s", field[5]);
+        snprintf(r->variant, sizeof r->variant, "%s", field[6]);
+        r->exhibit = atoi(field[7]);
+        r->median = atof(field[9]);
+        r->diff_ref = atoll(field[16]);
+        r->diff_peer = atoll(field[17]);
+        n++;
+    }
+    fclose(f);
+    return n;
+}
+
+static const struct csv_row *find(const struct csv_row *rows, int n, const char *scene,
+                                  const char *program, const char *variant)
+{
+    for (int i = 0; i < n; i++)
+        if (!strcmp(rows[i].scene, scene) && !strcmp(rows[i].program, program)
+            && !strcmp(rows[i].variant, variant))
+            return &rows[i];
+    return NULL;
+}
+
+static bool file_starts_with(const char *path, const char *magic, size_t len)
+{
+    FILE *f = fopen(path, "rb");
+    char buf[16] = { 0 };
+    bool ok = f && fread(buf, 1, len, f) == len && memcmp(buf, magic, len) == 0;
+    if (f)
+        fclose(f);
+    return ok;
+}
+
+Test(bench, quick_mode_is_exact_and_catches_the_exhibits, .timeout = 120)
+{
+    char dir[] = "/tmp/tristep-bench-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    cr_assert_eq(run("--quick --exhibits", dir), 0,
+                 "tristep-bench --quick failed; see %s/stdout.txt and stderr.txt", dir);
+
+    static struct csv_row rows[MAX_CSV_ROWS];
+    char path[256];
+    snprintf(path, sizeof path, "%s/bench.csv", dir);
+    int n = read_csv(path, rows, MAX_CSV_ROWS);
+    static const char *const scenes[] = { "large", "small", "mixed" };
+
+    /* llvmpipe ran when its rows are there (OSMesa is optional); then every
+     * exact variant must agree with it too */
+    bool peer = find(rows, n, "large", "llvmpipe", "1 thread") != NULL;
+    int exhibits = 0, exhibits_caught = 0;
+    for (const struct lesson *const *l = all_lessons_fast; *l; l++) {
+        for (int v = 0; v < (*l)->nvariants; v++) {
+            const struct lesson_variant *var = &(*l)->variants[v];
+            bool caught = false;
+            for (int s = 0; s < 3; s++) {
+                const struct csv_row *r = find(rows, n, scenes[s], (*l)->id, var->name);
+                cr_assert(r, "no row for %s %s on %s", (*l)->id, var->name, scenes[s]);
+                cr_expect_gt(r->median, 0, "%s %s on %s: no time", (*l)->id, var->name, scenes[s]);
+                if (var->exhibit) {
+                    caught = caught || r->diff_ref > 0;
+                    continue;
+                }
+                cr_expect_eq(r->diff_ref, 0, "%s %s on %s: %lld pixels differ from the reference",
+                             (*l)->id, var->name, scenes[s], r->diff_ref);
+                if (peer)
+                    cr_expect_eq(r->diff_peer, 0, "%s %s on %s: %lld pixels differ from llvmpipe",
+                                 (*l)->id, var->name, scenes[s], r->diff_peer);
+                else
+                    cr_expect_eq(r->diff_peer, -1, "no llvmpipe rows, yet a llvmpipe difference");
+            }
+            exhibits += var->exhibit;
+            exhibits_caught += var->exhibit && caught;
+        }
+    }
+    for (int s = 0; s < 3 && peer; s++) {
+        const struct csv_row *r = find(rows, n, scenes[s], "llvmpipe", "1 thread");
+        cr_assert(r);
+        cr_expect_eq(r->diff_ref, 0, "llvmpipe differs from the reference on %s by %lld pixels",
+                     scenes[s], r->diff_ref);
+    }
+    /* the scenes put edges through pixel centres: a wrong fill rule shows */
+    if (exhibits > 0)
+        cr_expect_gt(exhibits_caught, 0, "no exhibit differs from the reference on any scene");
+
+    snprintf(path, sizeof path, "%s/bench.png", dir);
+    cr_expect(file_starts_with(path, "\x89PNG\r\n\x1a\n", 8), "%s is not a PNG", path);
+    snprintf(path, sizeof path, "%s/bench.svg", dir);
+    cr_expect(file_starts_with(path, "<?xml", 5), "%s is not an SVG", path);
+
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_expect_eq(system(cmd), 0);
+}
+
+Test(bench, bad_options_exit_2)
+{
+    char dir[] = "/tmp/tristep-bench-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    cr_expect_eq(run("--quick --runs 0", dir), 2);
+    cr_expect_eq(run("--frobnicate", dir), 2);
+    char path[256];
+    snprintf(path, sizeof path, "%s/bench.csv", dir);
+    cr_expect_null(fopen(path, "r"), "a refused run wrote %s", path);
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_expect_eq(system(cmd), 0);
+}
