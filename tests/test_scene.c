@@ -1,0 +1,229 @@
+/* test_scene.c - the scene parser and writer (CONVENTIONS.md, scene files).
+ * Malformed scenes are tested in test_cli.c, in-process and through every
+ * lesson program. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testlib.h"
+
+static struct scene parse_ok(const char *text)
+{
+    struct scene s;
+    char err[256] = "";
+    bool ok = scene_parse(&s, "test.scene", text, strlen(text), err, sizeof err);
+    cr_assert(ok, "scene rejected: %s\n--- text:\n%s", err, text);
+    return s;
+}
+
+static void expect_vertex(const struct vertex *v, const double want[8], const char *what)
+{
+    const double got[8] = { v->x, v->y, v->z, v->r, v->g, v->b, v->s, v->t };
+    for (int i = 0; i < 8; i++)
+        cr_expect_eq(got[i], want[i], "%s: field %c = %.17g, expected %.17g", what,
+                     "xyzrgbst"[i], got[i], want[i]);
+}
+
+Test(scene, size_alone_is_a_scene)
+{
+    struct scene s = parse_ok("size 64 48\n");
+    cr_expect_eq(s.w, 64);
+    cr_expect_eq(s.h, 48);
+    cr_expect_eq(s.ntris, 0);
+    cr_expect_eq(s.checker, 0);
+    cr_expect(!s.has_st);
+    cr_expect(s.background[0] == 0 && s.background[1] == 0 && s.background[2] == 0);
+    cr_expect_eq(scene_background(&s), 0xff000000u, "default background: opaque black");
+    scene_free(&s);
+}
+
+Test(scene, every_keyword)
+{
+    struct scene s = parse_ok(
+        "size 64 48\n"
+        "background 0.1 0.2 1\n"
+        "texture checker 8\n"
+        "tri  10.5 4 1   1 0 0    50 20.25 2   0 1 0    20 40 1.5   0 0 1\n"
+        "tri  1 2 3  0.5 0.25 0.125  0.5 0.5  4 5 6  0 0 0  1 0  7 8 9  1 1 1  0 1\n");
+    cr_expect_eq(s.w, 64);
+    cr_expect_eq(s.h, 48);
+    cr_expect_eq(s.background[0], 0.1);
+    cr_expect_eq(s.background[1], 0.2);
+    cr_expect_eq(s.background[2], 1.0);
+    cr_expect_eq(scene_background(&s), 0xff1a33ffu);
+    cr_expect_eq(s.checker, 8);
+    cr_expect(s.has_st);
+    cr_assert_eq(s.ntris, 2);
+    expect_vertex(&s.tris[0].v[0], (double[8]){ 10.5, 4, 1, 1, 0, 0, 0, 0 }, "tri 1 A");
+    expect_vertex(&s.tris[0].v[1], (double[8]){ 50, 20.25, 2, 0, 1, 0, 0, 0 }, "tri 1 B");
+    expect_vertex(&s.tris[0].v[2], (double[8]){ 20, 40, 1.5, 0, 0, 1, 0, 0 }, "tri 1 C");
+    expect_vertex(&s.tris[1].v[0], (double[8]){ 1, 2, 3, 0.5, 0.25, 0.125, 0.5, 0.5 }, "tri 2 A");
+    expect_vertex(&s.tris[1].v[1], (double[8]){ 4, 5, 6, 0, 0, 0, 1, 0 }, "tri 2 B");
+    expect_vertex(&s.tris[1].v[2], (double[8]){ 7, 8, 9, 1, 1, 1, 0, 1 }, "tri 2 C");
+    scene_free(&s);
+}
+
+Test(scene, comments_blank_lines_and_spacing)
+{
+    struct scene s = parse_ok(
+        "# a comment on the first line\n"
+        "\n"
+        "   \t  \n"
+        "size\t16   8   # trailing comment\n"
+        "#tri 1 2 3 is commented out\n"
+        "  tri 1 1 1 1 1 1   2 1 1 1 1 1   1 2 1 1 1 1#no space before the comment\n"
+        "\n"
+        "# last line has no newline");
+    cr_expect_eq(s.w, 16);
+    cr_expect_eq(s.h, 8);
+    cr_assert_eq(s.ntris, 1);
+    cr_expect_eq(s.tris[0].v[2].y, 2);
+    cr_expect_eq(s.tris[0].v[2].b, 1);
+    scene_free(&s);
+}
+
+Test(scene, numbers_in_every_decimal_form)
+{
+    struct scene s = parse_ok(
+        "size 10 10\n"
+        "tri -1.5 +2 1e0  .5 0.5e0 5e-1   -16384 16383.99609375 1E3  0 0 0   3. -0 2.5e-3  1 1 1\n");
+    cr_assert_eq(s.ntris, 1);
+    expect_vertex(&s.tris[0].v[0], (double[8]){ -1.5, 2, 1, 0.5, 0.5, 0.5 }, "A");
+    expect_vertex(&s.tris[0].v[1], (double[8]){ -16384, 16383.99609375, 1000, 0, 0, 0 }, "B: at the limits");
+    expect_vertex(&s.tris[0].v[2], (double[8]){ 3, 0, 0.0025, 1, 1, 1 }, "C");
+    scene_free(&s);
+}
+
+Test(scene, crlf_reads_like_lf)
+{
+    const char *lf = "# x\nsize 20 10\nbackground 0 0.5 1\n\ntri 1 1 1 1 0 0  9 1 1 0 1 0  1 9 1 0 0 1\n";
+    char crlf[256];
+    size_t n = 0;
+    for (const char *p = lf; *p; p++) {
+        if (*p == '\n')
+            crlf[n++] = '\r';
+        crlf[n++] = *p;
+    }
+    crlf[n] = '\0';
+    struct scene a = parse_ok(lf), b = parse_ok(crlf);
+    cr_expect(a.w == b.w && a.h == b.h && a.ntris == b.ntris && b.ntris == 1);
+    cr_expect(memcmp(a.background, b.background, sizeof a.background) == 0);
+    cr_expect(memcmp(a.tris, b.tris, sizeof a.tris[0]) == 0);
+    scene_free(&a);
+    scene_free(&b);
+
+    /* and an error in a CRLF file names the right line */
+    struct scene s;
+    char err[256];
+    const char *bad = "size 8 8\r\n\r\n# c\r\ntri 1 2 3\r\n";
+    cr_assert(!scene_parse(&s, "crlf.scene", bad, strlen(bad), err, sizeof err));
+    cr_expect(strncmp(err, "crlf.scene:4: ", 14) == 0, "message: %s", err);
+    cr_expect(!strchr(err, '\r') && !strchr(err, '\n'), "one clean line: %s", err);
+}
+
+Test(scene, builtin_scenes_all_parse)
+{
+    cr_assert_gt(builtin_scene_count, 0);
+    for (int i = 0; i < builtin_scene_count; i++) {
+        struct scene s;
+        char err[256];
+        cr_assert(scene_builtin(&s, builtin_scenes[i].name, err, sizeof err), "%s", err);
+        cr_expect(s.w > 0 && s.h > 0, "builtin:%s", builtin_scenes[i].name);
+        cr_expect_eq(builtin_find(builtin_scenes[i].name), &builtin_scenes[i]);
+        scene_free(&s);
+        /* the same through scene_load's "builtin:" prefix */
+        char path[64];
+        snprintf(path, sizeof path, "builtin:%s", builtin_scenes[i].name);
+        cr_assert(scene_load(&s, path, err, sizeof err), "%s", err);
+        scene_free(&s);
+    }
+    cr_expect_null(builtin_find("no-such-scene"));
+}
+
+/* --- round trip: scene_write then scene_parse gives identical values ----------- */
+
+static double any_double(struct rng *r, double lo, double hi)
+{
+    switch (rng_int(r, 0, 3)) {
+    case 0: return rng_range(r, lo, hi);                    /* 17 significant digits */
+    case 1: return round(rng_range(r, lo, hi) * 256) / 256;
+    case 2: return nextafter(rng_range(r, lo, hi), hi);
+    default: return round(rng_range(r, lo, hi) * 10) / 10;  /* short decimals, not binary */
+    }
+}
+
+static void random_scene(struct rng *r, struct scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->w = rng_int(r, 1, TARGET_MAX);
+    s->h = rng_int(r, 1, TARGET_MAX);
+    for (int i = 0; i < 3; i++)
+        s->background[i] = rng_chance(r, 0.3) ? (double)rng_int(r, 0, 1) : any_double(r, 0, 1);
+    s->checker = rng_chance(r, 0.5) ? rng_int(r, 1, 64) : 0;
+    s->has_st = rng_chance(r, 0.5);
+    int n = rng_int(r, 0, 20);
+    for (int i = 0; i < n; i++) {
+        struct vertex v[3];
+        for (int k = 0; k < 3; k++) {
+            v[k] = (struct vertex){
+                .x = any_double(r, -COORD_LIMIT, COORD_LIMIT - 1), .y = any_double(r, -COORD_LIMIT, COORD_LIMIT - 1),
+                .z = any_double(r, 1e-3, 1e3),
+                .r = any_double(r, 0, 1), .g = any_double(r, 0, 1), .b = any_double(r, 0, 1),
+                .s = s->has_st ? any_double(r, -4, 4) : 0, .t = s->has_st ? any_double(r, -4, 4) : 0,
+            };
+            if (!(v[k].z > 0))
+                v[k].z = 1;
+        }
+        cr_assert(scene_add(s, v));
+    }
+}
+
+static char *write_to_string(const struct scene *s, size_t *len)
+{
+    FILE *f = tmpfile();
+    cr_assert_not_null(f);
+    cr_assert(scene_write(s, f));
+    long n = ftell(f);
+    cr_assert_geq(n, 0);
+    rewind(f);
+    char *text = malloc((size_t)n + 1);
+    cr_assert_eq(fread(text, 1, (size_t)n, f), (size_t)n);
+    text[n] = '\0';
+    fclose(f);
+    *len = (size_t)n;
+    return text;
+}
+
+Test(scene, write_then_parse_gives_identical_values)
+{
+    struct rng r = rng_for(4000);
+    for (int i = 0; i < 300; i++) {
+        struct scene a, b;
+        random_scene(&r, &a);
+        size_t len;
+        char *text = write_to_string(&a, &len);
+        char err[256];
+        cr_assert(scene_parse(&b, "roundtrip.scene", text, len, err, sizeof err),
+                  "case %d: %s\n%s", i, err, text);
+        cr_assert(a.w == b.w && a.h == b.h, "case %d: size", i);
+        cr_assert(a.checker == b.checker, "case %d: checker %d vs %d", i, a.checker, b.checker);
+        cr_assert(a.ntris == b.ntris, "case %d: %d vs %d triangles", i, a.ntris, b.ntris);
+        cr_assert(a.ntris == 0 || a.has_st == b.has_st, "case %d: texture coordinates", i);
+        for (int c = 0; c < 3; c++)
+            cr_assert(a.background[c] == b.background[c], "case %d: background %.17g vs %.17g",
+                      i, a.background[c], b.background[c]);
+        for (int t = 0; t < a.ntris; t++)
+            for (int k = 0; k < 3; k++) {
+                const struct vertex *u = &a.tris[t].v[k], *v = &b.tris[t].v[k];
+                const double x[8] = { u->x, u->y, u->z, u->r, u->g, u->b, u->s, u->t };
+                const double y[8] = { v->x, v->y, v->z, v->r, v->g, v->b, v->s, v->t };
+                for (int f = 0; f < 8; f++)
+                    cr_assert(x[f] == y[f], "case %d, triangle %d, vertex %d, %c: wrote %.17g, read %.17g\n%s",
+                              i, t, k, "xyzrgbst"[f], x[f], y[f], text);
+            }
+        free(text);
+        scene_free(&a);
+        scene_free(&b);
+    }
+}
