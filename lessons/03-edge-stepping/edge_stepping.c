@@ -65,8 +65,6 @@ static const char *const aux_names[] = { "z", "r", "g", "b", "s", "t", NULL };
 
 /* --- the attributes: z, r, g, b, s, t, stepped like the edge values ------------ */
 
-enum { ATTR_Z, ATTR_R, ATTR_G, ATTR_B, ATTR_S, ATTR_T, NATTR };
-
 /* Any attribute P at a point is u P_A + v P_B + w P_C (11) with
  *
  *     u = F02 / area2,  v = F03 / area2,  w = F01 / area2        (13)-(15)
@@ -82,54 +80,74 @@ enum { ATTR_Z, ATTR_R, ATTR_G, ATTR_B, ATTR_S, ATTR_T, NATTR };
  * The sums are in double precision and drift by a rounding error per step;
  * every row restarts them exactly from the integer edge values of its first
  * pixel, so the drift never crosses a row (at most 16384 steps: about 1e-12,
- * see the README). */
+ * see the README).
+ *
+ * The six values travel as one small struct, passed and returned by value:
+ * the compiler keeps a local one in registers for the whole row. */
+struct attrs {
+    double z, r, g, b, s, t;
+};
+
+#define NATTR 6     /* members of struct attrs */
+
+/* u A + v B + w C, member by member: (11) */
+static inline struct attrs attrs_mix(double u, struct attrs A, double v, struct attrs B,
+                                     double w, struct attrs C)
+{
+    return (struct attrs){
+        u * A.z + v * B.z + w * C.z, u * A.r + v * B.r + w * C.r,
+        u * A.g + v * B.g + w * C.g, u * A.b + v * B.b + w * C.b,
+        u * A.s + v * B.s + w * C.s, u * A.t + v * B.t + w * C.t,
+    };
+}
+
+/* One pixel to the right: additions only. */
+static inline struct attrs attrs_step(struct attrs P, struct attrs d)
+{
+    return (struct attrs){ P.z + d.z, P.r + d.r, P.g + d.g, P.b + d.b, P.s + d.s, P.t + d.t };
+}
+
+static inline struct attrs attrs_of(const struct vertex *v)
+{
+    return (struct attrs){ v->z, v->r, v->g, v->b, v->s, v->t };
+}
+
+/* What a triangle's attributes need once: the vertices' values, 1 / area2
+ * and the change per pixel to the right. */
 struct attributes {
-    double at[3][NATTR];    /* the vertices' values: A, B, C */
+    struct attrs A, B, C;
     double inv_area2;
-    double P[NATTR];        /* the values at the current pixel */
-    double dPdx[NATTR];     /* their change per pixel step in x */
+    struct attrs dPdx;
 };
 
 static void attributes_setup(struct attributes *a, const struct tri_setup *t, struct trace *tr)
 {
-    for (int i = 0; i < 3; i++) {
-        const struct vertex *v = &t->v[i];
-        double *at = a->at[i];
-        at[ATTR_Z] = v->z, at[ATTR_R] = v->r, at[ATTR_G] = v->g;
-        at[ATTR_B] = v->b, at[ATTR_S] = v->s, at[ATTR_T] = v->t;
-    }
+    a->A = attrs_of(&t->v[0]);
+    a->B = attrs_of(&t->v[1]);
+    a->C = attrs_of(&t->v[2]);
     a->inv_area2 = 1.0 / (double)t->area2;
     /* change of u, v, w per pixel to the right: (13)-(15) with F += 256 I */
     double du = (double)(t->I[EDGE_BC] * SUBPIXEL_ONE) * a->inv_area2;
     double dv = (double)(t->I[EDGE_CA] * SUBPIXEL_ONE) * a->inv_area2;
     double dw = (double)(t->I[EDGE_AB] * SUBPIXEL_ONE) * a->inv_area2;
-    for (int k = 0; k < NATTR; k++)
-        a->dPdx[k] = du * a->at[0][k] + dv * a->at[1][k] + dw * a->at[2][k];
+    a->dPdx = attrs_mix(du, a->A, dv, a->B, dw, a->C);
     COUNT_OPS(tr, 1 + 3 * 2 + 3 * NATTR, 2 * NATTR);
 }
 
-/* Restart at the first pixel of a row from its exact edge values. */
-static void attributes_restart(struct attributes *a, int64_t F01, int64_t F02, int64_t F03,
-                               struct trace *tr)
+/* The values at the first pixel of a row, from its exact edge values. */
+static inline struct attrs attributes_restart(const struct attributes *a, int64_t F01,
+                                              int64_t F02, int64_t F03, struct trace *tr)
 {
     double u = (double)F02 * a->inv_area2;     /* (13) */
     double v = (double)F03 * a->inv_area2;     /* (14) */
     double w = (double)F01 * a->inv_area2;     /* (15) */
-    for (int k = 0; k < NATTR; k++)
-        a->P[k] = u * a->at[0][k] + v * a->at[1][k] + w * a->at[2][k];
     COUNT_OPS(tr, 3 + 3 * NATTR, 2 * NATTR);
+    return attrs_mix(u, a->A, v, a->B, w, a->C);
 }
 
-/* One pixel to the right: additions only. */
-static inline void attributes_step(struct attributes *a)
+static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *p)
 {
-    for (int k = 0; k < NATTR; k++)
-        a->P[k] += a->dPdx[k];
-}
-
-static uint32_t attributes_colour(const struct attributes *a, const struct raster_params *p)
-{
-    return shade_pixel(p, a->P[ATTR_R], a->P[ATTR_G], a->P[ATTR_B], a->P[ATTR_S], a->P[ATTR_T]);
+    return shade_pixel(p, P.r, P.g, P.b, P.s, P.t);
 }
 
 /* --- the algorithm ---------------------------------------------------------------- */
@@ -181,7 +199,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
     for (int y = t->miny; y <= t->maxy; y++) {
         int64_t Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
-        attributes_restart(&at, Cx01 - b01, Cx02 - b02, Cx03 - b03, tr);
+        struct attrs P = attributes_restart(&at, Cx01 - b01, Cx02 - b02, Cx03 - b03, tr);
         COUNT_OPS(tr, 0, 3);
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
@@ -193,16 +211,16 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
                     .bary = { (float)((double)(Cx02 - b02) * at.inv_area2),
                               (float)((double)(Cx03 - b03) * at.inv_area2),
                               (float)((double)(Cx01 - b01) * at.inv_area2) },
-                    .aux = { (float)at.P[ATTR_Z], (float)at.P[ATTR_R], (float)at.P[ATTR_G],
-                             (float)at.P[ATTR_B], (float)at.P[ATTR_S], (float)at.P[ATTR_T] },
+                    .aux = { (float)P.z, (float)P.r, (float)P.g,
+                             (float)P.b, (float)P.s, (float)P.t },
                     .flags = inside ? TRACE_INSIDE : 0);
             if (inside)
-                PLOT(fb, tr, L_RENDER, x, y, (float)at.P[ATTR_Z], attributes_colour(&at, p));
+                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p));
 
             Cx01 += dx01;
             Cx02 += dx02;
             Cx03 += dx03;
-            attributes_step(&at);
+            P = attrs_step(P, at.dPdx);
             COUNT_OPS(tr, 0, 3 + NATTR);
         }
         Cy01 += dy01;
@@ -229,9 +247,12 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
     if (t->empty)
         return;
 
-    const float dx01 = (float)(t->I[EDGE_AB] * SUBPIXEL_ONE), dy01 = (float)(t->J[EDGE_AB] * SUBPIXEL_ONE);
-    const float dx02 = (float)(t->I[EDGE_BC] * SUBPIXEL_ONE), dy02 = (float)(t->J[EDGE_BC] * SUBPIXEL_ONE);
-    const float dx03 = (float)(t->I[EDGE_CA] * SUBPIXEL_ONE), dy03 = (float)(t->J[EDGE_CA] * SUBPIXEL_ONE);
+    const float dx01 = (float)(t->I[EDGE_AB] * SUBPIXEL_ONE);
+    const float dx02 = (float)(t->I[EDGE_BC] * SUBPIXEL_ONE);
+    const float dx03 = (float)(t->I[EDGE_CA] * SUBPIXEL_ONE);
+    const float dy01 = (float)(t->J[EDGE_AB] * SUBPIXEL_ONE);
+    const float dy02 = (float)(t->J[EDGE_BC] * SUBPIXEL_ONE);
+    const float dy03 = (float)(t->J[EDGE_CA] * SUBPIXEL_ONE);
     COUNT_OPS(tr, 6, 0);
 
     /* the first centre exactly, bias included, then rounded once to float */
@@ -247,8 +268,9 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
         float Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
         /* the attributes restart from the exact values, as in the exact loop,
          * so that only coverage differs */
-        attributes_restart(&at, edge_value(t, EDGE_AB, t->minx, y), edge_value(t, EDGE_BC, t->minx, y),
-                           edge_value(t, EDGE_CA, t->minx, y), tr);
+        struct attrs P = attributes_restart(&at, edge_value(t, EDGE_AB, t->minx, y),
+                                            edge_value(t, EDGE_BC, t->minx, y),
+                                            edge_value(t, EDGE_CA, t->minx, y), tr);
         COUNT_OPS(tr, 6, 6);
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
@@ -259,16 +281,16 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
                            (int64_t)Cx03 - t->bias[EDGE_CA] },
-                    .aux = { (float)at.P[ATTR_Z], (float)at.P[ATTR_R], (float)at.P[ATTR_G],
-                             (float)at.P[ATTR_B], (float)at.P[ATTR_S], (float)at.P[ATTR_T] },
+                    .aux = { (float)P.z, (float)P.r, (float)P.g,
+                             (float)P.b, (float)P.s, (float)P.t },
                     .flags = inside ? TRACE_INSIDE : 0);
             if (inside)
-                PLOT(fb, tr, L_RENDER, x, y, (float)at.P[ATTR_Z], attributes_colour(&at, p));
+                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p));
 
             Cx01 += dx01;
             Cx02 += dx02;
             Cx03 += dx03;
-            attributes_step(&at);
+            P = attrs_step(P, at.dPdx);
             COUNT_OPS(tr, 0, 3 + NATTR);
         }
         Cy01 += dy01;
