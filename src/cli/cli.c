@@ -266,6 +266,12 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
         case ':':
             return bad_usage(l, "option '%s' needs a value", argv[optind - 1]);
         default:
+            /* an unknown short option inside a bundle ("-qz") leaves optind
+             * on the bundle or past it: name the letter getopt saw */
+            if (optopt > 0 && optopt < 256) {
+                char opt[3] = { '-', (char)optopt, '\0' };
+                return bad_usage(l, "unknown option '%s'", opt);
+            }
             return bad_usage(l, "unknown option '%s'", argv[optind - 1]);
         }
     }
