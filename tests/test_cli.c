@@ -1,0 +1,621 @@
+/* test_cli.c - the lesson programs themselves, run as a user runs them:
+ * bad scenes and bad command lines (exit 2, FILE:LINE: message, no output
+ * file), unwritable outputs (exit 1, nothing left), --dump-coverage against
+ * the reference byte for byte, --help and --version.
+ *
+ * Every program build/NN-* found in $TRISTEP_BUILD is run.
+ */
+#define _POSIX_C_SOURCE 200809L   /* posix_spawn, mkdtemp, opendir */
+
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "testlib.h"
+
+extern char **environ;
+
+/* --- running a program -------------------------------------------------------- */
+
+#define MAX_PROGRAMS 32
+
+struct programs {
+    int n;
+    char path[MAX_PROGRAMS][512];
+    const char *name[MAX_PROGRAMS];     /* "02-barycentric" */
+};
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(a, b);
+}
+
+/* Every build/NN-* that is an executable file, in order. */
+static void find_programs(struct programs *p)
+{
+    const char *dir = test_build_dir();
+    DIR *d = opendir(dir);
+    cr_assert_not_null(d, "cannot open the build directory %s (set TRISTEP_BUILD)", dir);
+    p->n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        const char *s = e->d_name;
+        if (!(s[0] >= '0' && s[0] <= '9' && s[1] >= '0' && s[1] <= '9' && s[2] == '-'))
+            continue;
+        cr_assert_lt(p->n, MAX_PROGRAMS);
+        snprintf(p->path[p->n], sizeof p->path[0], "%s/%s", dir, s);
+        struct stat st;
+        if (stat(p->path[p->n], &st) == 0 && S_ISREG(st.st_mode) && access(p->path[p->n], X_OK) == 0)
+            p->n++;
+    }
+    closedir(d);
+    qsort(p->path, (size_t)p->n, sizeof p->path[0], by_name);
+    for (int i = 0; i < p->n; i++)
+        p->name[i] = strrchr(p->path[i], '/') + 1;
+    cr_assert_gt(p->n, 0, "no lesson programs in %s", dir);
+}
+
+/* The lesson whose program this is. */
+static const struct lesson *lesson_of(const char *name)
+{
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, name) == 0)
+            return all_lessons[i];
+    return NULL;
+}
+
+struct result {
+    int status;             /* exit status, or 128 + signal */
+    char *out, *err;        /* whole stdout and stderr, NUL-terminated */
+    size_t out_len, err_len;
+};
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        *len = 0;
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap + 1);
+    for (size_t got; (got = fread(buf + n, 1, cap - n, f)) > 0;) {
+        n += got;
+        if (n == cap)
+            buf = realloc(buf, (cap *= 2) + 1);
+    }
+    fclose(f);
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+/* Run argv (argv[0] is the program's path) with stdout and stderr captured
+ * into files in `scratch` (a directory of its own, not the one checked for
+ * leftovers). */
+static struct result run(char *const argv[], const char *scratch)
+{
+    char out_path[600], err_path[600];
+    snprintf(out_path, sizeof out_path, "%s/stdout", scratch);
+    snprintf(err_path, sizeof err_path, "%s/stderr", scratch);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    int rc = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    cr_assert_eq(rc, 0, "cannot start %s: %s", argv[0], strerror(rc));
+    int ws;
+    cr_assert_eq(waitpid(pid, &ws, 0), pid);
+    struct result r;
+    r.status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws);
+    r.out = slurp(out_path, &r.out_len);
+    r.err = slurp(err_path, &r.err_len);
+    cr_assert(r.out && r.err);
+    return r;
+}
+
+static void result_free(struct result *r)
+{
+    free(r->out);
+    free(r->err);
+}
+
+static void write_file(const char *path, const char *text, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f, "cannot write %s", path);
+    cr_assert_eq(fwrite(text, 1, len, f), len);
+    cr_assert_eq(fclose(f), 0);
+}
+
+/* Names in dir other than those listed (NULL-terminated); returns the count
+ * and the first such name in first. */
+static int stray_files(const char *dir, const char *const keep[], char *first, size_t len)
+{
+    DIR *d = opendir(dir);
+    cr_assert_not_null(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        bool kept = false;
+        for (int i = 0; keep[i]; i++)
+            kept |= strcmp(e->d_name, keep[i]) == 0;
+        if (!kept && n++ == 0)
+            snprintf(first, len, "%s", e->d_name);
+    }
+    closedir(d);
+    return n;
+}
+
+static void remove_tree(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    char path[1024];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        struct stat st;
+        if (lstat(path, &st) == 0 && S_ISDIR(st.st_mode))
+            remove_tree(path);
+        else
+            unlink(path);
+    }
+    closedir(d);
+    rmdir(dir);
+}
+
+/* A fresh work directory (checked for leftovers) and a scratch one. */
+struct dirs {
+    char work[256], scratch[256];
+};
+
+static void dirs_make(struct dirs *d)
+{
+    snprintf(d->work, sizeof d->work, "/tmp/tristep-cli-XXXXXX");
+    snprintf(d->scratch, sizeof d->scratch, "/tmp/tristep-cli-io-XXXXXX");
+    cr_assert_not_null(mkdtemp(d->work));
+    cr_assert_not_null(mkdtemp(d->scratch));
+}
+
+static void dirs_remove(struct dirs *d)
+{
+    remove_tree(d->work);
+    remove_tree(d->scratch);
+}
+
+/* --- malformed scenes ------------------------------------------------------------- */
+
+#define TRI_OK "1 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1"
+#define WITH_LEN(text) text, sizeof text - 1     /* for text with a NUL inside */
+
+struct bad_scene {
+    const char *name;
+    const char *text;
+    size_t len;             /* 0: strlen(text) */
+    int line;               /* where the message must point */
+};
+
+static const struct bad_scene bad_scenes[] = {
+    { "unknown keyword", "size 8 8\ncolour 1 0 0\n", 0, 2 },
+    { "misspelt tri", "size 8 8\n\ntriangle " TRI_OK "\n", 0, 3 },
+    { "tri with 17 numbers", "size 8 8\ntri 1 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1\n", 0, 2 },
+    { "tri with 19 numbers", "size 8 8\ntri " TRI_OK " 1\n", 0, 2 },
+    { "tri with 23 numbers", "size 8 8\ntri 1 1 1 1 1 1 0 0  6 1 1 1 1 1 0 0  1 6 1 1 1 1 0\n", 0, 2 },
+    { "tri with no numbers", "size 8 8\ntri\n", 0, 2 },
+    { "a word for a number", "size 8 8\ntri 1 1 1 1 1 1  six 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "number with junk", "size 8 8\ntri 1 1 1 1 1 1  6px 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "two points", "size 8 8\ntri 1.2.3 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "nan", "size 8 8\ntri nan 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "NaN in colour", "size 8 8\ntri 1 1 1 NaN 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "inf", "size 8 8\ntri 1 1 1 1 1 1  inf 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "-infinity", "size 8 8\ntri 1 1 1 1 1 1  6 -infinity 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "hex", "size 8 8\ntri 0x10 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "hex float", "size 8 8\ntri 1 1 1 1 1 1  6 1 1 1 1 1  1 0x1p2 1 1 1 1\n", 0, 2 },
+    { "huge exponent", "size 8 8\ntri 1e400 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "x at +16384", "size 8 8\n# limit\ntri 16384 1 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 3 },
+    { "y at +16384", "size 8 8\ntri 1 1 1 1 1 1  6 16384 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "x at -16384.01", "size 8 8\ntri 1 1 1 1 1 1  6 1 1 1 1 1  -16384.01 6 1 1 1 1\n", 0, 2 },
+    { "y at -16384.01", "size 8 8\ntri 1 -16384.01 1 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "z = 0", "size 8 8\ntri 1 1 0 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "z < 0", "size 8 8\ntri 1 1 1 1 1 1  6 1 -2 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "z = -0", "size 8 8\ntri 1 1 1 1 1 1  6 1 1 1 1 1  1 6 -0 1 1 1\n", 0, 2 },
+    { "colour > 1", "size 8 8\ntri 1 1 1 1 1 1.5  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "colour < 0", "size 8 8\ntri 1 1 1 1 1 1  6 1 1 -0.1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "background > 1", "size 8 8\nbackground 0 2 0\n", 0, 2 },
+    { "background with 2 numbers", "size 8 8\nbackground 0 0\n", 0, 2 },
+    { "background twice", "size 8 8\nbackground 0 0 0\nbackground 1 1 1\n", 0, 3 },
+    { "missing size", "# no size here\nbackground 0 0 0\n", 0, 2 },
+    { "empty file", "", 0, 1 },
+    { "only comments", "# one\n# two\n# three\n", 0, 3 },
+    { "size twice", "size 8 8\nsize 9 9\n", 0, 2 },
+    { "size 0", "size 0 8\n", 0, 1 },
+    { "size 16385", "size 8 16385\n", 0, 1 },
+    { "size 3.5", "size 3.5 8\n", 0, 1 },
+    { "size -8", "size -8 8\n", 0, 1 },
+    { "size with one number", "size 8\n", 0, 1 },
+    { "size with three numbers", "size 8 8 8\n", 0, 1 },
+    { "size in hex", "size 0x10 8\n", 0, 1 },
+    { "tri before size", "# first\ntri " TRI_OK "\nsize 8 8\n", 0, 2 },
+    { "NUL byte", WITH_LEN("size 8 8\ntri 1 1 1 1 1 1\0 6 1 1 1 1 1  1 6 1 1 1 1\n"), 2 },
+    { "texture checker 0", "size 8 8\ntexture checker 0\n", 0, 2 },
+    { "texture of another kind", "size 8 8\ntexture stripes 4\n", 0, 2 },
+    { "error after CRLF lines", "size 8 8\r\n\r\n# c\r\nbogus 1\r\n", 0, 4 },
+    { "error after good triangles", "size 8 8\ntri " TRI_OK "\ntri " TRI_OK "\n\ntri " TRI_OK " 7\n", 0, 5 },
+};
+#define N_BAD_SCENES (sizeof bad_scenes / sizeof bad_scenes[0])
+
+static size_t bad_len(const struct bad_scene *b)
+{
+    return b->len ? b->len : strlen(b->text);
+}
+
+/* "FILE:LINE: message\n" and nothing else. */
+static void expect_located_message(const char *err, const char *file, int line, const char *what)
+{
+    char prefix[600];
+    int n = snprintf(prefix, sizeof prefix, "%s:%d: ", file, line);
+    cr_assert(strncmp(err, prefix, (size_t)n) == 0, "%s: message should start '%s', got '%s'",
+              what, prefix, err);
+    const char *msg = err + n;
+    const char *nl = strchr(msg, '\n');
+    cr_assert(nl && nl > msg, "%s: an empty or unterminated message: '%s'", what, err);
+    cr_assert(nl[1] == '\0', "%s: more than one line on stderr: '%s'", what, err);
+}
+
+Test(cli, malformed_scenes_in_process)
+{
+    cr_assert_geq(N_BAD_SCENES, 20);
+    for (size_t i = 0; i < N_BAD_SCENES; i++) {
+        const struct bad_scene *b = &bad_scenes[i];
+        struct scene s;
+        char err[512] = "";
+        cr_assert(!scene_parse(&s, "bad.scene", b->text, bad_len(b), err, sizeof err),
+                  "'%s' was accepted", b->name);
+        cr_assert_eq(s.ntris, 0, "%s: the scene is left empty", b->name);
+        cr_assert_null(s.tris, "%s: the scene is left empty", b->name);
+        char line[600];
+        snprintf(line, sizeof line, "%s\n", err);
+        expect_located_message(line, "bad.scene", b->line, b->name);
+    }
+}
+
+static const char *const keep_scene[] = { "bad.scene", NULL };
+
+Test(cli, malformed_scenes_exit_2_with_file_line_message_and_no_output, .timeout = 120)
+{
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    char scene[300], out[300], png[300];
+    snprintf(scene, sizeof scene, "%s/bad.scene", d.work);
+    snprintf(out, sizeof out, "%s/out.pgm", d.work);
+    snprintf(png, sizeof png, "%s/out.png", d.work);
+    for (int k = 0; k < p.n; k++)
+        for (size_t i = 0; i < N_BAD_SCENES; i++) {
+            const struct bad_scene *b = &bad_scenes[i];
+            write_file(scene, b->text, bad_len(b));
+            char *argv[] = { p.path[k], "--scene", scene, "--dump-coverage", out,
+                             i % 3 == 0 ? "--dump-image" : NULL, png, NULL };
+            struct result r = run(argv, d.scratch);
+            char what[200], stray[256] = "";
+            snprintf(what, sizeof what, "%s, scene '%s'", p.name[k], b->name);
+            cr_assert_eq(r.status, 2, "%s: exit status %d (stderr: %s)", what, r.status, r.err);
+            expect_located_message(r.err, scene, b->line, what);
+            cr_assert_eq(stray_files(d.work, keep_scene, stray, sizeof stray), 0,
+                         "%s: left '%s' behind", what, stray);
+            result_free(&r);
+        }
+    dirs_remove(&d);
+}
+
+/* --- malformed command lines ------------------------------------------------------- */
+
+struct bad_args {
+    const char *name;
+    const char *args[6];    /* after "--dump-coverage OUT"; NULL-terminated */
+    const char *mention;    /* the message names this (NULL: not checked) */
+};
+
+static const struct bad_args bad_command_lines[] = {
+    { "unknown long option", { "--bogus", NULL }, "--bogus" },
+    { "unknown short option", { "-x", NULL }, "-x" },
+    /* regression: bundled unknown short options named the wrong argument */
+    { "bundled short options named the wrong argument", { "-qz", NULL }, "-q" },
+    { "missing value of --scene", { "--scene", NULL }, "--scene" },
+    { "missing value of --dump-image", { "--dump-image", NULL }, "--dump-image" },
+    { "missing value of --variant", { "--variant", NULL }, "--variant" },
+    { "bad --step word", { "--step", "abc", NULL }, "abc" },
+    { "negative --step", { "--step", "-1", NULL }, "-1" },
+    { "fractional --step", { "--step", "1.5", NULL }, "1.5" },
+    { "bad --figure suffix", { "--figure", "fig.jpg", NULL }, "fig.jpg" },
+    { "--figure without suffix", { "--figure", "fig", NULL }, "fig" },
+    { "stray argument", { "scene.txt", NULL }, "scene.txt" },
+    { "stray argument after options", { "--step", "3", "extra", NULL }, "extra" },
+    { "unknown variant", { "--variant", "no-such-variant", NULL }, "no-such-variant" },
+    { "missing scene file", { "--scene", "/nonexistent/dir/x.scene", NULL }, "/nonexistent/dir/x.scene" },
+    { "unknown built-in scene", { "--scene", "builtin:no-such-scene", NULL }, NULL },
+    { "--size too small", { "--size", "10x10", NULL }, "10x10" },
+    { "--size malformed", { "--size", "640by480", NULL }, "640by480" },
+    { "--block-size 5", { "--block-size", "5", NULL }, "5" },
+    { "--subpixel-bits 9", { "--subpixel-bits", "9", NULL }, "9" },
+    { "--zoom 0", { "--zoom", "0", NULL }, "0" },
+    { "--scale nan", { "--scale", "nan", NULL }, "nan" },
+};
+#define N_BAD_ARGS (sizeof bad_command_lines / sizeof bad_command_lines[0])
+
+static const char *const keep_nothing[] = { NULL };
+
+Test(cli, malformed_command_lines_exit_2_with_a_message_and_no_output, .timeout = 120)
+{
+    cr_assert_geq(N_BAD_ARGS, 7);
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    char out[300];
+    snprintf(out, sizeof out, "%s/out.pgm", d.work);
+    for (int k = 0; k < p.n; k++)
+        for (size_t i = 0; i < N_BAD_ARGS; i++) {
+            const struct bad_args *b = &bad_command_lines[i];
+            char *argv[12] = { p.path[k], "--dump-coverage", out };
+            int n = 3;
+            for (int j = 0; b->args[j]; j++)
+                argv[n++] = (char *)b->args[j];
+            argv[n] = NULL;
+            struct result r = run(argv, d.scratch);
+            char what[200], stray[256] = "";
+            snprintf(what, sizeof what, "%s, %s", p.name[k], b->name);
+            cr_assert_eq(r.status, 2, "%s: exit status %d (stderr: %s)", what, r.status, r.err);
+            cr_assert_gt(r.err_len, 0, "%s: no message on stderr", what);
+            if (b->mention)
+                cr_assert(strstr(r.err, b->mention), "%s: the message does not name '%s': %s",
+                          what, b->mention, r.err);
+            cr_assert_eq(r.out_len, 0, "%s: wrote to stdout: %s", what, r.out);
+            cr_assert_eq(stray_files(d.work, keep_nothing, stray, sizeof stray), 0,
+                         "%s: left '%s' behind", what, stray);
+            result_free(&r);
+        }
+    dirs_remove(&d);
+}
+
+/* --- failures while running ------------------------------------------------------ */
+
+Test(cli, unwritable_output_exits_1_and_leaves_nothing, .timeout = 60)
+{
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    char out[300], missing[300], png_missing[300];
+    snprintf(out, sizeof out, "%s/out.pgm", d.work);
+    snprintf(missing, sizeof missing, "%s/no-such-dir/out.pgm", d.work);
+    snprintf(png_missing, sizeof png_missing, "%s/no-such-dir/out.png", d.work);
+    for (int k = 0; k < p.n; k++) {
+        char stray[256] = "";
+        /* a directory that does not exist */
+        char *a1[] = { p.path[k], "--scene", "builtin:fan", "--dump-coverage", missing, NULL };
+        struct result r = run(a1, d.scratch);
+        cr_assert_eq(r.status, 1, "%s: exit %d for %s (stderr: %s)", p.name[k], r.status, missing, r.err);
+        cr_assert_gt(r.err_len, 0, "%s: no message", p.name[k]);
+        cr_assert_eq(stray_files(d.work, keep_nothing, stray, sizeof stray), 0, "%s: left %s", p.name[k], stray);
+        result_free(&r);
+
+        /* the coverage file could be written, the image not: neither stays */
+        char *a2[] = { p.path[k], "--scene", "builtin:triangle", "--dump-coverage", out, "--dump-image", png_missing, NULL };
+        r = run(a2, d.scratch);
+        cr_assert_eq(r.status, 1, "%s: exit %d (stderr: %s)", p.name[k], r.status, r.err);
+        cr_assert_eq(stray_files(d.work, keep_nothing, stray, sizeof stray), 0,
+                     "%s: a failed run left '%s'", p.name[k], stray);
+        result_free(&r);
+
+        /* the output path is a directory: it stays a directory, no temp file */
+        char dir_out[300];
+        snprintf(dir_out, sizeof dir_out, "%s/a-directory", d.work);
+        cr_assert_eq(mkdir(dir_out, 0755), 0);
+        char *a3[] = { p.path[k], "--scene", "builtin:triangle", "--dump-coverage", dir_out, NULL };
+        r = run(a3, d.scratch);
+        cr_assert_eq(r.status, 1, "%s: exit %d writing over a directory (stderr: %s)", p.name[k], r.status, r.err);
+        const char *keep_dir[] = { "a-directory", NULL };
+        cr_assert_eq(stray_files(d.work, keep_dir, stray, sizeof stray), 0, "%s: left '%s'", p.name[k], stray);
+        struct stat st;
+        cr_assert(stat(dir_out, &st) == 0 && S_ISDIR(st.st_mode));
+        rmdir(dir_out);
+        result_free(&r);
+    }
+    dirs_remove(&d);
+}
+
+Test(cli, help_and_version_exit_0_on_stdout)
+{
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    for (int k = 0; k < p.n; k++) {
+        const char *opts[] = { "--help", "--version" };
+        for (int i = 0; i < 2; i++) {
+            char *argv[] = { p.path[k], (char *)opts[i], NULL };
+            struct result r = run(argv, d.scratch);
+            cr_assert_eq(r.status, 0, "%s %s: exit %d", p.name[k], opts[i], r.status);
+            cr_assert_gt(r.out_len, 0, "%s %s: nothing on stdout", p.name[k], opts[i]);
+            cr_assert_eq(r.err_len, 0, "%s %s: stderr: %s", p.name[k], opts[i], r.err);
+            if (i == 0)
+                cr_assert(strstr(r.out, "--dump-coverage") && strstr(r.out, "--scene"),
+                          "%s --help does not describe the options", p.name[k]);
+            result_free(&r);
+        }
+    }
+    dirs_remove(&d);
+}
+
+Test(cli, every_lesson_has_a_program)
+{
+    struct programs p;
+    find_programs(&p);
+    for (int i = 0; all_lessons[i]; i++) {
+        bool found = false;
+        for (int k = 0; k < p.n; k++)
+            found |= strcmp(p.name[k], all_lessons[i]->id) == 0;
+        cr_expect(found, "no program %s/%s", test_build_dir(), all_lessons[i]->id);
+    }
+    for (int k = 0; k < p.n; k++)
+        cr_expect_not_null(lesson_of(p.name[k]), "program %s has no lesson", p.name[k]);
+}
+
+/* --- --dump-coverage against the reference ----------------------------------------- */
+
+/* Parse a PGM strictly: exactly "P5\nW H\n255\n" then W * H bytes. */
+static const uint8_t *pgm_pixels(const char *data, size_t len, int w, int h, const char *what)
+{
+    char header[64];
+    int n = snprintf(header, sizeof header, "P5\n%d %d\n255\n", w, h);
+    cr_assert(len >= (size_t)n && memcmp(data, header, (size_t)n) == 0,
+              "%s: the header is not 'P5\\n%d %d\\n255\\n'", what, w, h);
+    cr_assert_eq(len, (size_t)n + (size_t)w * (size_t)h, "%s: %zu bytes, expected %zu", what,
+                 len, (size_t)n + (size_t)w * (size_t)h);
+    return (const uint8_t *)data + n;
+}
+
+/* The reference picture of a scene file: parse, set up, reference_mask. */
+static uint8_t *reference_of(const char *path, struct scene *s)
+{
+    char err[512];
+    cr_assert(scene_load(s, path, err, sizeof err), "%s", err);
+    uint8_t *mask = calloc((size_t)s->w * (size_t)s->h, 1);
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        reference_mask(&t, mask);
+    }
+    return mask;
+}
+
+static void fprint_vertex(FILE *f, const struct vertex *v, bool st)
+{
+    fprintf(f, "  %.17g %.17g %.17g %.17g %.17g %.17g", v->x, v->y, v->z, v->r, v->g, v->b);
+    if (st)
+        fprintf(f, " %.17g %.17g", v->s, v->t);
+}
+
+/* Scenes written here with fprintf (not scene_write): random triangles of
+ * every category, a jittered strip mesh, 300 copies of one triangle, the
+ * 24-number form with a texture, huge triangles at the coordinate limits. */
+static void write_scenes(const char *dir, char names[][300], int *count)
+{
+    struct rng r = rng_for(5000);
+    int n = 0;
+    for (int kind = 0; kind < 6; kind++) {
+        snprintf(names[n], 300, "%s/scene%d.scene", dir, kind);
+        FILE *f = fopen(names[n], "w");
+        cr_assert_not_null(f);
+        int w = rng_int(&r, 20, 70), h = rng_int(&r, 20, 50);
+        bool st = kind == 3;
+        fprintf(f, "# generated: kind %d\nsize %d %d\nbackground 0.1 0.2 0.3\n", kind, w, h);
+        if (st)
+            fprintf(f, "texture checker 4\n");
+        int ntris = kind == 2 ? 300 : 80;
+        struct vertex fixed[3];
+        random_tri(&r, CAT_GENERIC, w, h, fixed);
+        for (int i = 0; i < ntris; i++) {
+            struct vertex v[3];
+            if (kind == 2)
+                memcpy(v, fixed, sizeof v);                 /* saturation at 255 */
+            else if (kind == 4)
+                random_tri(&r, CAT_LARGE, w, h, v);         /* far outside, to the limits */
+            else if (kind == 5)
+                random_tri(&r, i % 2 ? CAT_SLIVER : CAT_CENTRES, w, h, v);
+            else
+                random_tri(&r, (enum tri_category)(i % CAT_COUNT), w, h, v);
+            fprintf(f, "tri");
+            for (int k = 0; k < 3; k++)
+                fprint_vertex(f, &v[k], st);
+            fprintf(f, "\n");
+        }
+        if (kind == 1) {
+            /* a strip of quads sharing vertical edges through centres */
+            for (int i = 0; i < 8; i++) {
+                double x0 = 2.5 + 2 * i, x1 = x0 + 2;
+                fprintf(f, "tri %g 3.25 1 1 0 0  %g 3.25 1 0 1 0  %g 17.75 1 0 0 1\n", x0, x1, x1);
+                fprintf(f, "tri %g 3.25 1 1 0 0  %g 17.75 1 0 0 1  %g 17.75 1 0 1 0\n", x0, x1, x0);
+            }
+        }
+        cr_assert_eq(fclose(f), 0);
+        n++;
+    }
+    /* a 1 x 1 scene and a scene with no triangles */
+    snprintf(names[n], 300, "%s/tiny.scene", dir);
+    const char *tiny = "size 1 1\ntri 0 0 1 1 1 1  1 0 1 1 1 1  0 1 1 1 1 1\r\n";
+    write_file(names[n++], tiny, strlen(tiny));
+    snprintf(names[n], 300, "%s/empty.scene", dir);
+    write_file(names[n++], "size 5 3\n", strlen("size 5 3\n"));
+    *count = n;
+}
+
+static void check_dump(const char *program, const char *variant, const char *scene_arg,
+                       const char *scene_path, const struct dirs *d)
+{
+    char out[300];
+    snprintf(out, sizeof out, "%s/out.pgm", d->work);
+    char *argv[] = { (char *)program, "--scene", (char *)scene_arg, "--dump-coverage", out,
+                     variant ? "--variant" : NULL, (char *)variant, NULL };
+    struct result r = run(argv, d->scratch);
+    char what[700];
+    snprintf(what, sizeof what, "%s%s%s --scene %s", program, variant ? " --variant " : "",
+             variant ? variant : "", scene_arg);
+    cr_assert_eq(r.status, 0, "%s: exit %d (stderr: %s)", what, r.status, r.err);
+    result_free(&r);
+
+    size_t len;
+    char *data = slurp(out, &len);
+    cr_assert_not_null(data, "%s: no %s", what, out);
+    struct scene s;
+    uint8_t *ref = reference_of(scene_path, &s);
+    const uint8_t *px = pgm_pixels(data, len, s.w, s.h, what);
+    struct case_info info = { what, test_seed(), 0, NULL, 0 };
+    cr_assert(coverage_equal(ref, px, s.w, s.h, &info));
+    free(ref);
+    free(data);
+    scene_free(&s);
+    unlink(out);
+}
+
+Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180)
+{
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    char scenes[16][300];
+    int nscenes;
+    write_scenes(d.scratch, scenes, &nscenes);
+    for (int k = 0; k < p.n; k++) {
+        for (int i = 0; i < builtin_scene_count; i++) {
+            char arg[64];
+            snprintf(arg, sizeof arg, "builtin:%s", builtin_scenes[i].name);
+            check_dump(p.path[k], NULL, arg, arg, &d);
+        }
+        for (int i = 0; i < nscenes; i++)
+            check_dump(p.path[k], NULL, scenes[i], scenes[i], &d);
+        /* every exact variant of the program's lesson, on the mixed scene */
+        const struct lesson *l = lesson_of(p.name[k]);
+        cr_assert_not_null(l, "program %s has no lesson", p.name[k]);
+        for (int v = 0; v < l->nvariants; v++)
+            if (!l->variants[v].exhibit)
+                check_dump(p.path[k], l->variants[v].name, scenes[0], scenes[0], &d);
+    }
+    dirs_remove(&d);
+}
