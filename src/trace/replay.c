@@ -6,7 +6,7 @@
 
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
 {
-    int bits = r->params.subpixel_bits ? r->params.subpixel_bits : SUBPIXEL_BITS;
+    int bits = r->params.subpixel_bits;     /* 0..8, taken as given: 0 is whole pixels */
     return tri_setup_bits(t, r->scene->tris[i].v, r->scene->w, r->scene->h, bits);
 }
 
@@ -122,7 +122,7 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
 {
     if (!target_init(fb, s->w, s->h, scene_background(s)))
         return false;
-    int bits = p->subpixel_bits ? p->subpixel_bits : SUBPIXEL_BITS;
+    int bits = p->subpixel_bits;           /* 0..8, taken as given: 0 is whole pixels */
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, bits);
