@@ -490,15 +490,16 @@ static const uint8_t *pgm_pixels(const char *data, size_t len, int w, int h, con
     return (const uint8_t *)data + n;
 }
 
-/* The reference picture of a scene file: parse, set up, reference_mask. */
-static uint8_t *reference_of(const char *path, struct scene *s)
+/* The reference picture of a scene file: parse, set up with `bits`
+ * fractional bits, reference_mask. */
+static uint8_t *reference_of(const char *path, struct scene *s, int bits)
 {
     char err[512];
     cr_assert(scene_load(s, path, err, sizeof err), "%s", err);
     uint8_t *mask = calloc((size_t)s->w * (size_t)s->h, 1);
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
-        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        tri_setup_bits(&t, s->tris[i].v, s->w, s->h, bits);
         reference_mask(&t, mask);
     }
     return mask;
@@ -565,17 +566,29 @@ static void write_scenes(const char *dir, char names[][300], int *count)
     *count = n;
 }
 
-static void check_dump(const char *program, const char *variant, const char *scene_arg,
-                       const char *scene_path, const struct dirs *d)
+/* Run one --dump-coverage (bits < 0: without --subpixel-bits) and compare. */
+static void check_dump_bits(const char *program, const char *variant, const char *scene_arg,
+                            const char *scene_path, int bits, const struct dirs *d)
 {
-    char out[300];
+    char out[300], bits_arg[8];
     snprintf(out, sizeof out, "%s/out.pgm", d->work);
-    char *argv[] = { (char *)program, "--scene", (char *)scene_arg, "--dump-coverage", out,
-                     variant ? "--variant" : NULL, (char *)variant, NULL };
+    snprintf(bits_arg, sizeof bits_arg, "%d", bits);
+    char *argv[12] = { (char *)program, "--scene", (char *)scene_arg, "--dump-coverage", out };
+    int n = 5;
+    if (variant) {
+        argv[n++] = "--variant";
+        argv[n++] = (char *)variant;
+    }
+    if (bits >= 0) {
+        argv[n++] = "--subpixel-bits";
+        argv[n++] = bits_arg;
+    }
+    argv[n] = NULL;
     struct result r = run(argv, d->scratch);
     char what[700];
-    snprintf(what, sizeof what, "%s%s%s --scene %s", program, variant ? " --variant " : "",
-             variant ? variant : "", scene_arg);
+    snprintf(what, sizeof what, "%s%s%s --scene %s%s%s", program, variant ? " --variant " : "",
+             variant ? variant : "", scene_arg, bits >= 0 ? " --subpixel-bits " : "",
+             bits >= 0 ? bits_arg : "");
     cr_assert_eq(r.status, 0, "%s: exit %d (stderr: %s)", what, r.status, r.err);
     result_free(&r);
 
@@ -583,7 +596,7 @@ static void check_dump(const char *program, const char *variant, const char *sce
     char *data = slurp(out, &len);
     cr_assert_not_null(data, "%s: no %s", what, out);
     struct scene s;
-    uint8_t *ref = reference_of(scene_path, &s);
+    uint8_t *ref = reference_of(scene_path, &s, bits >= 0 ? bits : SUBPIXEL_BITS);
     const uint8_t *px = pgm_pixels(data, len, s.w, s.h, what);
     struct case_info info = { what, test_seed(), 0, NULL, 0 };
     cr_assert(coverage_equal(ref, px, s.w, s.h, &info));
@@ -591,6 +604,12 @@ static void check_dump(const char *program, const char *variant, const char *sce
     free(data);
     scene_free(&s);
     unlink(out);
+}
+
+static void check_dump(const char *program, const char *variant, const char *scene_arg,
+                       const char *scene_path, const struct dirs *d)
+{
+    check_dump_bits(program, variant, scene_arg, scene_path, -1, d);
 }
 
 Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180)
@@ -617,5 +636,22 @@ Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180)
             if (!l->variants[v].exhibit)
                 check_dump(p.path[k], l->variants[v].name, scenes[0], scenes[0], &d);
     }
+    dirs_remove(&d);
+}
+
+/* Regression: --subpixel-bits 0 was read as "the default" and snapped to 8
+ * bits. Every precision must match the reference snapped the same way. */
+Test(cli, subpixel_bits_0_was_read_as_8, .timeout = 60)
+{
+    struct programs p;
+    find_programs(&p);
+    struct dirs d;
+    dirs_make(&d);
+    char scenes[16][300];
+    int nscenes;
+    write_scenes(d.scratch, scenes, &nscenes);
+    for (int k = 0; k < p.n; k++)
+        for (int bits = 0; bits <= SUBPIXEL_BITS; bits += 2)
+            check_dump_bits(p.path[k], NULL, scenes[5], scenes[5], bits, &d);
     dirs_remove(&d);
 }
