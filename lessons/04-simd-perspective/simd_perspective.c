@@ -166,12 +166,12 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
     persp_setup(t, p, &s);
     narrate_setup(t, &s, tr);
     const float *QA = s.Q[0], *QB = s.Q[1], *QC = s.Q[2];
-    float I[4], Cy[4];
+    float I[4], J[4], Cy[4];
     for (int lane = 0; lane < 4; lane++) {
         I[lane] = (float)s.I[lane];
+        J[lane] = (float)s.J[lane];
         Cy[lane] = (float)s.F[lane];
     }
-    float Jv[4] = { (float)s.J[0], (float)s.J[1], (float)s.J[2], (float)s.J[3] };
     int64_t ey[3] = { s.e[0], s.e[1], s.e[2] };
 
     for (int y = t->miny; y <= t->maxy; y++) {
@@ -209,7 +209,7 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
             COUNT_OPS(tr, 0, 4 + 3);
         }
         for (int lane = 0; lane < 4; lane++)          /* Cy += J */
-            Cy[lane] += Jv[lane];
+            Cy[lane] += J[lane];
         for (int k = 0; k < 3; k++)
             ey[k] += s.ey[k];
         COUNT_OPS(tr, 0, 4 + 3);
