@@ -570,7 +570,7 @@ static void write_scenes(const char *dir, char names[][300], int *count)
 static void check_dump_bits(const char *program, const char *variant, const char *scene_arg,
                             const char *scene_path, int bits, const struct dirs *d)
 {
-    char out[300], bits_arg[8];
+    char out[300], bits_arg[16];
     snprintf(out, sizeof out, "%s/out.pgm", d->work);
     snprintf(bits_arg, sizeof bits_arg, "%d", bits);
     char *argv[12] = { (char *)program, "--scene", (char *)scene_arg, "--dump-coverage", out };
