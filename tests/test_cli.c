@@ -182,10 +182,15 @@ struct dirs {
     char work[256], scratch[256];
 };
 
+/* The directories of the running test, removed by .fini even when an
+ * assertion ends the test early. */
+static struct dirs *live_dirs;
+
 static void dirs_make(struct dirs *d)
 {
     snprintf(d->work, sizeof d->work, "/tmp/tristep-cli-XXXXXX");
     snprintf(d->scratch, sizeof d->scratch, "/tmp/tristep-cli-io-XXXXXX");
+    live_dirs = d;
     cr_assert_not_null(mkdtemp(d->work));
     cr_assert_not_null(mkdtemp(d->scratch));
 }
@@ -194,6 +199,13 @@ static void dirs_remove(struct dirs *d)
 {
     remove_tree(d->work);
     remove_tree(d->scratch);
+    d->work[0] = d->scratch[0] = '\0';
+}
+
+static void remove_live_dirs(void)
+{
+    if (live_dirs && live_dirs->work[0])
+        dirs_remove(live_dirs);
 }
 
 /* --- malformed scenes ------------------------------------------------------------- */
@@ -294,11 +306,11 @@ Test(cli, malformed_scenes_in_process)
 
 static const char *const keep_scene[] = { "bad.scene", NULL };
 
-Test(cli, malformed_scenes_exit_2_with_file_line_message_and_no_output, .timeout = 120)
+Test(cli, malformed_scenes_exit_2_with_file_line_message_and_no_output, .timeout = 120, .fini = remove_live_dirs)
 {
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     char scene[300], out[300], png[300];
     snprintf(scene, sizeof scene, "%s/bad.scene", d.work);
@@ -359,12 +371,12 @@ static const struct bad_args bad_command_lines[] = {
 
 static const char *const keep_nothing[] = { NULL };
 
-Test(cli, malformed_command_lines_exit_2_with_a_message_and_no_output, .timeout = 120)
+Test(cli, malformed_command_lines_exit_2_with_a_message_and_no_output, .timeout = 120, .fini = remove_live_dirs)
 {
     cr_assert_geq(N_BAD_ARGS, 7);
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     char out[300];
     snprintf(out, sizeof out, "%s/out.pgm", d.work);
@@ -394,11 +406,11 @@ Test(cli, malformed_command_lines_exit_2_with_a_message_and_no_output, .timeout 
 
 /* --- failures while running ------------------------------------------------------ */
 
-Test(cli, unwritable_output_exits_1_and_leaves_nothing, .timeout = 60)
+Test(cli, unwritable_output_exits_1_and_leaves_nothing, .timeout = 60, .fini = remove_live_dirs)
 {
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     char out[300], missing[300], png_missing[300];
     snprintf(out, sizeof out, "%s/out.pgm", d.work);
@@ -439,11 +451,11 @@ Test(cli, unwritable_output_exits_1_and_leaves_nothing, .timeout = 60)
     dirs_remove(&d);
 }
 
-Test(cli, help_and_version_exit_0_on_stdout)
+Test(cli, help_and_version_exit_0_on_stdout, .fini = remove_live_dirs)
 {
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     for (int k = 0; k < p.n; k++) {
         const char *opts[] = { "--help", "--version" };
@@ -612,11 +624,11 @@ static void check_dump(const char *program, const char *variant, const char *sce
     check_dump_bits(program, variant, scene_arg, scene_path, -1, d);
 }
 
-Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180)
+Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180, .fini = remove_live_dirs)
 {
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     char scenes[16][300];
     int nscenes;
@@ -641,11 +653,11 @@ Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180)
 
 /* Regression: --subpixel-bits 0 was read as "the default" and snapped to 8
  * bits. Every precision must match the reference snapped the same way. */
-Test(cli, subpixel_bits_0_was_read_as_8, .timeout = 60)
+Test(cli, subpixel_bits_0_was_read_as_8, .timeout = 60, .fini = remove_live_dirs)
 {
     struct programs p;
     find_programs(&p);
-    struct dirs d;
+    static struct dirs d;   /* static: .fini may run after the test returned early */
     dirs_make(&d);
     char scenes[16][300];
     int nscenes;

@@ -82,7 +82,7 @@ enum { BUILD_NARRATED = 1, BUILD_FAST = 2, BUILD_BOTH = 3 };
 int exact_variants(struct test_variant *out, int max, int builds);
 #define MAX_TEST_VARIANTS 128
 
-/* "02-barycentric/top-left (narrated)" in a static buffer per call site use. */
+/* "02-barycentric/top-left (narrated)", written into buf; returns buf. */
 const char *variant_label(const struct test_variant *tv, char *buf, size_t len);
 
 /* The parameters a plain run uses (exact sub-pixel bits, default block size). */
