@@ -31,19 +31,19 @@
 #include "lesson.h"
 
 static const char *const pseudocode[] = {
-    "[minX, maxX, minY, maxY], I0k, J0k, K0k of edges AB, BC, CA",   /* 0 */
-    "I00, J00, K00 = I02/ZA + I03/ZB + I01/ZC, ...   (19)-(21)",     /* 1 */
-    "F = (I * minX + J * minY + K) / Area2  = (1/z, w, u, v)",       /* 2 */
-    "I = I / Area2;  J = J / Area2;  Cy = F",                        /* 3 */
-    "loop y = minY to maxY:  Cx = Cy",                               /* 4 */
-    "  loop x = minX to maxX:",                                      /* 5 */
-    "    if F01, F02, F03 inside (exact, top-left rule):",          /* 6 */
-    "      Depth = 1 / Cx[0]",                                       /* 7 */
-    "      if Depth < DepthBuffer(x, y):   (the nearer wins)",       /* 8 */
-    "        P = (u PA/ZA + v PB/ZB + w PC/ZC) * Depth   (23)",      /* 9 */
-    "        write Depth and the colour of P",                       /* 10 */
-    "    Cx += I",                                                   /* 11 */
-    "  Cy += J",                                                     /* 12 */
+    "bounding box; I0k, J0k, K0k of the 3 edges",        /* 0 */
+    "I00 = I02/ZA + I03/ZB + I01/ZC; J00, K00 alike",    /* 1: (19)-(21) */
+    "F = (I minX + J minY + K) / Area2",                 /* 2: (1/z, w, u, v) */
+    "I = I / Area2;  J = J / Area2;  Cy = F",            /* 3 */
+    "loop y = minY to maxY:  Cx = Cy",                   /* 4 */
+    "  loop x = minX to maxX:",                          /* 5 */
+    "    if F01, F02, F03 inside (exact):",              /* 6: top-left rule */
+    "      Depth = 1 / Cx[0]",                           /* 7 */
+    "      if Depth < DepthBuffer(x, y):",               /* 8: the nearer wins */
+    "        P = (u PA/ZA+v PB/ZB+w PC/ZC)*Depth",       /* 9: (23) */
+    "        write Depth, colour of P",                  /* 10 */
+    "    Cx += I",                                       /* 11 */
+    "  Cy += J",                                         /* 12 */
     NULL,
 };
 
