@@ -135,6 +135,25 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  21.2 9.8 1  0.95 0.75 0.2   30.6 10.6 1  0.95 0.75 0.2   30.6 18.4 1  0.95 0.75 0.2\n"
         "tri  21.2 9.8 1  0.3 0.75 0.95   30.6 18.4 1  0.3 0.75 0.95   19.6 18.4 1  0.3 0.75 0.95\n"
     },
+    { "blocks", "one triangle over a grid of 8 x 8 blocks: empty, full and partial (lesson 05)",
+        "# one triangle of about 1,100 pixels: its box holds 48 blocks of 8 x 8,\n"
+        "# some outside an edge (empty), some inside all three (full), the rest\n"
+        "# crossed by an edge (partial). Depths differ, so colour is perspective-correct.\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  3.3 5.6 1.2  0.95 0.2 0.15   60.2 12.4 3  0.2 0.85 0.3   22.7 45.1 2  0.2 0.35 0.95\n"
+    },
+    { "blocks-exhibits", "a small triangle inside one block, a sliver and a wide triangle (lesson 05 exhibits)",
+        "# what block classification by corners can get wrong:\n"
+        "# a small triangle none of whose box corners it contains,\n"
+        "# a sliver passing between the corners of the blocks it crosses,\n"
+        "# and a wide triangle whose blocks are often inside one edge only\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  11.3 14.55 1  1 0.85 0.2   9.55 9.55 1  1 0.85 0.2   14.55 9.3 1  1 0.85 0.2\n"
+        "tri  18.3 2.2 1  0.3 0.9 1   61.6 21.7 1  0.3 0.9 1   61.4 22.6 1  0.3 0.9 1\n"
+        "tri  2.6 22.4 1  1 0.4 0.3   40.3 28.2 2  0.9 0.6 0.3   12.2 46.5 1.5  1 0.5 0.6\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);
