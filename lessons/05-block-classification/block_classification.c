@@ -102,10 +102,9 @@ enum { PL_INV_Z, PL_R, PL_G, PL_B, PL_S, PL_T, PL_COUNT };
 struct planes {
     int x0, y0;
     double p0[PL_COUNT], px[PL_COUNT], py[PL_COUNT];
-    __m128d px2[PL_COUNT / 2];  /* Px of the planes, two per register */
     __m128 lanes[PL_COUNT];     /* Px * (0, 1, 2, 3): the four pixels of a quad */
+    __m128 step[PL_COUNT];      /* Px * 4: from one quad to the next */
     bool checker;
-    float checker_n;
 };
 
 static void planes_setup(struct planes *pl, const struct tri_setup *t,
@@ -115,7 +114,6 @@ static void planes_setup(struct planes *pl, const struct tri_setup *t,
     pl->x0 = t->minx;
     pl->y0 = t->miny;
     pl->checker = p->checker > 0;
-    pl->checker_n = (float)N;
     /* vertex values a / Z of each plane, for A, B, C */
     double val[PL_COUNT][3];
     for (int i = 0; i < 3; i++) {
@@ -142,24 +140,45 @@ static void planes_setup(struct planes *pl, const struct tri_setup *t,
                      + (double)t->J[EDGE_AB] * a[2]) * SUBPIXEL_ONE * inv_area2;
         float s = (float)pl->px[q];
         pl->lanes[q] = _mm_setr_ps(0.0f, s, 2.0f * s, 3.0f * s);
+        pl->step[q] = _mm_set1_ps(4.0f * s);
     }
-    for (int q = 0; q < PL_COUNT / 2; q++)
-        pl->px2[q] = _mm_setr_pd(pl->px[2 * q], pl->px[2 * q + 1]);
 }
 
-/* The planes on row y, at x = x0: computed once per row of a block. */
-struct plane_row {
-    __m128d v[PL_COUNT / 2];
+/* The planes at the four pixels of one quad: (xq .. xq + 3, y), xq a
+ * multiple of 4. A run along a row starts with quad_at() (exact, in double,
+ * once per row of a block) and moves right with quad_next() (four float
+ * adds). Both partial-block loops walk the same quads in the same way, so
+ * they write the same bytes. */
+struct quad {
+    __m128 inv_z, r, g, b, s, t;
 };
 
-static struct plane_row plane_row(const struct planes *pl, int y)
+static struct quad quad_at(const struct planes *pl, int xq, int y)
 {
-    struct plane_row r;
-    double dy = (double)(y - pl->y0);
-    for (int q = 0; q < PL_COUNT / 2; q++)
-        r.v[q] = _mm_setr_pd(pl->p0[2 * q] + pl->py[2 * q] * dy,
-                             pl->p0[2 * q + 1] + pl->py[2 * q + 1] * dy);
-    return r;
+    double dx = (double)(xq - pl->x0), dy = (double)(y - pl->y0);
+    float v[PL_COUNT];
+    for (int q = 0; q < PL_COUNT; q++)
+        v[q] = (float)(pl->p0[q] + pl->px[q] * dx + pl->py[q] * dy);
+    return (struct quad){
+        .inv_z = _mm_add_ps(_mm_set1_ps(v[PL_INV_Z]), pl->lanes[PL_INV_Z]),
+        .r = _mm_add_ps(_mm_set1_ps(v[PL_R]), pl->lanes[PL_R]),
+        .g = _mm_add_ps(_mm_set1_ps(v[PL_G]), pl->lanes[PL_G]),
+        .b = _mm_add_ps(_mm_set1_ps(v[PL_B]), pl->lanes[PL_B]),
+        .s = _mm_add_ps(_mm_set1_ps(v[PL_S]), pl->lanes[PL_S]),
+        .t = _mm_add_ps(_mm_set1_ps(v[PL_T]), pl->lanes[PL_T]),
+    };
+}
+
+static inline void quad_next(struct quad *qd, const struct planes *pl)
+{
+    qd->inv_z = _mm_add_ps(qd->inv_z, pl->step[PL_INV_Z]);
+    qd->r = _mm_add_ps(qd->r, pl->step[PL_R]);
+    qd->g = _mm_add_ps(qd->g, pl->step[PL_G]);
+    qd->b = _mm_add_ps(qd->b, pl->step[PL_B]);
+    if (pl->checker) {
+        qd->s = _mm_add_ps(qd->s, pl->step[PL_S]);
+        qd->t = _mm_add_ps(qd->t, pl->step[PL_T]);
+    }
 }
 
 /* floor() of four floats, as int32 (truncation rounds towards zero). */
@@ -170,35 +189,23 @@ static __m128i floor_epi32(__m128 v)
     return _mm_add_epi32(i, _mm_castps_si128(too_big));    /* -1 where truncation went up */
 }
 
-/* Depth and colour of the quad of pixels xq .. xq + 3 on row `row` (xq a
- * multiple of 4). Lane i depends on pixel (xq + i, y) alone, so every
- * variant, whatever its blocks, writes the same bytes for the same pixel.
+/* Depth and colour of the four pixels of a quad:
  *
  *     z = 1 / (1/z)      a reciprocal estimate and one Newton step: no division
  *     colour = (255 a / z) * z, darkened on the checker's dark squares
  */
-static void shade_quad(const struct planes *pl, const struct plane_row *row, int xq,
-                       __m128 *z_out, __m128i *rgba_out)
+static inline void shade_quad(const struct planes *pl, const struct quad *qd,
+                              __m128 *z_out, __m128i *rgba_out)
 {
-    __m128d dx = _mm_set1_pd((double)(xq - pl->x0));
-    __m128 at[PL_COUNT / 2];    /* the planes at pixel xq, two per register */
-    for (int q = 0; q < PL_COUNT / 2; q++)
-        at[q] = _mm_cvtpd_ps(_mm_add_pd(row->v[q], _mm_mul_pd(pl->px2[q], dx)));
-    __m128 inv_z = _mm_add_ps(_mm_shuffle_ps(at[0], at[0], 0x00), pl->lanes[PL_INV_Z]);
-    __m128 r = _mm_add_ps(_mm_shuffle_ps(at[0], at[0], 0x55), pl->lanes[PL_R]);
-    __m128 g = _mm_add_ps(_mm_shuffle_ps(at[1], at[1], 0x00), pl->lanes[PL_G]);
-    __m128 b = _mm_add_ps(_mm_shuffle_ps(at[1], at[1], 0x55), pl->lanes[PL_B]);
-
-    __m128 z = _mm_rcp_ps(inv_z);                       /* about 12 bits */
-    z = _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(inv_z, z)));  /* about 22 */
-    r = _mm_mul_ps(r, z);
-    g = _mm_mul_ps(g, z);
-    b = _mm_mul_ps(b, z);
+    __m128 z = _mm_rcp_ps(qd->inv_z);                   /* about 12 bits */
+    z = _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(qd->inv_z, z)));  /* about 22 */
+    __m128 r = _mm_mul_ps(qd->r, z);
+    __m128 g = _mm_mul_ps(qd->g, z);
+    __m128 b = _mm_mul_ps(qd->b, z);
 
     if (pl->checker) {
-        __m128 s = _mm_add_ps(_mm_shuffle_ps(at[2], at[2], 0x00), pl->lanes[PL_S]);
-        __m128 t = _mm_add_ps(_mm_shuffle_ps(at[2], at[2], 0x55), pl->lanes[PL_T]);
-        __m128i square = _mm_add_epi32(floor_epi32(_mm_mul_ps(s, z)), floor_epi32(_mm_mul_ps(t, z)));
+        __m128i square = _mm_add_epi32(floor_epi32(_mm_mul_ps(qd->s, z)),
+                                       floor_epi32(_mm_mul_ps(qd->t, z)));
         __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
                                                        _mm_set1_epi32(1)));
         __m128 scale = _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
@@ -208,23 +215,24 @@ static void shade_quad(const struct planes *pl, const struct plane_row *row, int
         b = _mm_mul_ps(b, scale);
     }
 
-    /* clamp to [0, 255] and round half up, as pack_rgb does */
-    __m128 lo = _mm_setzero_ps(), hi = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
-    __m128i ri = _mm_cvttps_epi32(_mm_add_ps(_mm_min_ps(_mm_max_ps(r, lo), hi), half));
-    __m128i gi = _mm_cvttps_epi32(_mm_add_ps(_mm_min_ps(_mm_max_ps(g, lo), hi), half));
-    __m128i bi = _mm_cvttps_epi32(_mm_add_ps(_mm_min_ps(_mm_max_ps(b, lo), hi), half));
-    __m128i argb = _mm_or_si128(_mm_or_si128(_mm_slli_epi32(ri, 16), _mm_slli_epi32(gi, 8)), bi);
-    *rgba_out = _mm_or_si128(argb, _mm_set1_epi32((int)0xff000000u));
+    /* Round to integers, then saturate to 0..255 while packing: bytes
+     * b0 b1 b2 b3 r0 r1 r2 r3 g0 g1 g2 g3 a0 a1 a2 a3, interleaved twice into
+     * b0 g0 r0 a0 b1 g1 r1 a1 ..., the bytes of 0xAARRGGBB in memory. */
+    __m128i br = _mm_packs_epi32(_mm_cvtps_epi32(b), _mm_cvtps_epi32(r));
+    __m128i ga = _mm_packs_epi32(_mm_cvtps_epi32(g), _mm_set1_epi32(255));
+    __m128i planar = _mm_packus_epi16(br, ga);
+    __m128i bgbg = _mm_unpacklo_epi8(planar, _mm_srli_si128(planar, 8));
+    *rgba_out = _mm_unpacklo_epi16(bgbg, _mm_srli_si128(bgbg, 8));
     *z_out = z;
 }
 
 /* target_write() for the lanes of a quad that `mask` keeps (all ones = keep):
  * count, depth test (nearer wins), write depth and colour. A quad that
  * reaches past the end of the row is written pixel by pixel. */
-static void write_quad(struct target *fb, int xq, int y, __m128i mask, __m128 z, __m128i rgba)
+static inline void write_quad(struct target *fb, int xq, int y, __m128i mask, __m128 z, __m128i rgba)
 {
-    int keep = _mm_movemask_ps(_mm_castsi128_ps(mask));
-    if (xq + 4 > fb->w) {
+    if (xq + 4 > fb->w || fb->count) {
+        int keep = _mm_movemask_ps(_mm_castsi128_ps(mask));
         float zs[4];
         uint32_t cs[4];
         _mm_storeu_ps(zs, z);
@@ -235,10 +243,6 @@ static void write_quad(struct target *fb, int xq, int y, __m128i mask, __m128 z,
         return;
     }
     size_t at = (size_t)y * (size_t)fb->w + (size_t)xq;
-    if (fb->count)
-        for (int i = 0; i < 4; i++)
-            if ((keep & (1 << i)) && fb->count[at + i] < 255)
-                fb->count[at + i]++;
     float *dp = fb->depth + at;
     uint32_t *cp = fb->color + at;
     __m128 old_z = _mm_loadu_ps(dp);
@@ -280,19 +284,23 @@ static bool frozen(const struct trace *tr)
 }
 
 /* FULL: RenderBlock. Every pixel of the block is covered, so there is no
- * test at all: shade four pixels at a time and write them. */
+ * test at all: shade four pixels at a time and write them. Only the first
+ * and the last quad of a row may stick out of the block. */
 static void render_block(struct run *r, int x0, int y0, int x1, int y1)
 {
-    int xq0 = x0 & ~3;
+    int xq0 = x0 & ~3, xq1 = x1 & ~3;
+    __m128i first = lanes_within(xq0, x0, x1), last = lanes_within(xq1, x0, x1);
+    __m128i all = _mm_set1_epi32(-1);
     COUNT_OPS(r->tr, 5 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1),
               4 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1));
     for (int y = y0; y <= y1; y++) {
-        struct plane_row row = plane_row(&r->pl, y);
+        struct quad qd = quad_at(&r->pl, xq0, y);
         for (int xq = xq0; xq <= x1; xq += 4) {
             __m128 z;
             __m128i rgba;
-            shade_quad(&r->pl, &row, xq, &z, &rgba);
-            write_quad(r->fb, xq, y, lanes_within(xq, x0, x1), z, rgba);
+            shade_quad(&r->pl, &qd, &z, &rgba);
+            write_quad(r->fb, xq, y, xq == xq0 ? first : xq == xq1 ? last : all, z, rgba);
+            quad_next(&qd, &r->pl);
         }
     }
 }
@@ -306,9 +314,11 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
     const struct edges *e = &r->e;
     int64_t cy[3] = { edge_at(e, 0, x0, y0), edge_at(e, 1, x0, y0), edge_at(e, 2, x0, y0) };
     for (int y = y0; y <= y1; y++) {
-        struct plane_row row = plane_row(&r->pl, y);
+        struct quad qd = quad_at(&r->pl, x0 & ~3, y);
         int64_t cx[3] = { cy[0], cy[1], cy[2] };
         for (int x = x0; x <= x1; x++) {
+            if (x > x0 && (x & 3) == 0)     /* the next quad of four pixels */
+                quad_next(&qd, &r->pl);
             bool in = cx[0] >= 0 && cx[1] >= 0 && cx[2] >= 0;
             COUNT_OPS(r->tr, 0, 3);
             NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_PIXEL, .x = x, .y = y,
@@ -322,7 +332,7 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
                 __m128i c4;
                 float z[4];
                 uint32_t rgba[4];
-                shade_quad(&r->pl, &row, x & ~3, &z4, &c4);
+                shade_quad(&r->pl, &qd, &z4, &c4);
                 _mm_storeu_ps(z, z4);
                 _mm_storeu_si128((__m128i *)rgba, c4);
                 COUNT_OPS(r->tr, 5, 4);
@@ -365,7 +375,7 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
         step_y[k] = _mm_set1_epi32((int32_t)e->dy[k]);
     }
     for (int y = y0; y <= y1; y++) {
-        struct plane_row row = plane_row(&r->pl, y);
+        struct quad qd = quad_at(&r->pl, xq0, y);
         __m128i f[3] = { row_f[0], row_f[1], row_f[2] };
         for (int xq = xq0; xq <= x1; xq += 4) {
             /* covered: all three values >= 0, i.e. the sign bit of none is set */
@@ -374,9 +384,10 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
             if (_mm_movemask_ps(_mm_castsi128_ps(covered))) {
                 __m128 z;
                 __m128i rgba;
-                shade_quad(&r->pl, &row, xq, &z, &rgba);
+                shade_quad(&r->pl, &qd, &z, &rgba);
                 write_quad(r->fb, xq, y, covered, z, rgba);
             }
+            quad_next(&qd, &r->pl);
             for (int k = 0; k < 3; k++)
                 f[k] = _mm_add_epi32(f[k], step_x[k]);
         }
