@@ -156,8 +156,9 @@ struct quad {
 static struct quad quad_at(const struct planes *pl, int xq, int y)
 {
     double dx = (double)(xq - pl->x0), dy = (double)(y - pl->y0);
-    float v[PL_COUNT];
-    for (int q = 0; q < PL_COUNT; q++)
+    float v[PL_COUNT] = { 0 };
+    int used = pl->checker ? PL_COUNT : PL_S;   /* s and t only for the checker */
+    for (int q = 0; q < used; q++)
         v[q] = (float)(pl->p0[q] + pl->px[q] * dx + pl->py[q] * dy);
     return (struct quad){
         .inv_z = _mm_add_ps(_mm_set1_ps(v[PL_INV_Z]), pl->lanes[PL_INV_Z]),
