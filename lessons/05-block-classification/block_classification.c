@@ -102,6 +102,7 @@ enum { PL_INV_Z, PL_R, PL_G, PL_B, PL_S, PL_T, PL_COUNT };
 struct planes {
     int x0, y0;
     double p0[PL_COUNT], px[PL_COUNT], py[PL_COUNT];
+    __m128d pair0[PL_COUNT / 2], pair_x[PL_COUNT / 2], pair_y[PL_COUNT / 2];  /* the same, two planes a register */
     __m128 lanes[PL_COUNT];     /* Px * (0, 1, 2, 3): the four pixels of a quad */
     __m128 step[PL_COUNT];      /* Px * 4: from one quad to the next */
     bool checker;
@@ -142,6 +143,11 @@ static void planes_setup(struct planes *pl, const struct tri_setup *t,
         pl->lanes[q] = _mm_setr_ps(0.0f, s, 2.0f * s, 3.0f * s);
         pl->step[q] = _mm_set1_ps(4.0f * s);
     }
+    for (int q = 0; q < PL_COUNT; q += 2) {
+        pl->pair0[q / 2] = _mm_setr_pd(pl->p0[q], pl->p0[q + 1]);
+        pl->pair_x[q / 2] = _mm_setr_pd(pl->px[q], pl->px[q + 1]);
+        pl->pair_y[q / 2] = _mm_setr_pd(pl->py[q], pl->py[q + 1]);
+    }
 }
 
 /* The planes at the four pixels of one quad: (xq .. xq + 3, y), xq a
@@ -153,32 +159,44 @@ struct quad {
     __m128 inv_z, r, g, b, s, t;
 };
 
-static struct quad quad_at(const struct planes *pl, int xq, int y)
+static inline struct quad quad_at(const struct planes *pl, int xq, int y)
 {
-    double dx = (double)(xq - pl->x0), dy = (double)(y - pl->y0);
-    float v[PL_COUNT] = { 0 };
-    int used = pl->checker ? PL_COUNT : PL_S;   /* s and t only for the checker */
-    for (int q = 0; q < used; q++)
-        v[q] = (float)(pl->p0[q] + pl->px[q] * dx + pl->py[q] * dy);
+    /* P0 + Px dx + Py dy in double, two planes per register: (1/z, r), (g, b), (s, t) */
+    __m128d dx = _mm_set1_pd((double)(xq - pl->x0)), dy = _mm_set1_pd((double)(y - pl->y0));
+    __m128 v[PL_COUNT / 2];
+    int used = pl->checker ? PL_COUNT / 2 : PL_S / 2;   /* s and t only for the checker */
+    for (int q = 0; q < PL_COUNT / 2; q++)
+        v[q] = q < used ? _mm_cvtpd_ps(_mm_add_pd(_mm_add_pd(pl->pair0[q], _mm_mul_pd(pl->pair_x[q], dx)),
+                                                  _mm_mul_pd(pl->pair_y[q], dy)))
+                        : _mm_setzero_ps();
+    /* each value spread to the four lanes, plus Px * (0, 1, 2, 3) */
     return (struct quad){
-        .inv_z = _mm_add_ps(_mm_set1_ps(v[PL_INV_Z]), pl->lanes[PL_INV_Z]),
-        .r = _mm_add_ps(_mm_set1_ps(v[PL_R]), pl->lanes[PL_R]),
-        .g = _mm_add_ps(_mm_set1_ps(v[PL_G]), pl->lanes[PL_G]),
-        .b = _mm_add_ps(_mm_set1_ps(v[PL_B]), pl->lanes[PL_B]),
-        .s = _mm_add_ps(_mm_set1_ps(v[PL_S]), pl->lanes[PL_S]),
-        .t = _mm_add_ps(_mm_set1_ps(v[PL_T]), pl->lanes[PL_T]),
+        .inv_z = _mm_add_ps(_mm_shuffle_ps(v[0], v[0], 0x00), pl->lanes[PL_INV_Z]),
+        .r = _mm_add_ps(_mm_shuffle_ps(v[0], v[0], 0x55), pl->lanes[PL_R]),
+        .g = _mm_add_ps(_mm_shuffle_ps(v[1], v[1], 0x00), pl->lanes[PL_G]),
+        .b = _mm_add_ps(_mm_shuffle_ps(v[1], v[1], 0x55), pl->lanes[PL_B]),
+        .s = _mm_add_ps(_mm_shuffle_ps(v[2], v[2], 0x00), pl->lanes[PL_S]),
+        .t = _mm_add_ps(_mm_shuffle_ps(v[2], v[2], 0x55), pl->lanes[PL_T]),
     };
 }
 
-static inline void quad_next(struct quad *qd, const struct planes *pl)
+/* The step from one quad to the next, Px * 4 for every plane, as a quad of
+ * its own: loops keep it in registers. */
+static inline struct quad quad_step(const struct planes *pl)
 {
-    qd->inv_z = _mm_add_ps(qd->inv_z, pl->step[PL_INV_Z]);
-    qd->r = _mm_add_ps(qd->r, pl->step[PL_R]);
-    qd->g = _mm_add_ps(qd->g, pl->step[PL_G]);
-    qd->b = _mm_add_ps(qd->b, pl->step[PL_B]);
-    if (pl->checker) {
-        qd->s = _mm_add_ps(qd->s, pl->step[PL_S]);
-        qd->t = _mm_add_ps(qd->t, pl->step[PL_T]);
+    return (struct quad){ pl->step[PL_INV_Z], pl->step[PL_R], pl->step[PL_G],
+                          pl->step[PL_B], pl->step[PL_S], pl->step[PL_T] };
+}
+
+static inline void quad_next(struct quad *qd, const struct quad *step, bool checker)
+{
+    qd->inv_z = _mm_add_ps(qd->inv_z, step->inv_z);
+    qd->r = _mm_add_ps(qd->r, step->r);
+    qd->g = _mm_add_ps(qd->g, step->g);
+    qd->b = _mm_add_ps(qd->b, step->b);
+    if (checker) {
+        qd->s = _mm_add_ps(qd->s, step->s);
+        qd->t = _mm_add_ps(qd->t, step->t);
     }
 }
 
@@ -190,21 +208,23 @@ static __m128i floor_epi32(__m128 v)
     return _mm_add_epi32(i, _mm_castps_si128(too_big));    /* -1 where truncation went up */
 }
 
-/* Depth and colour of the four pixels of a quad:
- *
- *     z = 1 / (1/z)      a reciprocal estimate and one Newton step: no division
- *     colour = (255 a / z) * z, darkened on the checker's dark squares
- */
-static inline void shade_quad(const struct planes *pl, const struct quad *qd,
-                              __m128 *z_out, __m128i *rgba_out)
+/* Depth of the four pixels of a quad: z = 1 / (1/z), by a reciprocal
+ * estimate and one Newton step (no division). */
+static inline __m128 quad_depth(const struct quad *qd)
 {
     __m128 z = _mm_rcp_ps(qd->inv_z);                   /* about 12 bits */
-    z = _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(qd->inv_z, z)));  /* about 22 */
+    return _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(qd->inv_z, z)));  /* about 22 */
+}
+
+/* Colour of the four pixels of a quad at depth z: (255 a / z) * z, darkened
+ * on the checker's dark squares, packed as four 0xAARRGGBB. */
+static inline __m128i quad_colour(const struct quad *qd, __m128 z, bool checker)
+{
     __m128 r = _mm_mul_ps(qd->r, z);
     __m128 g = _mm_mul_ps(qd->g, z);
     __m128 b = _mm_mul_ps(qd->b, z);
 
-    if (pl->checker) {
+    if (checker) {
         __m128i square = _mm_add_epi32(floor_epi32(_mm_mul_ps(qd->s, z)),
                                        floor_epi32(_mm_mul_ps(qd->t, z)));
         __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
@@ -223,36 +243,66 @@ static inline void shade_quad(const struct planes *pl, const struct quad *qd,
     __m128i ga = _mm_packs_epi32(_mm_cvtps_epi32(g), _mm_set1_epi32(255));
     __m128i planar = _mm_packus_epi16(br, ga);
     __m128i bgbg = _mm_unpacklo_epi8(planar, _mm_srli_si128(planar, 8));
-    *rgba_out = _mm_unpacklo_epi16(bgbg, _mm_srli_si128(bgbg, 8));
-    *z_out = z;
+    return _mm_unpacklo_epi16(bgbg, _mm_srli_si128(bgbg, 8));
 }
 
-/* target_write() for the lanes of a quad that `mask` keeps (all ones = keep):
- * count, depth test (nearer wins), write depth and colour. A quad that
- * reaches past the end of the row is written pixel by pixel. */
-static inline void write_quad(struct target *fb, int xq, int y, __m128i mask, __m128 z, __m128i rgba)
+/* Depth and colour of the four pixels of a quad, for the one-pixel loop. */
+static inline void shade_quad(const struct planes *pl, const struct quad *qd,
+                              __m128 *z_out, __m128i *rgba_out)
 {
-    if (xq + 4 > fb->w || fb->count) {
-        int keep = _mm_movemask_ps(_mm_castsi128_ps(mask));
-        float zs[4];
-        uint32_t cs[4];
-        _mm_storeu_ps(zs, z);
-        _mm_storeu_si128((__m128i *)cs, rgba);
-        for (int i = 0; i < 4; i++)
-            if (keep & (1 << i))
-                target_write(fb, xq + i, y, zs[i], cs[i]);
-        return;
-    }
-    size_t at = (size_t)y * (size_t)fb->w + (size_t)xq;
-    float *dp = fb->depth + at;
-    uint32_t *cp = fb->color + at;
+    *z_out = quad_depth(qd);
+    *rgba_out = quad_colour(qd, *z_out, pl->checker);
+}
+
+/* target_write() for the lanes of a quad that `mask` keeps (all ones = keep),
+ * one pixel at a time: count, depth test (nearer wins), write. */
+static void write_quad_pixels(struct target *fb, int xq, int y, __m128i mask,
+                              const struct quad *qd, bool checker)
+{
+    __m128 z4 = quad_depth(qd);
+    __m128i c4 = quad_colour(qd, z4, checker);
+    int keep = _mm_movemask_ps(_mm_castsi128_ps(mask));
+    float zs[4];
+    uint32_t cs[4];
+    _mm_storeu_ps(zs, z4);
+    _mm_storeu_si128((__m128i *)cs, c4);
+    for (int i = 0; i < 4; i++)
+        if (keep & (1 << i))
+            target_write(fb, xq + i, y, zs[i], cs[i]);
+}
+
+/* The same for a whole quad at once, at depth row `dp` and colour row `cp`
+ * (the quad's first pixel). The depth test comes first: where no lane is
+ * nearer than what the target holds, the colour is never computed, and
+ * where every lane is, the old colours are not read. Same bytes as
+ * target_write() pixel by pixel. */
+static inline void write_quad(float *dp, uint32_t *cp, __m128i mask,
+                              const struct quad *qd, bool checker)
+{
+    __m128 z = quad_depth(qd);
     __m128 old_z = _mm_loadu_ps(dp);
     __m128 pass = _mm_and_ps(_mm_cmplt_ps(z, old_z), _mm_castsi128_ps(mask));
+    int passed = _mm_movemask_ps(pass);
+    if (passed == 0)
+        return;
+    __m128i rgba = quad_colour(qd, z, checker);
+    if (passed == 0xF) {
+        _mm_storeu_ps(dp, z);
+        _mm_storeu_si128((__m128i *)cp, rgba);
+        return;
+    }
     _mm_storeu_ps(dp, _mm_or_ps(_mm_and_ps(pass, z), _mm_andnot_ps(pass, old_z)));
     __m128i old_c = _mm_loadu_si128((const __m128i *)cp);
     __m128i pass_i = _mm_castps_si128(pass);
     _mm_storeu_si128((__m128i *)cp, _mm_or_si128(_mm_and_si128(pass_i, rgba),
-                                                  _mm_andnot_si128(pass_i, old_c)));
+                                                 _mm_andnot_si128(pass_i, old_c)));
+}
+
+/* Whole quads may be written at once when nobody counts coverage and the
+ * quads xq0 .. xq1 lie on the row; otherwise pixel by pixel. */
+static bool quads_fit(const struct target *fb, int xq1)
+{
+    return !fb->count && xq1 + 4 <= fb->w;
 }
 
 /* The lanes of the quad at xq whose pixel lies in [x0, x1]. */
@@ -292,16 +342,21 @@ static void render_block(struct run *r, int x0, int y0, int x1, int y1)
     int xq0 = x0 & ~3, xq1 = x1 & ~3;
     __m128i first = lanes_within(xq0, x0, x1), last = lanes_within(xq1, x0, x1);
     __m128i all = _mm_set1_epi32(-1);
+    struct target *fb = r->fb;
+    bool checker = r->pl.checker, whole = quads_fit(fb, xq1);
+    struct quad step = quad_step(&r->pl);
     COUNT_OPS(r->tr, 5 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1),
               4 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1));
     for (int y = y0; y <= y1; y++) {
         struct quad qd = quad_at(&r->pl, xq0, y);
+        size_t row = (size_t)y * (size_t)fb->w;
         for (int xq = xq0; xq <= x1; xq += 4) {
-            __m128 z;
-            __m128i rgba;
-            shade_quad(&r->pl, &qd, &z, &rgba);
-            write_quad(r->fb, xq, y, xq == xq0 ? first : xq == xq1 ? last : all, z, rgba);
-            quad_next(&qd, &r->pl);
+            __m128i mask = xq == xq0 ? first : xq == xq1 ? last : all;
+            if (whole)
+                write_quad(fb->depth + row + xq, fb->color + row + xq, mask, &qd, checker);
+            else
+                write_quad_pixels(fb, xq, y, mask, &qd, checker);
+            quad_next(&qd, &step, checker);
         }
     }
 }
@@ -313,13 +368,14 @@ static void render_block(struct run *r, int x0, int y0, int x1, int y1)
 static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
 {
     const struct edges *e = &r->e;
+    struct quad step = quad_step(&r->pl);
     int64_t cy[3] = { edge_at(e, 0, x0, y0), edge_at(e, 1, x0, y0), edge_at(e, 2, x0, y0) };
     for (int y = y0; y <= y1; y++) {
         struct quad qd = quad_at(&r->pl, x0 & ~3, y);
         int64_t cx[3] = { cy[0], cy[1], cy[2] };
         for (int x = x0; x <= x1; x++) {
             if (x > x0 && (x & 3) == 0)     /* the next quad of four pixels */
-                quad_next(&qd, &r->pl);
+                quad_next(&qd, &step, r->pl.checker);
             bool in = cx[0] >= 0 && cx[1] >= 0 && cx[2] >= 0;
             COUNT_OPS(r->tr, 0, 3);
             NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_PIXEL, .x = x, .y = y,
@@ -375,20 +431,23 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
         step_x[k] = _mm_set1_epi32((int32_t)(4 * e->dx[k]));
         step_y[k] = _mm_set1_epi32((int32_t)e->dy[k]);
     }
+    struct target *fb = r->fb;
+    bool checker = r->pl.checker, whole = quads_fit(fb, x1 & ~3);
+    struct quad step = quad_step(&r->pl);
     for (int y = y0; y <= y1; y++) {
         struct quad qd = quad_at(&r->pl, xq0, y);
+        size_t row = (size_t)y * (size_t)fb->w;
         __m128i f[3] = { row_f[0], row_f[1], row_f[2] };
         for (int xq = xq0; xq <= x1; xq += 4) {
             /* covered: all three values >= 0, i.e. the sign bit of none is set */
             __m128i any_negative = _mm_srai_epi32(_mm_or_si128(_mm_or_si128(f[0], f[1]), f[2]), 31);
             __m128i covered = _mm_andnot_si128(any_negative, lanes_within(xq, x0, x1));
-            if (_mm_movemask_ps(_mm_castsi128_ps(covered))) {
-                __m128 z;
-                __m128i rgba;
-                shade_quad(&r->pl, &qd, &z, &rgba);
-                write_quad(r->fb, xq, y, covered, z, rgba);
-            }
-            quad_next(&qd, &r->pl);
+            bool any = _mm_movemask_ps(_mm_castsi128_ps(covered)) != 0;
+            if (any && whole)
+                write_quad(fb->depth + row + xq, fb->color + row + xq, covered, &qd, checker);
+            else if (any)
+                write_quad_pixels(fb, xq, y, covered, &qd, checker);
+            quad_next(&qd, &step, checker);
             for (int k = 0; k < 3; k++)
                 f[k] = _mm_add_epi32(f[k], step_x[k]);
         }
@@ -499,6 +558,28 @@ static void blocks(struct run *r, enum block_rule rule, int x0, int y0, int x1, 
     }
 }
 
+/* A small triangle lands anywhere on a 16 MB target: its few rows of depth
+ * and colour are rarely in the cache, and waiting for them one row after the
+ * other costs more than all of its arithmetic. Asking for every cache line
+ * of a small box first lets the memory fetch them together while the setup
+ * below computes the planes. (Large boxes stream along their rows, where
+ * the processor's own prefetcher does this.) */
+#define PREFETCH_ROWS 16
+#define PREFETCH_WIDTH 64
+
+static void prefetch_box(const struct target *fb, const struct tri_setup *t)
+{
+    if (t->maxy - t->miny >= PREFETCH_ROWS || t->maxx - t->minx >= PREFETCH_WIDTH)
+        return;
+    for (int y = t->miny; y <= t->maxy; y++) {
+        size_t row = (size_t)y * (size_t)fb->w;
+        for (int x = t->minx & ~15; x <= t->maxx; x += 16) {   /* 64-byte lines */
+            _mm_prefetch((const char *)(fb->depth + row + x), _MM_HINT_T0);
+            _mm_prefetch((const char *)(fb->color + row + x), _MM_HINT_T0);
+        }
+    }
+}
+
 /* --- the rasterizer ----------------------------------------------------------- */
 
 struct block_options {
@@ -515,6 +596,7 @@ static void rasterize_blocks(const struct tri_setup *t, const struct raster_para
             .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
     if (t->empty)
         return;
+    (void)prefetch_box;
     int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;
     if (q > Q_COARSE)
         q = Q_COARSE;

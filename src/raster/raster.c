@@ -1,9 +1,26 @@
 /* raster.c - snapping, triangle setup, the render target, the reference. */
 #include "raster.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Round to the nearest integer, ties to even, for |v| < 2^51: adding
+ * 1.5 * 2^52 pushes the fraction bits out of the double, which rounds in the
+ * default rounding mode exactly as lrint() does; subtracting it again is
+ * exact. Written out because lrint() is a library call, and every triangle
+ * snaps six coordinates. Needs arithmetic in plain double precision
+ * (FLT_EVAL_METHOD 0, as on x86-64); elsewhere lrint() itself. */
+static double round_even(double v)
+{
+#if FLT_EVAL_METHOD == 0
+    const double shift = 0x1.8p52;
+    return (v + shift) - shift;
+#else
+    return (double)lrint(v);
+#endif
+}
 
 int32_t snap_coord(double v, int bits)
 {
@@ -15,9 +32,9 @@ int32_t snap_coord(double v, int bits)
         bits = 0;
     if (bits > SUBPIXEL_BITS)
         bits = SUBPIXEL_BITS;
-    /* lrint rounds to nearest, ties to even, in the default rounding mode */
-    long coarse = lrint(ldexp(v, bits));
-    return (int32_t)(coarse * (1L << (SUBPIXEL_BITS - bits)));
+    /* v * 2^bits is exact (|v| <= 2^14), so only the rounding rounds */
+    double coarse = round_even(v * (double)(1 << bits));
+    return (int32_t)coarse * (1 << (SUBPIXEL_BITS - bits));
 }
 
 /* Floor and ceiling of a / b for b > 0, correct for negative a. */
@@ -45,7 +62,8 @@ static int64_t max3(int64_t a, int64_t b, int64_t c)
 
 bool tri_setup_bits(struct tri_setup *t, const struct vertex v[3], int w, int h, int bits)
 {
-    memset(t, 0, sizeof *t);
+    /* every field is set below (no memset: this runs once per triangle) */
+    t->swapped = false;
     t->target_w = w;
     t->target_h = h;
     for (int i = 0; i < 3; i++) {
