@@ -558,28 +558,6 @@ static void blocks(struct run *r, enum block_rule rule, int x0, int y0, int x1, 
     }
 }
 
-/* A small triangle lands anywhere on a 16 MB target: its few rows of depth
- * and colour are rarely in the cache, and waiting for them one row after the
- * other costs more than all of its arithmetic. Asking for every cache line
- * of a small box first lets the memory fetch them together while the setup
- * below computes the planes. (Large boxes stream along their rows, where
- * the processor's own prefetcher does this.) */
-#define PREFETCH_ROWS 16
-#define PREFETCH_WIDTH 64
-
-static void prefetch_box(const struct target *fb, const struct tri_setup *t)
-{
-    if (t->maxy - t->miny >= PREFETCH_ROWS || t->maxx - t->minx >= PREFETCH_WIDTH)
-        return;
-    for (int y = t->miny; y <= t->maxy; y++) {
-        size_t row = (size_t)y * (size_t)fb->w;
-        for (int x = t->minx & ~15; x <= t->maxx; x += 16) {   /* 64-byte lines */
-            _mm_prefetch((const char *)(fb->depth + row + x), _MM_HINT_T0);
-            _mm_prefetch((const char *)(fb->color + row + x), _MM_HINT_T0);
-        }
-    }
-}
-
 /* --- the rasterizer ----------------------------------------------------------- */
 
 struct block_options {
@@ -596,13 +574,18 @@ static void rasterize_blocks(const struct tri_setup *t, const struct raster_para
             .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
     if (t->empty)
         return;
-    (void)prefetch_box;
     int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;
     if (q > Q_COARSE)
         q = Q_COARSE;
 
-    struct run r = { .t = t, .fb = fb, .tr = tr, .narrate = NARRATING && tr,
-                     .pixelwise = o.pixelwise };
+    struct run r;       /* set field by field: an initializer would clear all of it, per triangle */
+    r.t = t;
+    r.fb = fb;
+    r.tr = tr;
+    r.narrate = NARRATING && tr;
+    r.pixelwise = o.pixelwise;
+    r.size = q;
+    r.level = 0;
     edges_setup(&r.e, t);
     planes_setup(&r.pl, t, p);
     /* the SSE partial loop keeps edge values in int32 lanes: see there */
