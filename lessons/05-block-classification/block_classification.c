@@ -21,6 +21,9 @@
  * top-left bias as the pixel test, so "full" is really full), and lesson 04's
  * planes 1/z and a/z give perspective-correct depth and colour (formula 23).
  *
+ * The four-pixel writes test depth before they shade: a quad hidden behind
+ * what the target already holds costs its depth and one compare, no colour.
+ *
  * Two twins of the partial-block loop sit side by side: one pixel at a time
  * with exact 64-bit edge values, narrating every pixel (what the explorer
  * steps through), and four pixels per register (what the benchmark times).
