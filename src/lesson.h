@@ -32,6 +32,40 @@ struct lesson_variant {
     bool exhibit;           /* deliberately not exact: shown against the exact rule */
 };
 
+/* Which raster_params a lesson reacts to: the explorer offers keys for
+ * exactly these (and lists them in its help overlay). */
+enum lesson_param_flags {
+    LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
+    LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
+    LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
+};
+
+/* A view of the lesson's own, added to the explorer's view cycle after the
+ * built-in views (colour, coverage, edges, barycentrics, depth, blocks,
+ * spans). The explorer keeps, for every pixel the current triangle has
+ * reached, the last pixel-test and pixel-write events (edge values, weights,
+ * z, colour, aux values); `cell` turns them into a colour:
+ *
+ *     static bool lanes_cell(const struct trace_event *test,
+ *                            const struct trace_event *write, double rgb[3])
+ *     {
+ *         if (!test) return false;             // not reached: leave it dark
+ *         rgb[0] = test->aux[0]; ...           // e.g. which SIMD lane
+ *         return true;
+ *     }
+ *     static const struct lesson_view views[] = {
+ *         { "lanes", "which of the four lanes tested the pixel", lanes_cell },
+ *     };
+ *     ... .views = views, .nviews = 1,
+ *
+ * `test` or `write` is NULL when the pixel saw no such event this step.
+ * The name is what --view accepts; the legend is shown under it. */
+struct lesson_view {
+    const char *name;
+    const char *legend;
+    bool (*cell)(const struct trace_event *test, const struct trace_event *write, double rgb[3]);
+};
+
 struct lesson {
     const char *id;                     /* "02-barycentric", as the program's name */
     const char *title;
@@ -42,6 +76,9 @@ struct lesson {
     const struct lesson_variant *variants;  /* variants[0] is the lesson's algorithm */
     int nvariants;
     const char *const *aux_names;       /* names of trace_event.aux[], NULL-terminated */
+    unsigned params;                    /* enum lesson_param_flags it reacts to */
+    const struct lesson_view *views;    /* views of its own, or NULL */
+    int nviews;
 };
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);

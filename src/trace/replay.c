@@ -10,6 +10,22 @@ bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
     return tri_setup_bits(t, r->scene->tris[i].v, r->scene->w, r->scene->h, bits);
 }
 
+/* sum = a + b, field by field */
+static void add_counters(struct trace_counters *sum, const struct trace_counters *a,
+                         const struct trace_counters *b)
+{
+    sum->events = a->events + b->events;
+    sum->tested = a->tested + b->tested;
+    sum->covered = a->covered + b->covered;
+    sum->written = a->written + b->written;
+    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
+        sum->blocks[k] = a->blocks[k] + b->blocks[k];
+    sum->rows = a->rows + b->rows;
+    sum->spans = a->spans + b->spans;
+    sum->mul = a->mul + b->mul;
+    sum->add = a->add + b->add;
+}
+
 bool replay_recount(struct replay *r)
 {
     struct target scratch;
@@ -21,8 +37,15 @@ bool replay_recount(struct replay *r)
         return false;
     }
     r->start = start;
+    struct trace_counters *sums = realloc(r->sums, ((size_t)r->scene->ntris + 1) * sizeof *sums);
+    if (!sums) {
+        target_free(&scratch);
+        return false;
+    }
+    r->sums = sums;
     r->ntris = r->scene->ntris;
     uint64_t total = 0;
+    memset(&sums[0], 0, sizeof sums[0]);
     struct trace tr = { 0 };
     for (int i = 0; i < r->ntris; i++) {
         struct tri_setup t;
@@ -31,6 +54,7 @@ bool replay_recount(struct replay *r)
         r->variant->rasterize(&t, &r->params, &scratch, &tr);
         start[i] = total;
         total += tr.count;
+        add_counters(&sums[i + 1], &sums[i], &tr.c);
     }
     start[r->ntris] = total;
     r->total = total;
@@ -53,6 +77,7 @@ bool replay_init(struct replay *r, const struct scene *s, const struct lesson_va
 void replay_free(struct replay *r)
 {
     free(r->start);
+    free(r->sums);
     target_free(&r->base);
     memset(r, 0, sizeof *r);
 }

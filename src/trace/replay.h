@@ -21,6 +21,7 @@ struct replay {
     int ntris;
     uint64_t *start;        /* ntris + 1 entries; start[ntris] = total */
     uint64_t total;         /* events in the whole scene */
+    struct trace_counters *sums;    /* ntris + 1 entries: counters of triangles [0, i) */
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
 };
