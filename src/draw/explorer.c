@@ -1,0 +1,551 @@
+/* explorer.c - the explorer's state: replaying the narration to a step,
+ * the cells of the current triangle, stepping, variants, dragging, layout. */
+#include "explorer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const view_names[VIEW_BUILTIN_COUNT] = {
+    "color", "coverage", "edges", "bary", "depth", "blocks", "spans",
+};
+
+static const char *const edge_view_names[3] = { "edge-ab", "edge-bc", "edge-ca" };
+
+/* --- scenes ------------------------------------------------------------------ */
+
+static bool scene_copy(struct scene *dst, const struct scene *src)
+{
+    *dst = *src;
+    dst->tris = NULL;
+    dst->ntris = dst->cap = 0;
+    for (int i = 0; i < src->ntris; i++)
+        if (!scene_add(dst, src->tris[i].v)) {
+            scene_free(dst);
+            return false;
+        }
+    return true;
+}
+
+/* --- replaying a step ------------------------------------------------------- */
+
+static struct cell *explorer_cell_mut(struct explorer *ex, int x, int y)
+{
+    if (x < ex->cell_x0 || y < ex->cell_y0 || x >= ex->cell_x0 + ex->cell_w
+        || y >= ex->cell_y0 + ex->cell_h)
+        return NULL;
+    return &ex->cells[(size_t)(y - ex->cell_y0) * (size_t)ex->cell_w + (size_t)(x - ex->cell_x0)];
+}
+
+const struct cell *explorer_cell(const struct explorer *ex, int x, int y)
+{
+    return explorer_cell_mut((struct explorer *)ex, x, y);
+}
+
+/* Mark the cells of a rectangle (inclusive corners), clipped to the region. */
+static void mark_rect(struct explorer *ex, int x0, int y0, int x1, int y1, uint8_t flags,
+                      int klass)
+{
+    if (x0 < ex->cell_x0) x0 = ex->cell_x0;
+    if (y0 < ex->cell_y0) y0 = ex->cell_y0;
+    if (x1 >= ex->cell_x0 + ex->cell_w) x1 = ex->cell_x0 + ex->cell_w - 1;
+    if (y1 >= ex->cell_y0 + ex->cell_h) y1 = ex->cell_y0 + ex->cell_h - 1;
+    for (int y = y0; y <= y1; y++)
+        for (int x = x0; x <= x1; x++) {
+            struct cell *c = explorer_cell_mut(ex, x, y);
+            c->flags |= flags;
+            if (klass >= 0)
+                c->klass = (uint8_t)klass;
+        }
+}
+
+/* The sink: every event of the current triangle up to the step, in order. */
+static void take_event(void *ctx, const struct trace_event *ev)
+{
+    struct explorer *ex = ctx;
+    ex->last = *ev;
+    ex->has_last = true;
+    struct cell *c;
+    switch ((enum trace_kind)ev->kind) {
+    case TRACE_ROW:
+        mark_rect(ex, ev->x, ev->y, ev->x1, ev->y, CELL_ROW, -1);
+        break;
+    case TRACE_SPAN:
+        mark_rect(ex, ev->x, ev->y, ev->x1, ev->y, CELL_SPAN | CELL_INSIDE, -1);
+        break;
+    case TRACE_BLOCK:
+        mark_rect(ex, ev->x, ev->y, ev->x1, ev->y1,
+                  CELL_BLOCK | (ev->klass == BLOCK_FULL ? CELL_INSIDE : 0), ev->klass);
+        break;
+    case TRACE_PIXEL_TEST:
+        if ((c = explorer_cell_mut(ex, ev->x, ev->y))) {
+            c->flags = (uint8_t)((c->flags & ~CELL_INSIDE) | CELL_TESTED
+                                 | ((ev->flags & TRACE_INSIDE) ? CELL_INSIDE : 0));
+            memcpy(c->e, ev->e, sizeof c->e);
+            memcpy(c->bary, ev->bary, sizeof c->bary);
+            memcpy(c->aux, ev->aux, sizeof c->aux);
+        }
+        break;
+    case TRACE_PIXEL_WRITE:
+        if ((c = explorer_cell_mut(ex, ev->x, ev->y))) {
+            c->flags |= CELL_WRITTEN | CELL_INSIDE
+                        | ((ev->flags & TRACE_DEPTH_PASS) ? CELL_DEPTH_PASS : 0);
+            c->z = ev->z;
+            c->rgba = ev->rgba;
+        }
+        break;
+    case TRACE_SETUP:
+    case TRACE_KIND_COUNT:
+        break;
+    }
+}
+
+/* The cells cover the triangle's box widened to 16-pixel alignment, so the
+ * blocks of a block lesson (q <= 16) fit too. */
+static bool prepare_cells(struct explorer *ex, const struct tri_setup *t)
+{
+    ex->cell_w = ex->cell_h = 0;
+    ex->cell_x0 = ex->cell_y0 = 0;
+    if (t->minx > t->maxx || t->miny > t->maxy)
+        return true;
+    int x0 = t->minx & ~15, y0 = t->miny & ~15;
+    int x1 = t->maxx | 15, y1 = t->maxy | 15;
+    if (x1 >= ex->scene.w) x1 = ex->scene.w - 1;
+    if (y1 >= ex->scene.h) y1 = ex->scene.h - 1;
+    size_t n = (size_t)(x1 - x0 + 1) * (size_t)(y1 - y0 + 1);
+    if (n > ex->cell_cap) {
+        struct cell *c = realloc(ex->cells, n * sizeof *c);
+        if (!c)
+            return false;
+        ex->cells = c;
+        ex->cell_cap = n;
+    }
+    memset(ex->cells, 0, n * sizeof *ex->cells);
+    ex->cell_x0 = x0, ex->cell_y0 = y0;
+    ex->cell_w = x1 - x0 + 1, ex->cell_h = y1 - y0 + 1;
+    return true;
+}
+
+static uint64_t tri_events(const struct explorer *ex, int i)
+{
+    return ex->replay.start[i + 1] - ex->replay.start[i];
+}
+
+/* Draw triangles [0, upto) with variants[0] into the exact target. */
+static bool advance_exact(struct explorer *ex, int upto)
+{
+    if (!ex->exact.color || ex->exact_upto < 0 || upto < ex->exact_upto) {
+        target_free(&ex->exact);
+        if (!target_init(&ex->exact, ex->scene.w, ex->scene.h, scene_background(&ex->scene)))
+            return false;
+        ex->exact_upto = 0;
+    }
+    const struct lesson_variant *exact = &ex->lesson->variants[0];
+    for (; ex->exact_upto < upto; ex->exact_upto++) {
+        struct tri_setup t;
+        replay_setup(&ex->replay, ex->exact_upto, &t);
+        exact->rasterize(&t, &ex->params, &ex->exact, NULL);
+    }
+    return true;
+}
+
+/* An exhibit: compare the coverage counts of the finished triangles with
+ * what variants[0] gives for the same triangles. */
+static bool compare_exhibit(struct explorer *ex)
+{
+    ex->extra = ex->missing = 0;
+    ex->diff_done = 0;
+    if (!ex->lesson->variants[ex->variant].exhibit)
+        return true;
+    size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
+    if (!ex->diff && !(ex->diff = malloc(n)))
+        return false;
+    int done = 0;
+    const uint8_t *count = ex->replay.base.count;   /* triangles [0, cur) */
+    if (ex->cur >= 0) {
+        done = ex->cur;
+        if (ex->local + 1 == tri_events(ex, ex->cur)) {
+            done = ex->cur + 1;                     /* the current one is finished */
+            count = ex->fb.count;
+        }
+    }
+    if (!advance_exact(ex, done))
+        return false;
+    ex->diff_done = done;
+    for (size_t i = 0; i < n; i++) {
+        int have = count ? count[i] : 0, want = ex->exact.count[i];
+        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING : 0;
+        ex->extra += have > want;
+        ex->missing += have < want;
+    }
+    return true;
+}
+
+bool explorer_set_step(struct explorer *ex, uint64_t step)
+{
+    if (step > ex->replay.total)
+        step = ex->replay.total;
+    ex->step = step;
+    uint64_t local;
+    int cur = replay_locate(&ex->replay, step, &local);
+    ex->has_last = false;
+    ex->focus = cur >= 0 ? cur : 0;
+    memset(&ex->tri, 0, sizeof ex->tri);
+    if (ex->scene.ntris > 0)
+        replay_setup(&ex->replay, ex->focus, &ex->tri);
+    if (!prepare_cells(ex, cur >= 0 ? &ex->tri : &(struct tri_setup){ .minx = 1, .maxx = 0 }))
+        return false;
+    int got = replay_to(&ex->replay, step, &ex->fb, take_event, ex, &ex->tri_c);
+    if (got < -1)
+        return false;
+    ex->cur = got;
+    ex->local = local;
+    return compare_exhibit(ex);
+}
+
+/* --- stepping ---------------------------------------------------------------- */
+
+static void collect_mark(void *ctx, const struct trace_event *ev)
+{
+    struct explorer *ex = ctx;
+    if (ev->kind != TRACE_ROW && ev->kind != TRACE_BLOCK && ev->kind != TRACE_SPAN)
+        return;
+    if (ex->nmarks == ex->marks_cap) {
+        size_t cap = ex->marks_cap ? 2 * ex->marks_cap : 256;
+        uint32_t *m = realloc(ex->marks, cap * sizeof *m);
+        if (!m)
+            return;     /* fewer stops, never a wrong one */
+        ex->marks = m;
+        ex->marks_cap = cap;
+    }
+    ex->marks[ex->nmarks++] = ev->index;
+}
+
+/* The numbers of the row, block and span events of triangle i. */
+static void find_marks(struct explorer *ex, int i)
+{
+    if (ex->marks_tri == i)
+        return;
+    ex->nmarks = 0;
+    ex->marks_tri = -1;
+    if (!ex->scratch.color
+        && !target_init(&ex->scratch, ex->scene.w, ex->scene.h, scene_background(&ex->scene)))
+        return;
+    struct tri_setup t;
+    replay_setup(&ex->replay, i, &t);
+    struct trace tr = { .sink = collect_mark, .ctx = ex };
+    trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+    ex->lesson->variants[ex->variant].rasterize(&t, &ex->params, &ex->scratch, &tr);
+    ex->marks_tri = i;
+}
+
+/* Largest i with start[i] <= step (strict: start[i] < step). */
+static int tri_at(const struct replay *r, uint64_t step, bool strict)
+{
+    int lo = 0, hi = r->ntris - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo + 1) / 2;
+        if (strict ? r->start[mid] < step : r->start[mid] <= step)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
+{
+    const struct replay *r = &ex->replay;
+    uint64_t s = ex->step;
+    if (dir > 0 && s >= r->total)
+        return r->total;
+    if (dir < 0 && s == 0)
+        return 0;
+    if (unit == STEP_EVENT || r->ntris == 0)
+        return dir > 0 ? s + 1 : s - 1;
+    if (dir > 0) {
+        int i = tri_at(r, s, false);
+        if (unit == STEP_GROUP) {
+            find_marks(ex, i);
+            for (size_t k = 0; k < ex->nmarks; k++)
+                if (r->start[i] + ex->marks[k] + 1 > s)
+                    return r->start[i] + ex->marks[k] + 1;
+        }
+        return r->start[i + 1];
+    }
+    int i = tri_at(r, s, true);
+    if (unit == STEP_GROUP) {
+        find_marks(ex, i);
+        for (size_t k = ex->nmarks; k-- > 0;)
+            if (r->start[i] + ex->marks[k] + 1 < s)
+                return r->start[i] + ex->marks[k] + 1;
+    }
+    return r->start[i];
+}
+
+bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
+{
+    return explorer_set_step(ex, explorer_find_step(ex, unit, dir));
+}
+
+/* --- variants, params, vertices ---------------------------------------------- */
+
+/* The scene, variant or params changed: count again, keep the step. */
+static bool rerun(struct explorer *ex, uint64_t step)
+{
+    ex->replay.variant = &ex->lesson->variants[ex->variant];
+    ex->replay.params = ex->params;
+    ex->replay.scene = &ex->scene;
+    if (!replay_recount(&ex->replay))
+        return false;
+    ex->marks_tri = -1;
+    ex->exact_upto = -1;
+    return explorer_set_step(ex, step);
+}
+
+bool explorer_set_variant(struct explorer *ex, int index)
+{
+    if (index < 0 || index >= ex->lesson->nvariants)
+        return false;
+    ex->variant = index;
+    return rerun(ex, ex->step);
+}
+
+bool explorer_set_params(struct explorer *ex, const struct raster_params *p)
+{
+    ex->params = *p;
+    ex->params.checker = ex->scene.checker;
+    return rerun(ex, ex->step);
+}
+
+/* The next variant after the current one with exhibit == want, wrapping to 0. */
+static int next_variant(const struct explorer *ex, bool want)
+{
+    for (int i = ex->variant + 1; i < ex->lesson->nvariants; i++)
+        if (ex->lesson->variants[i].exhibit == want)
+            return i;
+    return 0;
+}
+
+bool explorer_cycle_exhibit(struct explorer *ex)
+{
+    int next = next_variant(ex, true);
+    if (next == ex->variant)
+        return true;
+    uint64_t step = ex->step;
+    if (next != 0 && ex->scene_is_default && ex->lesson->exhibit_scene) {
+        /* the exhibits are made to be seen on the lesson's exhibit scene */
+        struct scene s;
+        char err[256];
+        if (scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err)) {
+            scene_free(&ex->scene);
+            ex->scene = s;
+            ex->scene_is_default = false;
+            snprintf(ex->scene_name, sizeof ex->scene_name, "builtin:%s", ex->lesson->exhibit_scene);
+            ex->params.checker = s.checker;
+            ex->zoom = 0;
+            target_free(&ex->fb);
+            target_free(&ex->scratch);
+            free(ex->diff);
+            ex->diff = NULL;
+            step = UINT64_MAX;      /* show the whole run: the result is the point */
+        }
+    }
+    ex->variant = next;
+    if (!rerun(ex, step))
+        return false;
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    snprintf(ex->message, sizeof ex->message, "%s: %s", v->name, v->what);
+    return true;
+}
+
+bool explorer_cycle_twin(struct explorer *ex)
+{
+    int next = next_variant(ex, false);
+    if (next == ex->variant)
+        return true;
+    if (!explorer_set_variant(ex, next))
+        return false;
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    snprintf(ex->message, sizeof ex->message, "%s: %s", v->name, v->what);
+    return true;
+}
+
+bool explorer_move_vertex(struct explorer *ex, int k, double x, double y)
+{
+    if (ex->scene.ntris == 0 || k < 0 || k > 2)
+        return true;
+    int sk = ex->tri.swapped && k > 0 ? 3 - k : k;     /* setup exchanged B and C */
+    struct vertex *v = &ex->scene.tris[ex->focus].v[sk];
+    double lim = COORD_LIMIT - 1.0 / SUBPIXEL_ONE;
+    x = fmin(fmax(x, -COORD_LIMIT), lim);
+    y = fmin(fmax(y, -COORD_LIMIT), lim);
+    x = (double)lrint(x * SUBPIXEL_ONE) / SUBPIXEL_ONE;
+    y = (double)lrint(y * SUBPIXEL_ONE) / SUBPIXEL_ONE;
+    double ox = v->x, oy = v->y;
+    if (x == ox && y == oy)
+        return true;
+    for (int i = 0; i < ex->scene.ntris; i++)
+        for (int j = 0; j < 3; j++) {
+            struct vertex *u = &ex->scene.tris[i].v[j];
+            if (u->x == ox && u->y == oy)
+                u->x = x, u->y = y;
+        }
+    return rerun(ex, ex->step);
+}
+
+/* --- views ---------------------------------------------------------------------- */
+
+int explorer_view_count(const struct explorer *ex)
+{
+    return VIEW_BUILTIN_COUNT + (ex->lesson->views ? ex->lesson->nviews : 0);
+}
+
+const char *explorer_view_name(const struct explorer *ex, int view)
+{
+    if (view < VIEW_BUILTIN_COUNT)
+        return view == VIEW_EDGES && ex->edge >= 0 ? edge_view_names[ex->edge] : view_names[view];
+    return ex->lesson->views[view - VIEW_BUILTIN_COUNT].name;
+}
+
+bool explorer_set_view_name(struct explorer *ex, const char *name)
+{
+    for (int k = 0; k < 3; k++)
+        if (strcmp(name, edge_view_names[k]) == 0) {
+            ex->view = VIEW_EDGES;
+            ex->edge = k;
+            return true;
+        }
+    for (int i = 0; i < explorer_view_count(ex); i++) {
+        const char *n = i < VIEW_BUILTIN_COUNT ? view_names[i]
+                                               : ex->lesson->views[i - VIEW_BUILTIN_COUNT].name;
+        if (strcmp(name, n) == 0) {
+            ex->view = i;
+            if (i == VIEW_EDGES)
+                ex->edge = -1;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* --- life ------------------------------------------------------------------------ */
+
+bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
+{
+    memset(ex, 0, sizeof *ex);
+    ex->lesson = d->lesson;
+    ex->scene_is_default = d->scene_is_default;
+    snprintf(ex->scene_name, sizeof ex->scene_name, "%s", d->scene_name ? d->scene_name : "scene");
+    ex->params = d->params;
+    if (!ex->params.subpixel_bits)
+        ex->params.subpixel_bits = SUBPIXEL_BITS;
+    ex->variant = d->variant ? (int)(d->variant - d->lesson->variants) : 0;
+    ex->edge = -1;
+    ex->zoom = d->zoom;
+    ex->scale = d->scale > 0 ? d->scale : 1;
+    ex->speed = 8;              /* 16 events per second */
+    ex->marks_tri = -1;
+    ex->exact_upto = -1;
+    ex->hover_vertex = -1;
+    if (!scene_copy(&ex->scene, d->scene))
+        return false;
+    ex->params.checker = ex->scene.checker;
+    ex->centre_x = ex->scene.w / 2.0;
+    ex->centre_y = ex->scene.h / 2.0;
+    if (d->view && !explorer_set_view_name(ex, d->view)) {
+        scene_free(&ex->scene);
+        return false;
+    }
+    if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params)) {
+        scene_free(&ex->scene);
+        return false;
+    }
+    return explorer_set_step(ex, d->step_end ? ex->replay.total : d->step);
+}
+
+void explorer_free(struct explorer *ex)
+{
+    replay_free(&ex->replay);
+    target_free(&ex->fb);
+    target_free(&ex->scratch);
+    target_free(&ex->exact);
+    free(ex->cells);
+    free(ex->marks);
+    free(ex->diff);
+    scene_free(&ex->scene);
+    memset(ex, 0, sizeof *ex);
+}
+
+/* --- layout ---------------------------------------------------------------------- */
+
+void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L)
+{
+    double s = ex->scale;
+    L->s = s;
+    L->w = w, L->h = h;
+    L->pw = fmin(430 * s, w * 0.45);
+    L->px = w - L->pw;
+    L->bar_h = 46 * s;
+    L->cx = 0, L->cy = 0;
+    L->cw = L->px, L->ch = h - L->bar_h;
+    L->bar_y = L->ch;
+    double zoom = ex->zoom, cx = ex->centre_x, cy = ex->centre_y;
+    if (zoom <= 0) {
+        /* fit the scene with a margin; whole screen pixels per pixel when
+         * large enough, so every cell is crisp */
+        double mx = 28 * s, my = 28 * s;
+        zoom = fmin((L->cw - 2 * mx) / ex->scene.w, (L->ch - 2 * my) / ex->scene.h);
+        if (zoom >= 4)
+            zoom = floor(zoom);
+        if (!(zoom > 0))
+            zoom = 1;
+        cx = ex->scene.w / 2.0, cy = ex->scene.h / 2.0;
+    }
+    L->zoom = zoom;
+    L->ox = L->cx + L->cw / 2 - cx * zoom;
+    L->oy = L->cy + L->ch / 2 - cy * zoom;
+    if (zoom >= 4) {
+        L->ox = round(L->ox);
+        L->oy = round(L->oy);
+    }
+}
+
+void explorer_zoom_at(struct explorer *ex, const struct explorer_layout *L, double sx, double sy,
+                      double factor)
+{
+    double px = (sx - L->ox) / L->zoom, py = (sy - L->oy) / L->zoom;
+    double z = fmin(fmax(L->zoom * factor, 0.05), 512);
+    ex->zoom = z;
+    ex->centre_x = px + (L->cx + L->cw / 2 - sx) / z;
+    ex->centre_y = py + (L->cy + L->ch / 2 - sy) / z;
+}
+
+void explorer_pan(struct explorer *ex, const struct explorer_layout *L, double dx, double dy)
+{
+    if (ex->zoom <= 0) {
+        ex->centre_x = (L->cx + L->cw / 2 - L->ox) / L->zoom;
+        ex->centre_y = (L->cy + L->ch / 2 - L->oy) / L->zoom;
+        ex->zoom = L->zoom;
+    }
+    ex->centre_x -= dx / ex->zoom;
+    ex->centre_y -= dy / ex->zoom;
+}
+
+int explorer_hit_vertex(const struct explorer *ex, const struct explorer_layout *L,
+                        double sx, double sy)
+{
+    if (ex->scene.ntris == 0)
+        return -1;
+    int best = -1;
+    double best_d = 12 * L->s;
+    for (int k = 0; k < 3; k++) {
+        double vx = L->ox + L->zoom * ex->tri.x[k] / SUBPIXEL_ONE;
+        double vy = L->oy + L->zoom * ex->tri.y[k] / SUBPIXEL_ONE;
+        double d = hypot(sx - vx, sy - vy);
+        if (d < best_d)
+            best = k, best_d = d;
+    }
+    return best;
+}

@@ -1,0 +1,191 @@
+/* explorer.h - the explorer's state, without a window: the scene as a lesson
+ * draws it after N events, the current triangle's pixels as the narration
+ * left them, stepping by event, row or block, and triangle, and one painter
+ * (cairo) that draws it all for the SDL window and for PNG, SVG and PDF files.
+ *
+ * The explorer never re-implements an algorithm: every picture is the
+ * lesson's own output replayed to step N (src/trace/replay.h). Only what the
+ * current step needs is kept: the target, the per-pixel "cells" of the
+ * current triangle (accumulated from its events), and per-triangle counter
+ * sums; never every event of the scene.
+ */
+#ifndef TRISTEP_EXPLORER_H
+#define TRISTEP_EXPLORER_H
+
+#include <cairo.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "lesson.h"
+#include "trace/replay.h"
+
+/* The built-in views; a lesson's own views (lesson->views) follow them. */
+enum view {
+    VIEW_COLOR, VIEW_COVERAGE, VIEW_EDGES, VIEW_BARY, VIEW_DEPTH, VIEW_BLOCKS, VIEW_SPANS,
+    VIEW_BUILTIN_COUNT
+};
+
+enum step_unit {
+    STEP_EVENT,     /* one event */
+    STEP_GROUP,     /* to the next row, block or span (or triangle boundary) */
+    STEP_TRIANGLE,  /* to the next triangle boundary */
+};
+
+enum numbers_mode { NUMBERS_AUTO, NUMBERS_ALWAYS, NUMBERS_OFF, NUMBERS_MODE_COUNT };
+
+/* What the current triangle's narration said about one pixel so far. */
+enum cell_flags {
+    CELL_TESTED = 1,        /* a pixel test reached it */
+    CELL_INSIDE = 2,        /* covered: test said inside, or a full block, span or write */
+    CELL_WRITTEN = 4,       /* a pixel write reached it */
+    CELL_DEPTH_PASS = 8,    /* ... and passed the depth test */
+    CELL_BLOCK = 16,        /* inside a narrated block (class in klass) */
+    CELL_SPAN = 32,         /* inside a narrated span */
+    CELL_ROW = 64,          /* on a row the algorithm walked */
+};
+
+struct cell {
+    int64_t e[3];           /* edge values F_ab, F_bc, F_ca of the last test */
+    float bary[3];
+    float aux[6];
+    float z;                /* of the last write */
+    uint32_t rgba;
+    uint8_t flags;          /* enum cell_flags */
+    uint8_t klass;          /* block class when CELL_BLOCK */
+};
+
+/* Where things are on the screen, from the window or figure size. */
+struct explorer_layout {
+    double s;                       /* interface scale */
+    double w, h;                    /* the whole frame */
+    double cx, cy, cw, ch;          /* canvas (the pixel grid) */
+    double px, pw;                  /* panel on the right: x, width */
+    double bar_y, bar_h;            /* scrub bar under the canvas */
+    double zoom;                    /* screen pixels per scene pixel */
+    double ox, oy;                  /* screen position of scene point (0, 0) */
+};
+
+/* How to start: zero-initialise and set what you need. */
+struct explorer_desc {
+    const struct lesson *lesson;
+    const struct scene *scene;      /* copied: the explorer owns its own copy */
+    bool scene_is_default;          /* the lesson's built-in scene (X may switch scenes) */
+    const char *scene_name;         /* as shown in the panel */
+    const struct lesson_variant *variant;   /* NULL: variants[0] */
+    struct raster_params params;
+    const char *view;               /* NULL: "color" */
+    uint64_t step;
+    bool step_end;
+    double zoom;                    /* 0: fit the scene into the canvas */
+    double scale;                   /* 0: 1 */
+};
+
+struct explorer {
+    const struct lesson *lesson;
+    struct scene scene;
+    bool scene_is_default;
+    char scene_name[128];
+    int variant;                    /* index into lesson->variants */
+    struct raster_params params;
+    struct replay replay;
+    uint64_t step;
+
+    /* the state at `step` */
+    struct target fb;               /* the scene as drawn after `step` events */
+    int cur;                        /* triangle of the last event; -1 at step 0 */
+    uint64_t local;                 /* that event's number inside the triangle */
+    struct trace_counters tri_c;    /* the current triangle's counters so far */
+    struct trace_event last;        /* the last event that happened */
+    bool has_last;
+    int focus;                      /* triangle whose vectors are drawn (cur, or 0) */
+    struct tri_setup tri;           /* its setup */
+    struct cell *cells;             /* cells of the current triangle's region */
+    int cell_x0, cell_y0, cell_w, cell_h;
+    size_t cell_cap;
+
+    /* row/block/span events of one triangle, for STEP_GROUP */
+    int marks_tri;
+    uint32_t *marks;
+    size_t nmarks, marks_cap;
+    struct target scratch;
+
+    /* an exhibit shown against variants[0]: per pixel 0, EXHIBIT_EXTRA or EXHIBIT_MISSING */
+    struct target exact;
+    int exact_upto;
+    uint8_t *diff;
+    int diff_done;                  /* triangles compared (finished at this step) */
+    uint64_t extra, missing;
+
+    /* presentation */
+    int view;
+    int edge;                       /* edges view: -1 all three, or 0..2 */
+    enum numbers_mode numbers;
+    double zoom;                    /* 0: fit */
+    double centre_x, centre_y;      /* scene point at the canvas centre (zoom != 0) */
+    double scale;
+    bool pinned;
+    int pin_x, pin_y;
+    bool help;
+    bool playing;
+    int speed;                      /* events per second = 2^(speed / 2) */
+    int hover_vertex;               /* handle under the mouse or being dragged, -1 none */
+    char message[512];
+};
+
+enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2 };
+
+bool explorer_init(struct explorer *ex, const struct explorer_desc *d);
+void explorer_free(struct explorer *ex);
+
+/* Replay to a step (clamped to the total) and rebuild the view state. */
+bool explorer_set_step(struct explorer *ex, uint64_t step);
+/* The step one unit forward (dir > 0) or back (dir < 0) from the current one. */
+uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir);
+bool explorer_move(struct explorer *ex, enum step_unit unit, int dir);
+
+/* Switch variant (index into lesson->variants) or params; the step is kept
+ * (clamped). Returns false when out of memory. */
+bool explorer_set_variant(struct explorer *ex, int index);
+bool explorer_set_params(struct explorer *ex, const struct raster_params *p);
+/* X: the next exhibit (or back to variants[0]); T: the next faster twin. */
+bool explorer_cycle_exhibit(struct explorer *ex);
+bool explorer_cycle_twin(struct explorer *ex);
+
+/* Move vertex `k` (0..2, as labelled A, B, C after setup) of the focus
+ * triangle to (x, y) snapped to 1/256 pixel; vertices of other triangles at
+ * the same place move with it. The lesson re-runs; the step is kept. */
+bool explorer_move_vertex(struct explorer *ex, int k, double x, double y);
+
+/* Views: built-in ones then the lesson's own. */
+int explorer_view_count(const struct explorer *ex);
+const char *explorer_view_name(const struct explorer *ex, int view);
+/* Accepts every view name, and "edge-ab", "edge-bc", "edge-ca" for one edge;
+ * returns false for an unknown name. */
+bool explorer_set_view_name(struct explorer *ex, const char *name);
+
+/* The cell of the current triangle at pixel (x, y), or NULL. */
+const struct cell *explorer_cell(const struct explorer *ex, int x, int y);
+
+/* Layout of a w x h frame, and screen <-> scene coordinates. */
+void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L);
+void explorer_zoom_at(struct explorer *ex, const struct explorer_layout *L, double sx, double sy,
+                      double factor);
+void explorer_pan(struct explorer *ex, const struct explorer_layout *L, double dx, double dy);
+/* The focus triangle's vertex handle near screen point (sx, sy), or -1. */
+int explorer_hit_vertex(const struct explorer *ex, const struct explorer_layout *L,
+                        double sx, double sy);
+
+/* Paint one frame of w x h (the window, a figure, or the bench's timing).
+ * Text goes through Pango with DejaVu Sans Mono, pinned by explorer_fonts(). */
+void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h);
+/* Pin fontconfig to DejaVu only; call before anything touches Pango. */
+void explorer_fonts(void);
+/* Milliseconds per frame, averaged over n frames painted into a w x h image
+ * surface (what `make bench` reports as the explorer's frame time). */
+double explorer_frame_ms(struct explorer *ex, int w, int h, int n);
+
+/* Write the current frame (w x h) to FILE.png, .svg or .pdf, all or nothing. */
+bool explorer_export(struct explorer *ex, const char *path, int w, int h,
+                     char *err, size_t errlen);
+
+#endif
