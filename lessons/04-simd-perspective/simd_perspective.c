@@ -437,6 +437,42 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 #define rasterize_row4_sse rasterize_scalar
 #endif
 
+/* --- the lesson's own views in the explorer ------------------------------------------ */
+
+/* "st": the texture coordinates (s, t) of each shown pixel as red and green.
+ * On the floor the green rows crowd towards the horizon when perspective-
+ * correct and spread evenly when affine. */
+static bool st_cell(const struct trace_event *test, const struct trace_event *write,
+                    double rgb[3])
+{
+    (void)write;
+    if (!test || !(test->flags & TRACE_INSIDE))
+        return false;
+    rgb[0] = test->aux[4] < 0 ? 0 : test->aux[4] > 1 ? 1 : test->aux[4];
+    rgb[1] = test->aux[5] < 0 ? 0 : test->aux[5] > 1 ? 1 : test->aux[5];
+    rgb[2] = 0.3;
+    return true;
+}
+
+/* "inv-z": lane 0 as brightness, 1 - exp(-2 / z): near is bright, and the
+ * steps between rows are equal in 1/z, not in z. */
+static bool inv_z_cell(const struct trace_event *test, const struct trace_event *write,
+                       double rgb[3])
+{
+    (void)write;
+    if (!test)
+        return false;
+    double g = test->aux[0] > 0 ? 1 - exp(-2.0 * test->aux[0]) : 0;
+    bool in = test->flags & TRACE_INSIDE;
+    rgb[0] = rgb[1] = rgb[2] = in ? g : 0.4 * g;
+    return true;
+}
+
+static const struct lesson_view views[] = {
+    { "st", "texture coordinates s (red), t (green) of the pixels that show", st_cell },
+    { "inv-z", "lane 0, 1/z, as brightness: brighter is nearer; dim outside", inv_z_cell },
+};
+
 static const struct lesson_variant variants[] = {
     { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
       rasterize_sse, false },
@@ -455,4 +491,7 @@ const struct lesson lesson_04 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
+    .params = LESSON_PARAM_AFFINE,
+    .views = views,
+    .nviews = sizeof views / sizeof views[0],
 };
