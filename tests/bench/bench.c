@@ -144,10 +144,9 @@ static void time_variant(struct row *row, const struct lesson_variant *v,
 /* --- the memory limit ----------------------------------------------------- */
 
 /* The least work a fill must do per pixel: read and write colour and depth.
- * One pass over buffers of the scene's size, on one core; returns Mpix/s. */
-static double bandwidth_limit(int w, int h, int runs, double *gbs)
+ * One pass over buffers of n pixels, on one core; returns Mpix/s. */
+static double bandwidth_limit(size_t n, int runs, double *gbs)
 {
-    size_t n = (size_t)w * (size_t)h;
     uint32_t *c = malloc(n * sizeof *c);
     float *d = malloc(n * sizeof *d);
     if (!c || !d) {
@@ -277,7 +276,7 @@ static void print_table(const struct bench_scene *sc, double limit)
                 snprintf(ratio, sizeof ratio, "%.2f", base->t[i].median / t->median);
             print_diff(dref, sizeof dref, t->diff_ref);
             print_diff(dpeer, sizeof dpeer, t->diff_peer);
-            printf("  %-26s %-15s %10.2f %6.1f%% %9.3f %9.1f %7s %5.1f%% %9s %9s%s\n", r->program,
+            printf("  %-26s %-15s %10.2f %6.1f%% %9.3g %9.1f %7s %5.1f%% %9s %9s%s\n", r->program,
                    r->variant, t->median * 1e3, 100 * (t->hi - t->lo) / t->median, mtri(&sc[i], t),
                    mpix(&sc[i], t), ratio, limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, dref,
                    dpeer, r->exhibit ? "  (exhibit)" : "");
@@ -538,11 +537,22 @@ int main(int argc, char **argv)
         }
     }
 
-    double gbs = 0;
-    double limit = bandwidth_limit(sc[0].s.w, sc[0].s.h, o.runs < 5 ? 5 : o.runs, &gbs);
+    double gbs = 0, dram_gbs = 0;
+    size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
+    double limit = bandwidth_limit(npix, o.runs < 5 ? 5 : o.runs, &gbs);
+    double dram = bandwidth_limit(o.quick ? npix : 8 * npix, 3, &dram_gbs);
     print_table(sc, limit);
-    printf("\nmemory limit: one read-modify-write pass over colour + depth (%d x %d, 8 bytes "
-           "a pixel), one core: %.1f Mpix/s (%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, limit, gbs);
+    char l3[32] = "?";
+    FILE *cf = fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r");
+    if (cf && fgets(l3, sizeof l3, cf))
+        l3[strcspn(l3, "\n")] = 0;
+    if (cf)
+        fclose(cf);
+    printf("\nmemory limit: one read-modify-write pass over colour + depth, 8 bytes a pixel, "
+           "one core:\n  same buffers (%d x %d, %.1f MB; L3 cache %s): %.1f Mpix/s (%.1f GB/s), "
+           "the %% mem column\n  8 times larger buffers (beyond the caches): %.1f Mpix/s "
+           "(%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram,
+           dram_gbs);
 
     printf("\nexplorer frame (1280 x 800, 64 x 48 grid, numbers shown): not measured here yet\n");
     if (o.figures_cmd) {

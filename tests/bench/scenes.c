@@ -1,7 +1,9 @@
 /* scenes.c - the bench's three scenes, generated from a seed.
  *
- *   large  random triangles with vertices spread over three times the
- *          screen each way, added until they cover the screen 16 times;
+ *   large  random triangles of about the screen's size, their vertices up
+ *          to 1.6 half-diagonals from a point of the screen, added until
+ *          they cover the screen 16 times (vertices stay inside the range
+ *          llvmpipe draws without clipping, see peer.c);
  *   small  200,000 triangles of about 10 pixels each;
  *   mixed  100,000 triangles: 95% of about 10 pixels, 4% of 100, 0.9% of
  *          1,000 and 0.1% of 20,000.
@@ -121,16 +123,23 @@ static void count_triangle(const struct scene *s, int i, struct counting *c)
     reference_coverage(&t, count_pixel, c);
 }
 
+/* Large: a triangle around a point of the screen, its vertices 0.6 to 1.6
+ * half-diagonals away, roughly 120 degrees apart; each covers a good part
+ * of the screen and crosses it with its edges. */
 static bool make_large(struct rng *r, struct bench_scene *b, struct counting *c)
 {
     struct scene *s = &b->s;
     uint64_t goal = (uint64_t)LARGE_OVERDRAW * (uint64_t)s->w * (uint64_t)s->h;
+    double half_diag = sqrt((double)s->w * s->w + (double)s->h * s->h) / 2;
     while (c->n < goal) {
+        double cx = rng_range(r, 0, s->w), cy = rng_range(r, 0, s->h);
+        double a = rng_range(r, 0, TAU);
         struct vertex v[3];
         memset(v, 0, sizeof v);
-        for (int k = 0; k < 3; k++) {
-            v[k].x = rng_range(r, -s->w, 2.0 * s->w);
-            v[k].y = rng_range(r, -s->h, 2.0 * s->h);
+        for (int k = 0; k < 3; k++, a += TAU / 3 + rng_range(r, -0.5, 0.5)) {
+            double rad = half_diag * rng_range(r, 0.6, 1.6);
+            v[k].x = cx + rad * cos(a);
+            v[k].y = cy + rad * sin(a);
             v[k].z = rng_range(r, Z_MIN, Z_MAX);
             random_colour(r, &v[k]);
         }
