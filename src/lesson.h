@@ -46,7 +46,7 @@ enum lesson_param_flags {
  * reached, the last pixel-test and pixel-write events (edge values, weights,
  * z, colour, aux values); `cell` turns them into a colour:
  *
- *     static bool lanes_cell(const struct trace_event *test,
+ *     static bool lanes_cell(const struct tri_setup *t, const struct trace_event *test,
  *                            const struct trace_event *write, double rgb[3])
  *     {
  *         if (!test) return false;             // not reached: leave it dark
@@ -58,12 +58,14 @@ enum lesson_param_flags {
  *     };
  *     ... .views = views, .nviews = 1,
  *
- * `test` or `write` is NULL when the pixel saw no such event this step.
+ * `test` or `write` is NULL when the pixel saw no such event this step; `t`
+ * is the triangle's setup (its vertices, for values the events do not carry).
  * The name is what --view accepts; the legend is shown under it. */
 struct lesson_view {
     const char *name;
     const char *legend;
-    bool (*cell)(const struct trace_event *test, const struct trace_event *write, double rgb[3]);
+    bool (*cell)(const struct tri_setup *t, const struct trace_event *test,
+                 const struct trace_event *write, double rgb[3]);
 };
 
 struct lesson {

@@ -442,9 +442,10 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 /* "st": the texture coordinates (s, t) of each shown pixel as red and green.
  * On the floor the green rows crowd towards the horizon when perspective-
  * correct and spread evenly when affine. */
-static bool st_cell(const struct trace_event *test, const struct trace_event *write,
-                    double rgb[3])
+static bool st_cell(const struct tri_setup *t, const struct trace_event *test,
+                    const struct trace_event *write, double rgb[3])
 {
+    (void)t;
     (void)write;
     if (!test || !(test->flags & TRACE_INSIDE))
         return false;
@@ -456,9 +457,10 @@ static bool st_cell(const struct trace_event *test, const struct trace_event *wr
 
 /* "inv-z": lane 0 as brightness, 1 - exp(-2 / z): near is bright, and the
  * steps between rows are equal in 1/z, not in z. */
-static bool inv_z_cell(const struct trace_event *test, const struct trace_event *write,
-                       double rgb[3])
+static bool inv_z_cell(const struct tri_setup *t, const struct trace_event *test,
+                       const struct trace_event *write, double rgb[3])
 {
+    (void)t;
     (void)write;
     if (!test)
         return false;
@@ -468,9 +470,40 @@ static bool inv_z_cell(const struct trace_event *test, const struct trace_event 
     return true;
 }
 
+/* "affine-error": how far affine texturing lands from the correct (s, t) at
+ * each covered pixel, from the lanes (w, u, v are the screen-space weights):
+ *
+ *     affine  s = u sA + v sB + w sC
+ *     correct s = (u sA/ZA + v sB/ZB + w sC/ZC) / (u/ZA + v/ZB + w/ZC)    (23)
+ *
+ * black where they agree, through red to yellow at AFFINE_ERROR_FULL or more
+ * (texture units: the whole texture is 1 wide). */
+#define AFFINE_ERROR_FULL 0.25
+
+static bool affine_error_cell(const struct tri_setup *t, const struct trace_event *test,
+                              const struct trace_event *write, double rgb[3])
+{
+    (void)write;
+    if (!test || !(test->flags & TRACE_INSIDE))
+        return false;
+    const struct vertex *A = &t->v[0], *B = &t->v[1], *C = &t->v[2];
+    double w = test->aux[1], u = test->aux[2], v = test->aux[3];
+    double qa = u / A->z, qb = v / B->z, qc = w / C->z, inv_z = qa + qb + qc;
+    double ds = (u * A->s + v * B->s + w * C->s) - (qa * A->s + qb * B->s + qc * C->s) / inv_z;
+    double dt = (u * A->t + v * B->t + w * C->t) - (qa * A->t + qb * B->t + qc * C->t) / inv_z;
+    double e = sqrt(ds * ds + dt * dt) / AFFINE_ERROR_FULL;
+    e = e > 1 ? 1 : e;
+    rgb[0] = e < 0.5 ? 2 * e : 1;
+    rgb[1] = e < 0.5 ? 0 : 2 * e - 1;
+    rgb[2] = 0.1;
+    return true;
+}
+
 static const struct lesson_view views[] = {
     { "st", "texture coordinates s (red), t (green) of the pixels that show", st_cell },
     { "inv-z", "lane 0, 1/z, as brightness: brighter is nearer; dim outside", inv_z_cell },
+    { "affine-error", "|affine - correct| of (s, t): black 0, red, yellow 0.25 or more",
+      affine_error_cell },
 };
 
 static const struct lesson_variant variants[] = {

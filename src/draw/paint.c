@@ -340,7 +340,7 @@ static uint32_t cell_colour(const struct explorer *ex, int x, int y, double zmin
                                      .rgba = c->rgba,
                                      .flags = (f & CELL_DEPTH_PASS) ? TRACE_DEPTH_PASS : 0 };
         double rgb[3];
-        if (!v->cell((f & CELL_TESTED) ? &test : NULL, (f & CELL_WRITTEN) ? &write : NULL, rgb))
+        if (!v->cell(&ex->tri, (f & CELL_TESTED) ? &test : NULL, (f & CELL_WRITTEN) ? &write : NULL, rgb))
             return dim;
         return from_rgb(rgb[0], rgb[1], rgb[2]);
     }
