@@ -1,11 +1,583 @@
-/* app.c - the explorer window (not built yet: see the explorer issue). */
+/* app.c - the explorer window: SDL2 shows what the cairo painter draws.
+ *
+ * cairo paints the whole frame straight into a streaming ARGB8888 texture
+ * (the two formats agree byte for byte, and SDL's pitch is cairo's stride),
+ * which SDL copies to the window. Nothing is painted while nothing changes:
+ * paused, the loop sleeps in SDL_WaitEvent; playing, it wakes on a timer at
+ * the explorer's speed.
+ *
+ * --keys FILE feeds key names (and "wait", "drag X1 Y1 X2 Y2") into the same
+ * event queue as the keyboard and mouse, so that a test can drive the real
+ * program without a display.
+ */
 #include "app.h"
+
+#include <SDL.h>
+#include <cairo.h>
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "draw/explorer.h"
+
+#define SPEED_MAX 40        /* 2^20 events per second */
+#define FRAME_MS 16         /* at most one frame this often while playing */
+
+struct app {
+    const struct lesson *lesson;
+    struct explorer ex;
+    SDL_Window *win;
+    SDL_Renderer *ren;
+    SDL_Texture *tex;
+    int tw, th;                 /* texture (= frame) size in pixels */
+    bool dirty, quit, failed;
+
+    /* the mouse */
+    enum { DRAG_NONE, DRAG_VERTEX, DRAG_PAN } drag;
+    int drag_vertex;
+    double down_x, down_y, last_x, last_y;
+    bool moved;
+
+    /* playing: events owed to the clock */
+    double play_debt;
+    Uint64 play_last;
+
+    /* --keys */
+    char **script;
+    size_t nscript, at;
+};
+
+/* --- SDL errors ------------------------------------------------------------------- */
+
+static bool sdl_failed(struct app *a, const char *call)
+{
+    fprintf(stderr, "%s: %s failed: %s\n", a->lesson->id, call, SDL_GetError());
+    a->failed = true;
+    return false;
+}
+
+/* An explorer call ran out of memory: nothing sensible is left to show. */
+static void out_of_memory(struct app *a)
+{
+    fprintf(stderr, "%s: out of memory while re-running the lesson\n", a->lesson->id);
+    a->failed = a->quit = true;
+}
+
+/* --- painting -------------------------------------------------------------------- */
+
+static bool make_texture(struct app *a)
+{
+    int w, h;
+    if (SDL_GetRendererOutputSize(a->ren, &w, &h) != 0)
+        return sdl_failed(a, "SDL_GetRendererOutputSize");
+    if (a->tex && w == a->tw && h == a->th)
+        return true;
+    if (a->tex)
+        SDL_DestroyTexture(a->tex);
+    a->tex = SDL_CreateTexture(a->ren, SDL_PIXELFORMAT_ARGB8888, SDL_TEXTUREACCESS_STREAMING, w, h);
+    if (!a->tex)
+        return sdl_failed(a, "SDL_CreateTexture");
+    if (SDL_SetTextureBlendMode(a->tex, SDL_BLENDMODE_NONE) != 0)
+        return sdl_failed(a, "SDL_SetTextureBlendMode");
+    a->tw = w, a->th = h;
+    return true;
+}
+
+static bool present(struct app *a)
+{
+    if (!make_texture(a))
+        return false;
+    void *pixels;
+    int pitch;
+    if (SDL_LockTexture(a->tex, NULL, &pixels, &pitch) != 0)
+        return sdl_failed(a, "SDL_LockTexture");
+    cairo_surface_t *s = cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_ARGB32,
+                                                             a->tw, a->th, pitch);
+    cairo_t *cr = cairo_create(s);
+    explorer_paint(&a->ex, cr, a->tw, a->th);   /* the lock is write-only: all of it */
+    cairo_status_t st = cairo_status(cr);
+    cairo_destroy(cr);
+    cairo_surface_flush(s);
+    cairo_surface_destroy(s);
+    SDL_UnlockTexture(a->tex);
+    if (st != CAIRO_STATUS_SUCCESS) {
+        fprintf(stderr, "%s: painting failed: %s\n", a->lesson->id, cairo_status_to_string(st));
+        a->failed = true;
+        return false;
+    }
+    if (SDL_RenderCopy(a->ren, a->tex, NULL, NULL) != 0)
+        return sdl_failed(a, "SDL_RenderCopy");
+    SDL_RenderPresent(a->ren);
+    a->dirty = false;
+    return true;
+}
+
+static void layout(struct app *a, struct explorer_layout *L)
+{
+    explorer_layout(&a->ex, a->tw, a->th, L);
+}
+
+/* --- keys ------------------------------------------------------------------------ */
+
+static void say(struct app *a, const char *fmt, const char *arg)
+{
+    snprintf(a->ex.message, sizeof a->ex.message, fmt, arg);
+}
+
+static void step(struct app *a, enum step_unit unit, int dir)
+{
+    a->ex.playing = false;
+    if (!explorer_move(&a->ex, unit, dir))
+        out_of_memory(a);
+}
+
+static void set_step(struct app *a, uint64_t s)
+{
+    a->ex.playing = false;
+    if (!explorer_set_step(&a->ex, s))
+        out_of_memory(a);
+}
+
+static void export_view(struct app *a)
+{
+    char png[200], svg[200], err[480];
+    const char *view = explorer_view_name(&a->ex, a->ex.view);
+    snprintf(png, sizeof png, "tristep-%s-step%llu-%s.png", a->lesson->id,
+             (unsigned long long)a->ex.step, view);
+    snprintf(svg, sizeof svg, "tristep-%s-step%llu-%s.svg", a->lesson->id,
+             (unsigned long long)a->ex.step, view);
+    a->ex.message[0] = '\0';            /* the figure shows the view, not the last message */
+    bool help = a->ex.help;
+    a->ex.help = false;
+    bool ok = explorer_export(&a->ex, png, a->tw, a->th, err, sizeof err)
+              && explorer_export(&a->ex, svg, a->tw, a->th, err, sizeof err);
+    a->ex.help = help;
+    if (ok) {
+        snprintf(a->ex.message, sizeof a->ex.message, "exported %s and %s", png, svg);
+        printf("%s: %s\n", a->lesson->id, a->ex.message);
+        fflush(stdout);
+    } else {
+        snprintf(a->ex.message, sizeof a->ex.message, "export failed: %s", err);
+        fprintf(stderr, "%s: %s\n", a->lesson->id, a->ex.message);
+    }
+}
+
+static void set_params(struct app *a, const struct raster_params *p, const char *what)
+{
+    if (!explorer_set_params(&a->ex, p)) {
+        out_of_memory(a);
+        return;
+    }
+    snprintf(a->ex.message, sizeof a->ex.message, "%s", what);
+}
+
+static bool has_twins(const struct lesson *l)
+{
+    for (int i = 1; i < l->nvariants; i++)
+        if (!l->variants[i].exhibit)
+            return true;
+    return false;
+}
+
+static void key(struct app *a, SDL_Keycode k, Uint16 mod)
+{
+    struct explorer *ex = &a->ex;
+    unsigned prm = a->lesson->params;
+    enum step_unit unit = mod & KMOD_CTRL ? STEP_TRIANGLE : mod & KMOD_SHIFT ? STEP_GROUP : STEP_EVENT;
+    char buf[96];
+    struct raster_params p = ex->params;
+    ex->message[0] = '\0';
+    a->dirty = true;
+    switch (k) {
+    case SDLK_RIGHT: step(a, unit, +1); break;
+    case SDLK_LEFT: step(a, unit, -1); break;
+    case SDLK_PAGEDOWN: step(a, STEP_EVENT, +1); break;
+    case SDLK_PAGEUP: step(a, STEP_EVENT, -1); break;
+    case SDLK_HOME: set_step(a, 0); break;
+    case SDLK_END: set_step(a, ex->replay.total); break;
+    case SDLK_SPACE:
+        ex->playing = !ex->playing;
+        if (ex->playing && ex->step >= ex->replay.total && !explorer_set_step(ex, 0))
+            out_of_memory(a);
+        a->play_debt = 0;
+        a->play_last = SDL_GetTicks64();
+        break;
+    case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS:
+    case SDLK_MINUS: case SDLK_KP_MINUS: {
+        int d = k == SDLK_MINUS || k == SDLK_KP_MINUS ? -1 : +1;
+        ex->speed = ex->speed + d < 0 ? 0 : ex->speed + d > SPEED_MAX ? SPEED_MAX : ex->speed + d;
+        snprintf(buf, sizeof buf, "speed %.4g events per second", exp2(ex->speed / 2.0));
+        say(a, "%s", buf);
+        break;
+    }
+    case SDLK_v: {
+        int n = explorer_view_count(ex);
+        ex->view = (ex->view + (mod & KMOD_SHIFT ? n - 1 : 1)) % n;
+        break;
+    }
+    case SDLK_0: case SDLK_1: case SDLK_2: case SDLK_3:
+        ex->view = VIEW_EDGES;
+        ex->edge = (int)(k - SDLK_0) - 1;
+        break;
+    case SDLK_n: ex->numbers = (ex->numbers + 1) % NUMBERS_MODE_COUNT; break;
+    case SDLK_x:
+        if (!explorer_cycle_exhibit(ex))
+            out_of_memory(a);
+        break;
+    case SDLK_t:
+        if (has_twins(a->lesson) && !explorer_cycle_twin(ex))
+            out_of_memory(a);
+        break;
+    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET:
+        if (prm & LESSON_PARAM_SUBPIXEL) {
+            p.subpixel_bits += k == SDLK_LEFTBRACKET ? -1 : 1;
+            p.subpixel_bits = p.subpixel_bits < 0 ? 0 : p.subpixel_bits > 8 ? 8 : p.subpixel_bits;
+            snprintf(buf, sizeof buf, "sub-pixel bits: %d", p.subpixel_bits);
+            set_params(a, &p, buf);
+        }
+        break;
+    case SDLK_b:
+        if (prm & LESSON_PARAM_BLOCK) {
+            int q = p.block_size ? p.block_size : 8;
+            p.block_size = q == 4 ? 8 : q == 8 ? 16 : 4;
+            snprintf(buf, sizeof buf, "block size %d x %d", p.block_size, p.block_size);
+            set_params(a, &p, buf);
+        }
+        break;
+    case SDLK_p:
+        if (prm & LESSON_PARAM_AFFINE) {
+            p.affine = !p.affine;
+            set_params(a, &p, p.affine ? "affine texturing (the exhibit)" : "perspective-correct");
+        }
+        break;
+    case SDLK_e: export_view(a); break;
+    case SDLK_f: ex->zoom = 0; break;
+    case SDLK_h: case SDLK_F1: ex->help = !ex->help; break;
+    case SDLK_q: case SDLK_ESCAPE: a->quit = true; break;
+    default: a->dirty = false; break;
+    }
+}
+
+/* --- the mouse ---------------------------------------------------------------------- */
+
+static void mouse_down(struct app *a, double x, double y)
+{
+    struct explorer_layout L;
+    layout(a, &L);
+    a->down_x = a->last_x = x;
+    a->down_y = a->last_y = y;
+    a->moved = false;
+    a->drag = DRAG_NONE;
+    if (x >= L.cx + L.cw || y >= L.cy + L.ch)
+        return;                         /* the panel or the scrub bar */
+    a->drag_vertex = explorer_hit_vertex(&a->ex, &L, x, y);
+    a->drag = a->drag_vertex >= 0 ? DRAG_VERTEX : DRAG_PAN;
+}
+
+static void mouse_move(struct app *a, double x, double y)
+{
+    struct explorer_layout L;
+    layout(a, &L);
+    if (fabs(x - a->down_x) > 3 || fabs(y - a->down_y) > 3)
+        a->moved = true;
+    if (a->drag == DRAG_VERTEX) {
+        a->ex.hover_vertex = a->drag_vertex;
+        if (!explorer_move_vertex(&a->ex, a->drag_vertex, (x - L.ox) / L.zoom, (y - L.oy) / L.zoom))
+            out_of_memory(a);
+        a->dirty = true;
+    } else if (a->drag == DRAG_PAN && a->moved) {
+        explorer_pan(&a->ex, &L, x - a->last_x, y - a->last_y);
+        a->dirty = true;
+    } else if (a->drag == DRAG_NONE) {
+        int h = explorer_hit_vertex(&a->ex, &L, x, y);
+        if (h != a->ex.hover_vertex)
+            a->ex.hover_vertex = h, a->dirty = true;
+    }
+    a->last_x = x, a->last_y = y;
+}
+
+static void mouse_up(struct app *a, double x, double y)
+{
+    mouse_move(a, x, y);
+    if (a->drag == DRAG_PAN && !a->moved) {
+        /* a click on a cell pins its values; a second click unpins */
+        struct explorer_layout L;
+        layout(a, &L);
+        int px = (int)floor((x - L.ox) / L.zoom), py = (int)floor((y - L.oy) / L.zoom);
+        struct explorer *ex = &a->ex;
+        if (px < 0 || py < 0 || px >= ex->scene.w || py >= ex->scene.h
+            || (ex->pinned && ex->pin_x == px && ex->pin_y == py))
+            ex->pinned = false;
+        else
+            ex->pinned = true, ex->pin_x = px, ex->pin_y = py;
+        a->dirty = true;
+    }
+    a->drag = DRAG_NONE;
+}
+
+static void wheel(struct app *a, int dy)
+{
+    int mx, my;
+    SDL_GetMouseState(&mx, &my);
+    struct explorer_layout L;
+    layout(a, &L);
+    if (mx >= L.cx + L.cw || my >= L.cy + L.ch || dy == 0)
+        return;
+    explorer_zoom_at(&a->ex, &L, mx, my, pow(1.25, dy));
+    a->dirty = true;
+}
+
+/* --- --keys ------------------------------------------------------------------------- */
+
+static bool read_script(struct app *a, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "%s: --keys '%s': cannot open\n", a->lesson->id, path);
+        return false;
+    }
+    char line[256];
+    size_t cap = 0;
+    while (fgets(line, sizeof line, f)) {
+        char *s = line, *e = line + strcspn(line, "\r\n");
+        *e = '\0';
+        while (isspace((unsigned char)*s))
+            s++;
+        while (e > s && isspace((unsigned char)e[-1]))
+            *--e = '\0';
+        if (!*s || *s == '#')
+            continue;
+        if (a->nscript == cap) {
+            cap = cap ? 2 * cap : 32;
+            char **n = realloc(a->script, cap * sizeof *n);
+            if (!n)
+                break;
+            a->script = n;
+        }
+        if (!(a->script[a->nscript] = SDL_strdup(s)))
+            break;
+        a->nscript++;
+    }
+    fclose(f);
+    return true;
+}
+
+static bool push_key(SDL_Keycode k, Uint16 mod)
+{
+    SDL_Event ev = { .type = SDL_KEYDOWN };
+    ev.key.state = SDL_PRESSED;
+    ev.key.keysym.sym = k;
+    ev.key.keysym.scancode = SDL_GetScancodeFromKey(k);
+    ev.key.keysym.mod = mod;
+    return SDL_PushEvent(&ev) >= 0;
+}
+
+static bool push_mouse(Uint32 type, int x, int y)
+{
+    SDL_Event ev = { .type = type };
+    if (type == SDL_MOUSEMOTION) {
+        ev.motion.x = x, ev.motion.y = y;
+        ev.motion.state = SDL_BUTTON_LMASK;
+    } else {
+        ev.button.button = SDL_BUTTON_LEFT;
+        ev.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
+        ev.button.clicks = 1;
+        ev.button.x = x, ev.button.y = y;
+    }
+    return SDL_PushEvent(&ev) >= 0;
+}
+
+/* Turn the next script line into events. "Shift+Right", "Ctrl+Left", "v",
+ * "PageDown" (SDL's key names), "wait" (one frame), "drag X1 Y1 X2 Y2". */
+static void next_script_line(struct app *a)
+{
+    const char *line = a->script[a->at++];
+    int x1, y1, x2, y2;
+    if (strcmp(line, "wait") == 0) {
+        a->dirty = true;
+        return;
+    }
+    if (sscanf(line, "drag %d %d %d %d", &x1, &y1, &x2, &y2) == 4) {
+        push_mouse(SDL_MOUSEBUTTONDOWN, x1, y1);
+        for (int i = 1; i <= 4; i++)
+            push_mouse(SDL_MOUSEMOTION, x1 + (x2 - x1) * i / 4, y1 + (y2 - y1) * i / 4);
+        push_mouse(SDL_MOUSEBUTTONUP, x2, y2);
+        return;
+    }
+    Uint16 mod = 0;
+    const char *name = line;
+    for (;;) {
+        if (SDL_strncasecmp(name, "Shift+", 6) == 0)
+            mod |= KMOD_LSHIFT, name += 6;
+        else if (SDL_strncasecmp(name, "Ctrl+", 5) == 0)
+            mod |= KMOD_LCTRL, name += 5;
+        else
+            break;
+    }
+    static const char *const alias[][2] = {
+        { "PgDn", "PageDown" }, { "PgUp", "PageUp" }, { "Esc", "Escape" },
+    };
+    for (size_t i = 0; i < sizeof alias / sizeof alias[0]; i++)
+        if (SDL_strcasecmp(name, alias[i][0]) == 0)
+            name = alias[i][1];
+    SDL_Keycode k = SDL_GetKeyFromName(name);
+    if (k == SDLK_UNKNOWN)
+        fprintf(stderr, "%s: --keys: unknown key '%s' (ignored)\n", a->lesson->id, line);
+    else
+        push_key(k, mod);
+}
+
+/* --- the loop --------------------------------------------------------------------- */
+
+static void handle(struct app *a, const SDL_Event *ev)
+{
+    switch (ev->type) {
+    case SDL_QUIT: a->quit = true; break;
+    case SDL_KEYDOWN: key(a, ev->key.keysym.sym, ev->key.keysym.mod); break;
+    case SDL_MOUSEBUTTONDOWN:
+        if (ev->button.button == SDL_BUTTON_LEFT)
+            mouse_down(a, ev->button.x, ev->button.y);
+        break;
+    case SDL_MOUSEMOTION: mouse_move(a, ev->motion.x, ev->motion.y); break;
+    case SDL_MOUSEBUTTONUP:
+        if (ev->button.button == SDL_BUTTON_LEFT)
+            mouse_up(a, ev->button.x, ev->button.y);
+        break;
+    case SDL_MOUSEWHEEL:
+        wheel(a, ev->wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -ev->wheel.y : ev->wheel.y);
+        break;
+    case SDL_WINDOWEVENT:
+        if (ev->window.event == SDL_WINDOWEVENT_SIZE_CHANGED
+            || ev->window.event == SDL_WINDOWEVENT_EXPOSED)
+            a->dirty = true;
+        break;
+    default: break;
+    }
+}
+
+/* Playing: advance by the events the clock owes (2^(speed/2) per second). */
+static void play(struct app *a)
+{
+    struct explorer *ex = &a->ex;
+    Uint64 now = SDL_GetTicks64();
+    a->play_debt += (double)(now - a->play_last) / 1000.0 * exp2(ex->speed / 2.0);
+    a->play_last = now;
+    if (a->play_debt < 1)
+        return;
+    uint64_t n = (uint64_t)a->play_debt;
+    a->play_debt -= (double)n;
+    uint64_t to = ex->step + n > ex->replay.total ? ex->replay.total : ex->step + n;
+    if (!explorer_set_step(ex, to))
+        out_of_memory(a);
+    if (ex->step >= ex->replay.total)
+        ex->playing = false;
+    a->dirty = true;
+}
+
+/* Milliseconds until the next played event is due. */
+static int play_wait(const struct app *a)
+{
+    double eps = exp2(a->ex.speed / 2.0);
+    double ms = (1.0 - a->play_debt) / eps * 1000.0;
+    return ms < FRAME_MS ? FRAME_MS : ms > 1000 ? 1000 : (int)ms;
+}
+
+static void run(struct app *a)
+{
+    SDL_Event ev;
+    while (!a->quit) {
+        if (a->dirty && !present(a))
+            return;
+        bool got;
+        if (a->at < a->nscript && !SDL_PollEvent(NULL)) {
+            next_script_line(a);
+            continue;
+        }
+        if (a->script && a->at >= a->nscript && !SDL_PollEvent(NULL)) {
+            a->quit = true;             /* the script ran out without "q" */
+            break;
+        }
+        if (a->ex.playing)
+            got = SDL_WaitEventTimeout(&ev, play_wait(a));
+        else if (!(got = SDL_WaitEvent(&ev))) {
+            sdl_failed(a, "SDL_WaitEvent");
+            return;
+        }
+        if (got) {
+            handle(a, &ev);
+            while (!a->quit && SDL_PollEvent(&ev))
+                handle(a, &ev);
+        }
+        if (a->ex.playing && !a->quit)
+            play(a);
+    }
+}
+
+static bool open_window(struct app *a, const struct cli_options *o)
+{
+    if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0)
+        return sdl_failed(a, "SDL_Init");
+    char title[160];
+    snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
+    int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
+    a->win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h,
+                              SDL_WINDOW_RESIZABLE);
+    if (!a->win)
+        return sdl_failed(a, "SDL_CreateWindow");
+    SDL_SetWindowMinimumSize(a->win, 320, 240);
+    a->ren = SDL_CreateRenderer(a->win, -1, 0);
+    if (!a->ren)
+        return sdl_failed(a, "SDL_CreateRenderer");
+    return make_texture(a);
+}
 
 int explorer_run(const struct lesson *l, const struct cli_options *o, struct scene *s)
 {
-    (void)o;
-    (void)s;
-    fprintf(stderr, "%s: the interactive explorer is not there yet; use --dump-coverage "
-                    "or --dump-image (see --help)\n", l->id);
-    return EXIT_RUN;
+    struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
+    char name[160];
+    if (o->scene_path)
+        snprintf(name, sizeof name, "%s", o->scene_path);
+    else
+        snprintf(name, sizeof name, "builtin:%s", l->builtin_scene);
+    if (o->view) {
+        struct explorer probe = { .lesson = l, .edge = -1 };
+        if (!explorer_set_view_name(&probe, o->view)) {
+            fprintf(stderr, "%s: --view '%s': no such view; views:", l->id, o->view);
+            for (int i = 0; i < explorer_view_count(&probe); i++)
+                fprintf(stderr, " %s", explorer_view_name(&probe, i));
+            fprintf(stderr, " edge-ab edge-bc edge-ca\n");
+            return EXIT_USAGE;
+        }
+    }
+    if (o->keys && !read_script(&a, o->keys))
+        return EXIT_USAGE;
+    struct explorer_desc d = {
+        .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
+        .variant = o->variant, .params = o->params, .view = o->view,
+        .step = o->step, .step_end = o->step_end, .zoom = o->zoom, .scale = o->scale,
+    };
+    explorer_fonts();
+    int status = EXIT_OK;
+    if (!explorer_init(&a.ex, &d)) {
+        fprintf(stderr, "%s: out of memory for the scene\n", l->id);
+        status = EXIT_RUN;
+    } else {
+        if (open_window(&a, o))
+            run(&a);
+        if (a.failed)
+            status = EXIT_RUN;
+        explorer_free(&a.ex);
+    }
+    if (a.tex)
+        SDL_DestroyTexture(a.tex);
+    if (a.ren)
+        SDL_DestroyRenderer(a.ren);
+    if (a.win)
+        SDL_DestroyWindow(a.win);
+    SDL_Quit();
+    for (size_t i = 0; i < a.nscript; i++)
+        SDL_free(a.script[i]);
+    free(a.script);
+    return status;
 }
