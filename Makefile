@@ -57,6 +57,8 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all $(B)/tristep-bench
 	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
+# Every figure of figures/list, one process each (cairo's SVG ids count per process).
+figures: all ; sh figures/make-figures.sh $(B)
 clean: ; rm -rf $(BUILD)
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

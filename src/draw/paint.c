@@ -185,6 +185,9 @@ static double text(struct painter *p, double x, double y, double width, const ch
     set_rgb(p->cr, colour);
     cairo_move_to(p->cr, x, y);
     pango_cairo_show_layout(p->cr, p->layout);
+    /* forget the current point, or the next cairo_arc would start with a
+     * line from here (a stray line from a label to a vertex handle) */
+    cairo_new_path(p->cr);
     int w, h;
     pango_layout_get_size(p->layout, &w, &h);
     return (double)h / PANGO_SCALE;
