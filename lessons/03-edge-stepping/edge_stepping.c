@@ -315,4 +315,5 @@ const struct lesson lesson_03 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
+    .params = LESSON_PARAM_SUBPIXEL,
 };

@@ -687,4 +687,5 @@ const struct lesson lesson_05 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
+    .params = LESSON_PARAM_BLOCK,
 };
