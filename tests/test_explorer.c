@@ -1,0 +1,446 @@
+/* test_explorer.c - the explorer's stepping logic, without a window.
+ *
+ * Every claim is checked against an independent run of the lesson: the
+ * variant run triangle by triangle with a trace frozen after the wanted
+ * number of events (trace.h), never against what the explorer said before.
+ * Lessons: every lesson on its built-in scene, its exhibit scene and a small
+ * random scene; the scale test builds 200,000 small triangles at 1920x1080.
+ */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+
+#include "draw/explorer.h"
+#include "testlib.h"
+
+/* --- scenes ------------------------------------------------------------------------ */
+
+/* The scenes a lesson is tried on: 0 built-in, 1 exhibit scene, 2 random. */
+enum { SCENE_BUILTIN, SCENE_EXHIBIT, SCENE_RANDOM, SCENE_KINDS };
+
+static bool load_scene(const struct lesson *l, int kind, struct scene *s)
+{
+    char err[256];
+    if (kind == SCENE_BUILTIN)
+        return scene_builtin(s, l->builtin_scene, err, sizeof err);
+    if (kind == SCENE_EXHIBIT)
+        return l->exhibit_scene && scene_builtin(s, l->exhibit_scene, err, sizeof err);
+    /* a few random triangles of every category on a small target */
+    memset(s, 0, sizeof *s);
+    s->w = 20, s->h = 14;
+    struct rng r = rng_for(0xe7b10e5u);
+    for (int i = 0; i < 6; i++) {
+        struct vertex v[3];
+        random_tri(&r, (enum tri_category)(i % CAT_COUNT), s->w, s->h, v);
+        cr_assert(scene_add(s, v));
+    }
+    return true;
+}
+
+static void open_explorer(struct explorer *ex, const struct lesson *l, const struct scene *s)
+{
+    struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = "test" };
+    cr_assert(explorer_init(ex, &d), "%s: explorer_init", l->id);
+}
+
+/* --- the independent run ---------------------------------------------------------- */
+
+struct kinds {
+    uint64_t n[TRACE_KIND_COUNT];
+    uint64_t group_stops;       /* distinct STEP_GROUP stops over the scene */
+    uint64_t base, last_stop;
+};
+
+static void count_kind(void *ctx, const struct trace_event *ev)
+{
+    struct kinds *k = ctx;
+    k->n[ev->kind]++;
+    if (ev->kind == TRACE_ROW || ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN) {
+        uint64_t stop = k->base + ev->index + 1;
+        if (stop != k->last_stop)
+            k->group_stops++, k->last_stop = stop;
+    }
+}
+
+/* The scene drawn by the variant with only the first `n` events happening
+ * (n = UINT64_MAX: all), into fb. Returns the number of events that happened;
+ * counts every kind of event and the row/block/span stops into *k. */
+static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *s, uint64_t n,
+                           struct target *fb, struct kinds *k)
+{
+    cr_assert(target_init(fb, s->w, s->h, scene_background(s)));
+    struct raster_params p = default_params();
+    p.checker = s->checker;
+    uint64_t done = 0;
+    struct kinds local = { 0 };
+    if (!k)
+        k = &local;
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        struct trace tr = { .sink = count_kind, .ctx = k };
+        k->base = done;
+        trace_begin(&tr, (uint32_t)i, n - done);
+        l->variants[variant].rasterize(&t, &p, fb, &tr);
+        uint64_t happened = tr.count < n - done ? tr.count : n - done;
+        done += happened;
+        /* the triangle's end is a stop too (the group stop may coincide) */
+        if (happened == tr.count && done != k->last_stop)
+            k->group_stops++, k->last_stop = done;
+    }
+    return done;
+}
+
+static bool targets_equal(const struct target *a, const struct target *b)
+{
+    size_t n = (size_t)a->w * (size_t)a->h;
+    return a->w == b->w && a->h == b->h && memcmp(a->color, b->color, n * 4) == 0
+           && memcmp(a->depth, b->depth, n * sizeof *a->depth) == 0
+           && memcmp(a->count, b->count, n) == 0;
+}
+
+/* --- the explorer's state, field by field ------------------------------------------- */
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 0x100000001b3u;
+    return h;
+}
+
+/* A hash of everything a picture is made of at the current step: the target,
+ * the cells (field by field: no padding bytes), counters, position. */
+static uint64_t state_hash(const struct explorer *ex)
+{
+    uint64_t h = 0xcbf29ce484222325u;
+    size_t n = (size_t)ex->fb.w * (size_t)ex->fb.h;
+    h = fnv(h, ex->fb.color, n * 4);
+    h = fnv(h, ex->fb.depth, n * sizeof *ex->fb.depth);
+    h = fnv(h, ex->fb.count, n);
+    for (int y = 0; y < ex->cell_h; y++)
+        for (int x = 0; x < ex->cell_w; x++) {
+            const struct cell *c = explorer_cell(ex, ex->cell_x0 + x, ex->cell_y0 + y);
+            h = fnv(h, c->e, sizeof c->e);
+            h = fnv(h, c->bary, sizeof c->bary);
+            h = fnv(h, c->aux, sizeof c->aux);
+            h = fnv(h, &c->z, sizeof c->z);
+            h = fnv(h, &c->rgba, sizeof c->rgba);
+            h = fnv(h, &c->flags, 1);
+            h = fnv(h, &c->klass, 1);
+        }
+    int pos[5] = { ex->cur, ex->focus, ex->cell_x0, ex->cell_y0, ex->cell_w * 65536 + ex->cell_h };
+    h = fnv(h, pos, sizeof pos);
+    h = fnv(h, &ex->local, sizeof ex->local);
+    h = fnv(h, &ex->tri_c, sizeof ex->tri_c);
+    h = fnv(h, &ex->extra, sizeof ex->extra);
+    h = fnv(h, &ex->missing, sizeof ex->missing);
+    return h;
+}
+
+/* A hash of the painted frame (small, so that every step can be painted). */
+static uint64_t picture_hash(struct explorer *ex)
+{
+    enum { W = 420, H = 300 };
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
+    cairo_t *cr = cairo_create(img);
+    explorer_paint(ex, cr, W, H);
+    cr_assert_eq(cairo_status(cr), CAIRO_STATUS_SUCCESS);
+    cairo_destroy(cr);
+    cairo_surface_flush(img);
+    uint64_t h = fnv(0xcbf29ce484222325u, cairo_image_surface_get_data(img),
+                     (size_t)cairo_image_surface_get_stride(img) * H);
+    cairo_surface_destroy(img);
+    return h;
+}
+
+/* --- counts per step kind ---------------------------------------------------------- */
+
+static uint64_t walk(struct explorer *ex, enum step_unit unit)
+{
+    cr_assert(explorer_set_step(ex, 0));
+    uint64_t steps = 0, prev = 0;
+    while (ex->step < ex->replay.total) {
+        cr_assert(explorer_move(ex, unit, +1));
+        cr_assert_gt(ex->step, prev, "a step forward must move forward");
+        prev = ex->step;
+        steps++;
+    }
+    return steps;
+}
+
+Test(explorer, counts_per_step_kind)
+{
+    for (int li = 0; all_lessons[li]; li++)
+        for (int kind = 0; kind < SCENE_KINDS; kind++) {
+            const struct lesson *l = all_lessons[li];
+            struct scene s;
+            if (!load_scene(l, kind, &s))
+                continue;
+            struct target fb;
+            struct kinds k = { .last_stop = 0 };
+            uint64_t total = run_frozen(l, 0, &s, UINT64_MAX, &fb, &k);
+            target_free(&fb);
+            struct explorer ex;
+            open_explorer(&ex, l, &s);
+            cr_assert_eq(ex.replay.total, total, "%s scene %d: total events", l->id, kind);
+            cr_assert_eq(k.n[TRACE_SETUP], (uint64_t)s.ntris, "%s: one setup event a triangle",
+                         l->id);
+            /* one event at a time replays the current triangle each time:
+             * walked on scenes of modest size only */
+            if (total <= 5000)
+                cr_assert_eq(walk(&ex, STEP_EVENT), total, "%s scene %d: event steps", l->id,
+                             kind);
+            cr_assert_eq(walk(&ex, STEP_TRIANGLE), (uint64_t)s.ntris,
+                         "%s scene %d: triangle steps", l->id, kind);
+            cr_assert_eq(walk(&ex, STEP_GROUP), k.group_stops,
+                         "%s scene %d: row/block/span steps", l->id, kind);
+            explorer_free(&ex);
+            scene_free(&s);
+        }
+}
+
+/* --- forward then back --------------------------------------------------------------- */
+
+Test(explorer, forward_then_back_is_identical)
+{
+    struct rng r = rng_for(0xf0ba);
+    for (int li = 0; all_lessons[li]; li++)
+        for (int kind = 0; kind < SCENE_KINDS; kind++) {
+            const struct lesson *l = all_lessons[li];
+            struct scene s;
+            if (!load_scene(l, kind, &s))
+                continue;
+            struct explorer ex;
+            open_explorer(&ex, l, &s);
+            uint64_t total = ex.replay.total;
+            for (int trial = 0; trial < 12; trial++) {
+                enum step_unit unit = (enum step_unit)(trial % 3);
+                uint64_t at = (uint64_t)rng_int(&r, 0, (int)(total - 1));
+                cr_assert(explorer_set_step(&ex, at));
+                if (unit != STEP_EVENT) {
+                    /* start at a stop of this unit, so that back lands on it */
+                    cr_assert(explorer_move(&ex, unit, +1));
+                    if (ex.step >= total)
+                        cr_assert(explorer_move(&ex, unit, -1));
+                }
+                uint64_t s0 = ex.step, h0 = state_hash(&ex);
+                cr_assert(explorer_move(&ex, unit, +1));
+                cr_assert(explorer_move(&ex, unit, -1));
+                cr_assert_eq(ex.step, s0, "%s scene %d unit %d: back to step %llu", l->id, kind,
+                             unit, (unsigned long long)s0);
+                cr_assert_eq(state_hash(&ex), h0, "%s scene %d unit %d: state at step %llu",
+                             l->id, kind, unit, (unsigned long long)s0);
+            }
+            explorer_free(&ex);
+            scene_free(&s);
+        }
+}
+
+/* --- replay of N is the lesson stopped after N events ------------------------------ */
+
+Test(explorer, replay_equals_frozen_run)
+{
+    struct rng r = rng_for(0x4e9a);
+    for (int li = 0; all_lessons[li]; li++)
+        for (int kind = 0; kind < SCENE_KINDS; kind++) {
+            const struct lesson *l = all_lessons[li];
+            struct scene s;
+            if (!load_scene(l, kind, &s))
+                continue;
+            for (int v = 0; v < l->nvariants; v++) {
+                struct explorer ex;
+                struct explorer_desc d = { .lesson = l, .scene = &s, .variant = &l->variants[v] };
+                cr_assert(explorer_init(&ex, &d));
+                uint64_t total = ex.replay.total;
+                uint64_t steps[8] = { 0, 1, total / 2, total - 1, total };
+                for (int i = 5; i < 8; i++)
+                    steps[i] = (uint64_t)rng_int(&r, 0, (int)total);
+                for (int i = 0; i < 8; i++) {
+                    cr_assert(explorer_set_step(&ex, steps[i]));
+                    struct target fb;
+                    uint64_t done = run_frozen(l, v, &s, steps[i], &fb, NULL);
+                    cr_assert_eq(done, steps[i]);
+                    cr_assert(targets_equal(&ex.fb, &fb), "%s/%s scene %d: picture at step %llu",
+                              l->id, l->variants[v].name, kind, (unsigned long long)steps[i]);
+                    target_free(&fb);
+                }
+                explorer_free(&ex);
+            }
+            scene_free(&s);
+        }
+}
+
+/* --- stepping back from the end reproduces every picture ---------------------------- */
+
+Test(explorer, back_from_end_reproduces_every_picture)
+{
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct scene s;
+        cr_assert(load_scene(l, SCENE_RANDOM, &s));
+        struct explorer ex;
+        open_explorer(&ex, l, &s);
+        uint64_t total = ex.replay.total;
+        /* paint every step of lesson 02 (the issue's acceptance case); the
+         * state behind the picture for every step of the others */
+        bool paint = strncmp(l->id, "02", 2) == 0;
+        uint64_t *hash = calloc(total + 1, sizeof *hash);
+        cr_assert(hash);
+        ex.view = VIEW_COVERAGE;
+        for (uint64_t i = 0;; i++) {
+            cr_assert_eq(ex.step, i);
+            hash[i] = paint ? picture_hash(&ex) : state_hash(&ex);
+            if (i == total)
+                break;
+            cr_assert(explorer_move(&ex, STEP_EVENT, +1));
+        }
+        for (uint64_t i = total; i-- > 0;) {
+            cr_assert(explorer_move(&ex, STEP_EVENT, -1));
+            cr_assert_eq(ex.step, i);
+            uint64_t h = paint ? picture_hash(&ex) : state_hash(&ex);
+            cr_assert_eq(h, hash[i], "%s: the picture of step %llu differs going back", l->id,
+                         (unsigned long long)i);
+        }
+        free(hash);
+        explorer_free(&ex);
+        scene_free(&s);
+    }
+}
+
+/* --- dragging a vertex keeps the step ---------------------------------------------- */
+
+Test(explorer, drag_keeps_step)
+{
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct scene s;
+        cr_assert(load_scene(l, SCENE_BUILTIN, &s));
+        struct explorer ex;
+        open_explorer(&ex, l, &s);
+        uint64_t at = ex.replay.total / 3;
+        cr_assert(explorer_set_step(&ex, at));
+        int focus = ex.focus;
+        /* vertex A after setup is the scene's first vertex */
+        double x = ex.scene.tris[focus].v[0].x + 0.3, y = ex.scene.tris[focus].v[0].y - 0.7;
+        cr_assert(explorer_move_vertex(&ex, 0, x, y));
+        cr_assert_eq(ex.step, at, "%s: the step moved with the vertex", l->id);
+        cr_assert_eq(ex.scene.tris[focus].v[0].x, (double)lrint(x * 256) / 256, "%s", l->id);
+        cr_assert_eq(ex.scene.tris[focus].v[0].y, (double)lrint(y * 256) / 256, "%s", l->id);
+        /* the lesson re-ran: the picture is the moved scene's, frozen at the step */
+        struct target fb;
+        run_frozen(l, 0, &ex.scene, at, &fb, NULL);
+        cr_assert(targets_equal(&ex.fb, &fb), "%s: picture after the drag", l->id);
+        target_free(&fb);
+        explorer_free(&ex);
+        scene_free(&s);
+    }
+}
+
+/* --- views ----------------------------------------------------------------------------- */
+
+Test(explorer, every_listed_view_is_accepted)
+{
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct scene s;
+        cr_assert(load_scene(l, SCENE_BUILTIN, &s));
+        struct explorer ex;
+        open_explorer(&ex, l, &s);
+        cr_assert_geq(explorer_view_count(&ex), VIEW_BUILTIN_COUNT);
+        for (int v = 0; v < explorer_view_count(&ex); v++) {
+            ex.edge = -1;
+            char name[64];
+            snprintf(name, sizeof name, "%s", explorer_view_name(&ex, v));
+            ex.view = VIEW_COLOR;
+            cr_assert(explorer_set_view_name(&ex, name), "%s: view '%s'", l->id, name);
+            cr_assert_eq(ex.view, v, "%s: view '%s'", l->id, name);
+        }
+        const char *edges[] = { "edge-ab", "edge-bc", "edge-ca" };
+        for (int k = 0; k < 3; k++) {
+            cr_assert(explorer_set_view_name(&ex, edges[k]));
+            cr_assert_eq(ex.view, VIEW_EDGES);
+            cr_assert_eq(ex.edge, k);
+        }
+        cr_assert_not(explorer_set_view_name(&ex, "colour-of-money"));
+        explorer_free(&ex);
+        scene_free(&s);
+    }
+}
+
+/* --- scale: 200,000 small triangles at 1920x1080 ---------------------------------- */
+
+/* What the explorer holds, counted from its own fields. */
+static size_t explorer_bytes(const struct explorer *ex)
+{
+    size_t px = sizeof(uint32_t) + sizeof(float) + 1;   /* colour, depth, count */
+    size_t n = 0;
+    const struct target *t[] = { &ex->fb, &ex->scratch, &ex->exact, &ex->replay.base };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        if (t[i]->color)
+            n += (size_t)t[i]->w * (size_t)t[i]->h * px;
+    n += (size_t)ex->scene.cap * sizeof *ex->scene.tris;
+    n += (size_t)(ex->replay.ntris + 1) * (sizeof *ex->replay.start + sizeof *ex->replay.sums);
+    n += ex->cell_cap * sizeof *ex->cells + ex->marks_cap * sizeof *ex->marks;
+    if (ex->diff)
+        n += (size_t)ex->scene.w * (size_t)ex->scene.h;
+    return n;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec / 1e6;
+}
+
+Test(explorer, scale_200k_triangles, .timeout = 120)
+{
+    enum { W = 1920, H = 1080, N = 200000 };
+    struct scene s = { .w = W, .h = H };
+    struct rng r = rng_for(0x200000);
+    for (int i = 0; i < N; i++) {
+        double x = rng_range(&r, 0, W - 4), y = rng_range(&r, 0, H - 4);
+        struct vertex v[3] = { test_vertex(x, y), test_vertex(x + rng_range(&r, 0.5, 4), y + 0.3),
+                               test_vertex(x + 0.2, y + rng_range(&r, 0.5, 4)) };
+        cr_assert(scene_add(&s, v));
+    }
+    const struct lesson *l = all_lessons[0];
+    for (int li = 0; all_lessons[li]; li++)
+        if (strncmp(all_lessons[li]->id, "02", 2) == 0)
+            l = all_lessons[li];
+    double t0 = now_ms();
+    struct explorer ex;
+    open_explorer(&ex, l, &s);
+    double t1 = now_ms();
+    uint64_t total = ex.replay.total;
+    cr_assert_eq(ex.replay.ntris, N);
+    cr_assert(explorer_set_step(&ex, total / 2));
+    int mid = 0;
+    while (ex.replay.start[mid + 1] < total / 2)
+        mid++;
+    cr_assert_eq(ex.cur, mid, "the triangle of the middle step");
+    double t2 = now_ms();
+    cr_assert(explorer_move(&ex, STEP_TRIANGLE, +1));
+    cr_assert(explorer_move(&ex, STEP_EVENT, -1));
+    cr_assert(explorer_set_step(&ex, total));
+    cr_assert_eq(ex.cur, N - 1);
+    double t3 = now_ms();
+    cr_assert(explorer_set_step(&ex, total - 1));
+    cr_assert(explorer_set_step(&ex, total / 2 + 1));
+    double t4 = now_ms();
+    size_t bytes = explorer_bytes(&ex);
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    cr_log_info("200,000 triangles: %llu events; init %.0f ms, middle %.0f ms, end %.0f ms, "
+                "back and forth %.0f ms; explorer holds %.1f MiB, peak RSS %.1f MiB",
+                (unsigned long long)total, t1 - t0, t2 - t1, t3 - t2, t4 - t3,
+                (double)bytes / 1048576, (double)ru.ru_maxrss / 1024);
+    cr_assert_lt(bytes, (size_t)256 << 20, "the explorer holds %zu bytes", bytes);
+    cr_assert_lt((size_t)ru.ru_maxrss * 1024, (size_t)1 << 30, "peak RSS %ld KiB", ru.ru_maxrss);
+    explorer_free(&ex);
+    scene_free(&s);
+}
