@@ -53,3 +53,22 @@ Test(readme, catalogue_lists_no_lesson_that_does_not_exist)
         lessons++;
     cr_expect_eq(rows, lessons, "README catalogue has %d rows for %d lessons", rows, lessons);
 }
+
+Test(readme, every_picture_it_shows_exists)
+{
+    char *text = read_readme();
+    int pictures = 0;
+    for (char *p = strstr(text, "figures/"); p; p = strstr(p + 1, "figures/")) {
+        size_t n = strcspn(p, "\")> \n");
+        if (n < 12 || strncmp(p + n - 4, ".png", 4) != 0)
+            continue;
+        char path[256];
+        snprintf(path, sizeof path, "%.*s", (int)n, p);
+        FILE *f = fopen(path, "rb");
+        cr_expect_not_null(f, "README.md shows %s, which does not exist", path);
+        if (f)
+            fclose(f);
+        pictures++;
+    }
+    cr_expect_gt(pictures, 0, "README.md shows no picture");
+}
