@@ -6,7 +6,7 @@
 # other system prints the packages to install and fails. MODE is what is
 # about to be built:
 #   build   SDL2, cairo, Pango, DejaVu fonts  (make, make run, make figures)
-#   test    the above, Criterion, Xvfb and xdotool  (make test)
+#   test    the above, Criterion, Xvfb, xdotool and ImageMagick's import  (make test)
 #   bench   the above, OSMesa for the llvmpipe peer  (make bench)
 # With OUT, writes the compiler and linker flags as a makefile fragment.
 set -eu
@@ -17,8 +17,8 @@ pc="sdl2 cairo pangocairo"
 deb="pkg-config libsdl2-dev libcairo2-dev libpango1.0-dev fonts-dejavu-core"
 other="SDL2, cairo, Pango (with pangocairo), DejaVu fonts, pkg-config"
 case $mode in
-  test)  pc="$pc criterion"; deb="$deb libcriterion-dev xvfb xdotool x11-apps"
-         other="$other, Criterion, Xvfb, xdotool" ;;
+  test)  pc="$pc criterion"; deb="$deb libcriterion-dev xvfb xdotool x11-apps imagemagick"
+         other="$other, Criterion, Xvfb, xdotool, ImageMagick" ;;
   bench) pc="$pc osmesa"; deb="$deb libosmesa6-dev"; other="$other, OSMesa (Mesa)" ;;
 esac
 
@@ -28,7 +28,8 @@ missing() {
   [ -f /usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf ] || printf 'fonts-dejavu '
   case $mode in test)
     command -v Xvfb >/dev/null 2>&1 || printf 'Xvfb '
-    command -v xdotool >/dev/null 2>&1 || printf 'xdotool ' ;;
+    command -v xdotool >/dev/null 2>&1 || printf 'xdotool '
+    command -v import >/dev/null 2>&1 || printf 'import(ImageMagick) ' ;;
   esac
 }
 
@@ -44,7 +45,7 @@ if [ -n "$need" ]; then
   else
     echo "tristep: missing $need. Please install: $other." >&2
     echo "  Debian/Ubuntu: apt-get install $deb" >&2
-    echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel mesa-libOSMesa-devel xorg-x11-server-Xvfb xdotool" >&2
+    echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel mesa-libOSMesa-devel xorg-x11-server-Xvfb xdotool ImageMagick" >&2
     echo "  macOS (Homebrew): brew install pkg-config sdl2 cairo pango criterion font-dejavu" >&2
     exit 1
   fi

@@ -1,0 +1,456 @@
+/* test_window.c - the real explorer program, driven as a user drives it.
+ *
+ * Under SDL's dummy video driver a --keys script steps, switches views,
+ * exports and quits; the exported PNG must be the very figure that --figure
+ * draws for the same step, view and size. Under Xvfb the window receives
+ * real key presses and a vertex drag from xdotool, and a screenshot of the
+ * screen must be that same figure, pixel for pixel.
+ *
+ * Xvfb, xdotool and ImageMagick's `import` are test dependencies (`make test`
+ * installs them): without them the Xvfb test fails, it does not pass quietly.
+ */
+#define _XOPEN_SOURCE 700         /* mkdtemp, kill, nanosleep, putenv */
+
+#include <cairo.h>
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "draw/explorer.h"
+#include "testlib.h"
+
+#define PROGRAM "02-barycentric"
+#define WIN_W 1280
+#define WIN_H 800
+
+/* --- processes ----------------------------------------------------------------------- */
+
+static char dir[256];                   /* the test's working folder */
+static pid_t xvfb_pid = -1, app_pid = -1;
+
+static void sleep_ms(int ms)
+{
+    struct timespec t = { ms / 1000, (long)(ms % 1000) * 1000000L };
+    nanosleep(&t, NULL);
+}
+
+/* Start argv in `dir` with extra environment "NAME=VALUE" entries, stdout
+ * and stderr into files of dir; returns the pid. */
+static pid_t start(char *const argv[], const char *const env[], const char *out, const char *err)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    cr_assert_neq(pid, -1, "fork: %s", strerror(errno));
+    if (pid == 0) {
+        if (chdir(dir) != 0)
+            _exit(126);
+        for (int i = 0; env && env[i]; i++)
+            putenv((char *)env[i]);
+        int in = open("/dev/null", O_RDONLY);
+        int o = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int e = open(err ? err : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || o < 0 || e < 0)
+            _exit(126);
+        dup2(in, 0), dup2(o, 1), dup2(e, 2);
+        execvp(argv[0], argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* Wait for pid at most ms milliseconds; returns its exit status, or -1 if
+ * it is still running (then it is killed). */
+static int finish(pid_t *pid, int ms)
+{
+    int st;
+    for (int t = 0; t <= ms; t += 20) {
+        pid_t got = waitpid(*pid, &st, WNOHANG);
+        if (got == *pid) {
+            *pid = -1;
+            return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+        }
+        sleep_ms(20);
+    }
+    kill(*pid, SIGKILL);
+    waitpid(*pid, &st, 0);
+    *pid = -1;
+    return -1;
+}
+
+/* Run to the end (at most ms); returns the exit status, -1 on a timeout. */
+static int run(char *const argv[], const char *const env[], const char *out, const char *err,
+               int ms)
+{
+    pid_t pid = start(argv, env, out, err);
+    return finish(&pid, ms);
+}
+
+static void make_dir(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/tristep-window-XXXXXX");
+    cr_assert(mkdtemp(dir), "mkdtemp: %s", strerror(errno));
+}
+
+/* Every path, a failed assertion included: stop what we started, remove dir. */
+static void cleanup(void)
+{
+    if (app_pid > 0)
+        finish(&app_pid, 0);
+    if (xvfb_pid > 0) {
+        kill(xvfb_pid, SIGTERM);
+        if (finish(&xvfb_pid, 2000) == -1)
+            xvfb_pid = -1;
+    }
+    if (!dir[0])
+        return;
+    DIR *d = opendir(dir);
+    if (d) {
+        struct dirent *e;
+        char p[600];
+        while ((e = readdir(d)))
+            if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
+                snprintf(p, sizeof p, "%s/%s", dir, e->d_name), unlink(p);
+        closedir(d);
+    }
+    rmdir(dir);
+    dir[0] = '\0';
+}
+
+static const char *in_dir(const char *name)
+{
+    static char p[4][600];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(p[k], sizeof p[k], "%s/%s", dir, name);
+    return p[k];
+}
+
+static const char *program(void)
+{
+    static char p[512];
+    const char *b = test_build_dir();
+    if (b[0] == '/')
+        snprintf(p, sizeof p, "%s/%s", b, PROGRAM);
+    else {
+        char cwd[400];
+        cr_assert(getcwd(cwd, sizeof cwd));
+        snprintf(p, sizeof p, "%s/%s/%s", cwd, b, PROGRAM);
+    }
+    cr_assert_eq(access(p, X_OK), 0, "%s: not built (TRISTEP_BUILD=%s)", p, b);
+    return p;
+}
+
+static char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap + 1);
+    size_t got;
+    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            char *b = realloc(buf, 2 * cap + 1);
+            if (!b)
+                free(buf);
+            buf = b, cap *= 2;
+        }
+    }
+    fclose(f);
+    if (buf)
+        buf[n] = '\0';
+    if (len)
+        *len = n;
+    return buf;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert(f, "%s: %s", path, strerror(errno));
+    fputs(text, f);
+    cr_assert_eq(fclose(f), 0);
+}
+
+/* --- pictures ---------------------------------------------------------------------- */
+
+static cairo_surface_t *load_png(const char *path)
+{
+    cairo_surface_t *s = cairo_image_surface_create_from_png(path);
+    cr_assert_eq(cairo_surface_status(s), CAIRO_STATUS_SUCCESS, "%s: not a readable PNG: %s",
+                 path, cairo_status_to_string(cairo_surface_status(s)));
+    return s;
+}
+
+static uint32_t pixel(cairo_surface_t *s, int x, int y)
+{
+    cairo_surface_flush(s);
+    const unsigned char *d = cairo_image_surface_get_data(s);
+    return *(const uint32_t *)(d + (size_t)y * (size_t)cairo_image_surface_get_stride(s)
+                               + (size_t)x * 4) & 0xffffff;
+}
+
+/* How many pixels of two same-sized pictures differ in colour (in a box). */
+static long differing(cairo_surface_t *a, cairo_surface_t *b, int x0, int y0, int x1, int y1)
+{
+    long n = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++)
+            n += pixel(a, x, y) != pixel(b, x, y);
+    return n;
+}
+
+static void assert_svg(const char *path)
+{
+    size_t n;
+    char *t = read_all(path, &n);
+    cr_assert(t, "%s: missing", path);
+    cr_assert(strncmp(t, "<?xml", 5) == 0 && strstr(t, "<svg") && strstr(t, "</svg>"),
+              "%s: not an SVG document", path);
+    free(t);
+}
+
+/* The figure the program draws headless for this step and view. */
+static cairo_surface_t *figure(const char *name, const char *step, const char *view)
+{
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--figure", (char *)name, "--step", (char *)step,
+                     "--view", (char *)view, "--size", size, NULL };
+    cr_assert_eq(run(argv, NULL, NULL, "figure.err", 30000), 0, "--figure %s failed", name);
+    return load_png(in_dir(name));
+}
+
+/* --- under SDL's dummy driver --------------------------------------------------------- */
+
+static const char *const dummy_env[] = { "SDL_VIDEODRIVER=dummy", "SDL_RENDER_VSYNC=0", NULL };
+
+Test(window, dummy_driver_keys_step_switch_views_export_quit, .fini = cleanup, .timeout = 60)
+{
+    make_dir();
+    /* to step 3, coverage view, export; a tour of every key that changes
+     * nothing lasting; back to step 3 in the colour view, export, quit */
+    write_text(in_dir("keys"),
+               "Right\nRight\nRight\nv\ne\n"
+               "Shift+Right\nCtrl+Right\nEnd\nHome\nPageDown\nPageUp\n"
+               "h\nwait\nF1\nn\nn\nn\n1\n0\n+\nKeypad +\n-\nKeypad -\n"
+               "drag 10 10 60 40\nf\nwait\n"
+               "Right\nRight\nRight\nShift+v\nShift+v\nSpace\nSpace\nHome\nRight\nRight\n"
+               "Right\ne\nx\nx\nx\nt\nEnd\nq\nRight\n");
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--keys", "keys", "--size", size, NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    char *err = read_all(in_dir("err"), NULL), *out = read_all(in_dir("out"), NULL);
+    cr_assert_eq(st, 0, "exit status %d; stderr:\n%s", st, err ? err : "");
+    const char *png1 = "tristep-" PROGRAM "-step3-coverage.png";
+    const char *svg1 = "tristep-" PROGRAM "-step3-coverage.svg";
+    const char *png2 = "tristep-" PROGRAM "-step3-color.png";
+    const char *svg2 = "tristep-" PROGRAM "-step3-color.svg";
+    cr_assert(out && strstr(out, png1) && strstr(out, svg1) && strstr(out, png2)
+              && strstr(out, svg2), "the export messages name the files; stdout:\n%s",
+              out ? out : "");
+    free(err);
+    free(out);
+    assert_svg(in_dir(svg1));
+    assert_svg(in_dir(svg2));
+    /* the exports are the figures of step 3, byte for byte */
+    const char *pairs[2][2] = { { png1, "coverage" }, { png2, "color" } };
+    for (int i = 0; i < 2; i++) {
+        cairo_surface_t *got = load_png(in_dir(pairs[i][0]));
+        cr_assert_eq(cairo_image_surface_get_width(got), WIN_W);
+        cr_assert_eq(cairo_image_surface_get_height(got), WIN_H);
+        cairo_surface_t *want = figure("want.png", "3", pairs[i][1]);
+        cr_assert_eq(differing(got, want, 0, 0, WIN_W, WIN_H), 0,
+                     "%s differs from --figure --step 3 --view %s", pairs[i][0], pairs[i][1]);
+        cairo_surface_destroy(got);
+        cairo_surface_destroy(want);
+    }
+}
+
+Test(window, sdl_failure_names_the_call, .fini = cleanup, .timeout = 30)
+{
+    make_dir();
+    const char *const env[] = { "SDL_VIDEODRIVER=no-such-driver", NULL };
+    char *argv[] = { (char *)program(), NULL };
+    int st = run(argv, env, NULL, "err", 20000);
+    char *err = read_all(in_dir("err"), NULL);
+    cr_assert_eq(st, 1, "exit status %d", st);
+    cr_assert(err && strstr(err, "SDL_Init failed: ") && strlen(strstr(err, "failed: ")) > 10,
+              "the message names the call and SDL's reason:\n%s", err ? err : "");
+    free(err);
+}
+
+Test(window, keys_file_missing_is_a_usage_error, .fini = cleanup, .timeout = 30)
+{
+    make_dir();
+    char *argv[] = { (char *)program(), "--keys", "no-such-file", NULL };
+    int st = run(argv, dummy_env, NULL, "err", 20000);
+    cr_assert_eq(st, 2, "exit status %d", st);
+}
+
+/* --- under Xvfb, with xdotool ----------------------------------------------------------- */
+
+static int xdotool(const char *display, const char *const args[])
+{
+    char *argv[32] = { "xdotool" };
+    int n = 1;
+    for (int i = 0; args[i] && n < 31; i++)
+        argv[n++] = (char *)args[i];
+    argv[n] = NULL;
+    char denv[32];
+    snprintf(denv, sizeof denv, "DISPLAY=%s", display);
+    const char *const env[] = { denv, NULL };
+    return run(argv, env, "xdotool.out", "xdotool.err", 15000);
+}
+
+static cairo_surface_t *screenshot(const char *display, const char *name)
+{
+    char *argv[] = { "import", "-display", (char *)display, "-window", "root", (char *)name, NULL };
+    int st = run(argv, NULL, NULL, "import.err", 30000);
+    cr_assert_eq(st, 0, "import (ImageMagick) failed with %d: make test installs it", st);
+    return load_png(in_dir(name));
+}
+
+/* Start Xvfb on the first free display from :91; returns its name. */
+static const char *start_xvfb(void)
+{
+    static char display[16];
+    for (int n = 91; n < 140; n++) {
+        char lock[64], sock[64];
+        snprintf(lock, sizeof lock, "/tmp/.X%d-lock", n);
+        snprintf(sock, sizeof sock, "/tmp/.X11-unix/X%d", n);
+        if (access(lock, F_OK) == 0 || access(sock, F_OK) == 0)
+            continue;
+        snprintf(display, sizeof display, ":%d", n);
+        /* `timeout` ends it even if this process dies before cleanup */
+        char *argv[] = { "timeout", "120", "Xvfb", display, "-screen", "0", "1280x800x24",
+                         "-nolisten", "tcp", NULL };
+        xvfb_pid = start(argv, NULL, NULL, "xvfb.err");
+        for (int t = 0; t < 5000; t += 50) {
+            if (access(sock, F_OK) == 0)
+                return display;
+            int st;
+            if (waitpid(xvfb_pid, &st, WNOHANG) == xvfb_pid) {
+                xvfb_pid = -1;
+                cr_assert(!(WIFEXITED(st) && WEXITSTATUS(st) == 127),
+                          "Xvfb is not installed (make test installs it)");
+                break;          /* display taken after all: try the next */
+            }
+            sleep_ms(50);
+        }
+        if (xvfb_pid > 0) {
+            kill(xvfb_pid, SIGTERM);
+            finish(&xvfb_pid, 2000);
+        }
+    }
+    cr_assert_fail("no display number for Xvfb in :91..:139");
+    return NULL;
+}
+
+Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
+{
+    make_dir();
+    const char *version[] = { "--version", NULL };
+    cr_assert_eq(xdotool(":0", version), 0, "xdotool is not installed (make test installs it)");
+    const char *display = start_xvfb();
+
+    char denv[32], size[32];
+    snprintf(denv, sizeof denv, "DISPLAY=%s", display);
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    const char *const env[] = { denv, "SDL_RENDER_VSYNC=0", "SDL_VIDEODRIVER=x11", NULL };
+    char *argv[] = { (char *)program(), "--size", size, NULL };
+    app_pid = start(argv, env, "app.out", "app.err");
+
+    char *timeout_argv[] = { "timeout", "15", "xdotool", "search", "--sync", "--onlyvisible",
+                             "--name", "^tristep " PROGRAM, NULL };
+    cr_assert_eq(run(timeout_argv, env, "search.out", "search.err", 20000), 0,
+                 "the window did not appear within 15 s");
+
+    /* the window fills the 1280x800 screen from (0, 0): screen = window
+     * coordinates. Three steps by key. */
+    const char *keys[] = { "mousemove", "3", "3", "key", "--delay", "60", "Right", "Right",
+                           "Right", NULL };
+    cr_assert_eq(xdotool(display, keys), 0);
+    sleep_ms(700);
+    cairo_surface_t *shot = screenshot(display, "shot1.png");
+    cr_assert_eq(cairo_image_surface_get_width(shot), WIN_W);
+
+    /* the panel and the grid where the layout puts them */
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
+    const struct lesson *l = NULL;
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
+            l = all_lessons[i];
+    cr_assert(l);
+    struct explorer ex;
+    struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle" };
+    cr_assert(explorer_init(&ex, &d));
+    struct explorer_layout L;
+    explorer_layout(&ex, WIN_W, WIN_H, &L);
+    cr_assert_eq(pixel(shot, (int)(L.px + L.pw - 6), (int)(L.h / 2)), 0x23262e,
+                 "panel background at its right edge");
+    /* a grid line between two cells in the scene's corner, a cell's inside */
+    int gx = (int)(L.ox + 2 * L.zoom), gy = (int)(L.oy + 2.5 * L.zoom);
+    uint32_t cell = pixel(shot, gx + (int)(L.zoom / 4), gy);
+    cr_assert(pixel(shot, gx - 1, gy) != cell || pixel(shot, gx, gy) != cell,
+              "the grid line at scene x = 2 stands out from the cell");
+
+    /* the same picture as --figure at step 3 in the colour view */
+    cairo_surface_t *want = figure("want.png", "3", "color");
+    long diff = differing(shot, want, 0, 0, WIN_W, WIN_H);
+    cr_assert_eq(diff, 0, "the screen differs from --figure --step 3 in %ld pixels", diff);
+
+    /* drag vertex A by (40, 30) screen pixels: the step stays at 3 */
+    int hx = (int)lrint(L.ox + L.zoom * ex.tri.x[0] / SUBPIXEL_ONE);
+    int hy = (int)lrint(L.oy + L.zoom * ex.tri.y[0] / SUBPIXEL_ONE);
+    cr_assert_eq(explorer_hit_vertex(&ex, &L, hx, hy), 0, "A's handle at (%d, %d)", hx, hy);
+    char x0[16], y0[16], x1[16], y1[16], xm[16], ym[16];
+    snprintf(x0, sizeof x0, "%d", hx), snprintf(y0, sizeof y0, "%d", hy);
+    snprintf(xm, sizeof xm, "%d", hx + 20), snprintf(ym, sizeof ym, "%d", hy + 15);
+    snprintf(x1, sizeof x1, "%d", hx + 40), snprintf(y1, sizeof y1, "%d", hy + 30);
+    const char *drag[] = { "mousemove", x0, y0, "sleep", "0.2", "mousedown", "1", "mousemove", xm,
+                           ym, "sleep", "0.2", NULL };
+    cr_assert_eq(xdotool(display, drag), 0);
+    const char *drop[] = { "mousemove", x1, y1, "sleep", "0.2", "mouseup", "1", "sleep", "0.2",
+                           "mousemove", "3", "3", "sleep", "0.3", "key", "e", NULL };
+    cr_assert_eq(xdotool(display, drop), 0);
+    sleep_ms(1500);
+    cairo_surface_t *shot2 = screenshot(display, "shot2.png");
+    long moved = differing(shot, shot2, (int)L.cx, (int)L.cy, (int)(L.cx + L.cw), (int)(L.cy + L.ch));
+    cr_assert_gt(moved, 200, "the drag changed only %ld pixels of the canvas", moved);
+    cr_assert_eq(pixel(shot2, (int)(L.px + L.pw - 6), (int)(L.h / 2)), 0x23262e);
+    /* A is drawn where it was dropped: the handle's pixels, not the background */
+    cr_assert_neq(pixel(shot2, hx + 40, hy + 30), pixel(shot, hx + 40, hy + 30),
+                  "nothing new drawn at the drop point");
+    struct stat st;
+    char *said = read_all(in_dir("app.out"), NULL);
+    cr_assert_eq(stat(in_dir("tristep-" PROGRAM "-step3-color.png"), &st), 0,
+                 "E after the drag exports step 3: the drag kept the step; stdout:\n%s",
+                 said ? said : "");
+    free(said);
+
+    const char *quit[] = { "key", "q", NULL };
+    cr_assert_eq(xdotool(display, quit), 0);
+    int status = finish(&app_pid, 10000);
+    char *app_err = read_all(in_dir("app.err"), NULL);
+    cr_assert_eq(status, 0, "exit status %d after q; stderr:\n%s", status, app_err ? app_err : "");
+    free(app_err);
+    cairo_surface_destroy(shot);
+    cairo_surface_destroy(shot2);
+    cairo_surface_destroy(want);
+    explorer_free(&ex);
+    scene_free(&s);
+}
