@@ -3,8 +3,10 @@
 #ifndef TRISTEP_LESSON_H
 #define TRISTEP_LESSON_H
 
+#include <cairo.h>
 #include <math.h>
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "raster/raster.h"
 #include "scene/scene.h"
@@ -68,6 +70,25 @@ struct lesson_view {
                  const struct trace_event *write, double rgb[3]);
 };
 
+/* Where a lesson's overlay draws (see `overlay` below). `cr` is the
+ * explorer's cairo context already transformed to scene pixel units: (x, y)
+ * is the scene point x, y (pixel (px, py) is the square px..px+1, its centre
+ * px + 0.5), y down. One screen pixel is `unit` scene pixels, so a line
+ * 2 screen pixels wide is cairo_set_line_width(cr, 2 * c->unit). `label`
+ * writes text in the explorer's font at scene point (x, y) (its top-left
+ * corner), `size` in screen pixels, on a dark backing so it reads over any
+ * cell. `edge_rgb` are the colours the explorer gives the edges AB, BC, CA
+ * (0xRRGGBB), `view` the name of the view shown. */
+struct lesson_canvas {
+    cairo_t *cr;
+    double unit;                        /* scene pixels per screen pixel */
+    const char *view;                   /* "color", "spans", "blocks", ... */
+    uint32_t edge_rgb[3];
+    void (*label)(const struct lesson_canvas *c, double x, double y, const char *text,
+                  double size, uint32_t rgb);
+    void *painter;                      /* the explorer's, for `label` */
+};
+
 struct lesson {
     const char *id;                     /* "02-barycentric", as the program's name */
     const char *title;
@@ -81,6 +102,22 @@ struct lesson {
     unsigned params;                    /* enum lesson_param_flags it reacts to */
     const struct lesson_view *views;    /* views of its own, or NULL */
     int nviews;
+
+    /* Drawings of its own over the canvas, or NULL: called after the
+     * triangle's edges are drawn, in every view (the lesson looks at c->view
+     * to draw only where it means to). `t` is the focus triangle's setup (it
+     * may be empty: area2 == 0), `p` the run's params, `last` the last event
+     * of the step shown (NULL before the first). It draws and returns; the
+     * explorer saves and restores the cairo state around it. */
+    void (*overlay)(const struct lesson_canvas *c, const struct tri_setup *t,
+                    const struct raster_params *p, const struct trace_event *last);
+
+    /* Per-triangle constants for the watch panel's TRIANGLE section, or NULL:
+     * writes a few lines "name = value" (newline-separated, NUL-terminated,
+     * at most n bytes) computed from the focus triangle's setup. Not called
+     * for an empty triangle. */
+    void (*constants)(const struct tri_setup *t, const struct raster_params *p, char *buf,
+                      size_t n);
 };
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);

@@ -36,6 +36,9 @@
  */
 #include "lesson.h"
 
+#include <stdio.h>
+#include <string.h>
+
 static const char *const pseudocode[] = {
     "snap; rotate so 1 is the top vertex, order kept",       /* 0 */
     "case [A] if y2 > y3 (3 on the left), else [B]",         /* 1 */
@@ -431,6 +434,187 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
     }
 }
 
+/* --- what the explorer draws ----------------------------------------------------
+ *
+ * The watch panel's TRIANGLE section: the per-row x increments of the three
+ * edges (formulas (2)-(4) with c = x), the per-pixel colour and depth
+ * increments across a span (formula (1)), and the case. The canvas: in the
+ * spans view the upper and lower halves of the triangle in two tints, the
+ * gradients of luminance and z as arrows from the centroid, and in every view
+ * but the colour view the current scanline with its two edge crossings. */
+
+/* Vertices 1, 2, 3 as the walk names them: 1 on top, the order kept. */
+static void walk_order(const struct tri_setup *t, struct point *p1, struct point *p2,
+                       struct point *p3)
+{
+    int top = 0;
+    if (t->y[1] < t->y[top])
+        top = 1;
+    if (t->y[2] < t->y[top])
+        top = 2;
+    *p1 = point_of(t, top);
+    *p2 = point_of(t, (top + 1) % 3);
+    *p3 = point_of(t, (top + 2) % 3);
+}
+
+/* x per row along p -> q, in pixels; false for a horizontal edge. */
+static bool dx_per_row(const struct point *p, const struct point *q, double *out)
+{
+    if (p->y == q->y)
+        return false;
+    *out = (double)(q->x - p->x) / (double)(q->y - p->y);
+    return true;
+}
+
+static size_t put(char *buf, size_t n, size_t at, const char *name, const struct point *p,
+                  const struct point *q)
+{
+    if (at >= n)
+        return at;
+    double d;
+    int k = dx_per_row(p, q, &d) ? snprintf(buf + at, n - at, "%s = %.4g", name, d)
+                                  : snprintf(buf + at, n - at, "%s = flat", name);
+    return k < 0 ? at : at + (size_t)k;
+}
+
+static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf,
+                      size_t n)
+{
+    (void)p;
+    struct point p1, p2, p3;
+    walk_order(t, &p1, &p2, &p3);
+    struct gradient g = gradient_of(t, &p1, &p2, &p3);
+    size_t at = 0;
+    buf[0] = '\0';
+    at = put(buf, n, at, "Dc12", &p1, &p2);
+    at = put(buf, n, at, ", Dc13", &p1, &p3);
+    at = put(buf, n, at, ", Dc23", &p2, &p3);
+    if (at < n)
+        snprintf(buf + at, n - at,
+                 " px/row\n"
+                 "Dc r = %.4g, g = %.4g, b = %.4g, z = %.4g /px\n"
+                 "case = %s\n",
+                 g.dc[ATTR_R], g.dc[ATTR_G], g.dc[ATTR_B], g.dc[ATTR_Z],
+                 p2.y > p3.y ? "[A] (3 is the middle vertex, on the left)"
+                             : "[B] (2 is the middle vertex, on the right)");
+}
+
+static void arrow(cairo_t *cr, double x, double y, double dx, double dy, double len, double unit)
+{
+    double d = hypot(dx, dy);
+    if (!(d > 0))
+        return;
+    dx /= d, dy /= d;
+    double ex = x + dx * len, ey = y + dy * len, h = 9 * unit;
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, ex, ey);
+    cairo_stroke(cr);
+    cairo_move_to(cr, ex, ey);
+    cairo_line_to(cr, ex - dx * h - dy * h * 0.5, ey - dy * h + dx * h * 0.5);
+    cairo_line_to(cr, ex - dx * h + dy * h * 0.5, ey - dy * h - dx * h * 0.5);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+}
+
+/* The change of an attribute per pixel in y, from the plane through the
+ * three vertices (the companion of formula (1)). */
+static double per_row(const struct tri_setup *t, const struct point *p1, const struct point *p2,
+                      const struct point *p3, int i)
+{
+    double x21 = (double)(p2->x - p1->x), x31 = (double)(p3->x - p1->x);
+    double num = (p3->c[i] - p1->c[i]) * x21 - (p2->c[i] - p1->c[i]) * x31;
+    return num * SUBPIXEL_ONE / (double)t->area2;
+}
+
+static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
+                    const struct raster_params *p, const struct trace_event *last)
+{
+    (void)p;
+    if (t->area2 <= 0)
+        return;
+    cairo_t *cr = c->cr;
+    bool spans = strcmp(c->view, "spans") == 0;
+    struct point p1, p2, p3;
+    walk_order(t, &p1, &p2, &p3);
+    bool case_a = p2.y > p3.y;
+    const struct point *mid = case_a ? &p3 : &p2, *bottom = case_a ? &p2 : &p3;
+    double s = 1.0 / SUBPIXEL_ONE;
+    double x1 = p1.x * s, y1 = p1.y * s, xm = mid->x * s, ym = mid->y * s;
+    double xb = bottom->x * s, yb = bottom->y * s;
+    /* point A of "Draw X": the long edge 1 -> bottom at the middle vertex's height */
+    double xa = yb > y1 ? x1 + (xb - x1) * (ym - y1) / (yb - y1) : xm;
+
+    if (spans) {
+        cairo_move_to(cr, x1, y1);
+        cairo_line_to(cr, xm, ym);
+        cairo_line_to(cr, xa, ym);
+        cairo_close_path(cr);
+        cairo_set_source_rgba(cr, 0.62, 0.45, 1.00, 0.30);    /* upper half */
+        cairo_fill(cr);
+        cairo_move_to(cr, xm, ym);
+        cairo_line_to(cr, xa, ym);
+        cairo_line_to(cr, xb, yb);
+        cairo_close_path(cr);
+        cairo_set_source_rgba(cr, 1.00, 0.60, 0.20, 0.28);    /* lower half */
+        cairo_fill(cr);
+        cairo_set_line_width(cr, 1.5 * c->unit);
+        double dash[] = { 6 * c->unit, 4 * c->unit };
+        cairo_set_dash(cr, dash, 2, 0);
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
+        cairo_move_to(cr, xm, ym);
+        cairo_line_to(cr, xa, ym);
+        cairo_stroke(cr);
+        cairo_set_dash(cr, NULL, 0, 0);
+        c->label(c, fmin(xm, xa) - 2.5, ym - 1.2, "upper", 10, 0xa070ff);
+        c->label(c, fmin(xm, xa) - 2.5, ym + 0.2, "lower", 10, 0xff9933);
+
+        /* gradients: luminance (from formula (1) and its y companion) and z */
+        double gx = (x1 + xm + xb) / 3, gy = (y1 + ym + yb) / 3;
+        struct gradient g = gradient_of(t, &p1, &p2, &p3);
+        double lx = 0.299 * g.dc[ATTR_R] + 0.587 * g.dc[ATTR_G] + 0.114 * g.dc[ATTR_B];
+        double ly = 0.299 * per_row(t, &p1, &p2, &p3, ATTR_R)
+                    + 0.587 * per_row(t, &p1, &p2, &p3, ATTR_G)
+                    + 0.114 * per_row(t, &p1, &p2, &p3, ATTR_B);
+        double zx = g.dc[ATTR_Z], zy = per_row(t, &p1, &p2, &p3, ATTR_Z);
+        double len = 70 * c->unit;
+        cairo_set_line_width(cr, 2.5 * c->unit);
+        cairo_set_source_rgb(cr, 1, 1, 0.55);
+        arrow(cr, gx, gy, lx, ly, len, c->unit);
+        cairo_set_source_rgb(cr, 0.55, 1, 0.75);
+        arrow(cr, gx, gy, zx, zy, len, c->unit);
+        double n;
+        if ((n = hypot(lx, ly)) > 0)
+            c->label(c, gx + lx / n * len + 6 * c->unit, gy + ly / n * len + 4 * c->unit, "brighter", 10, 0xffff8c);
+        if ((n = hypot(zx, zy)) > 0)
+            c->label(c, gx + zx / n * len + 6 * c->unit, gy + zy / n * len + 4 * c->unit, "z grows", 10, 0x8cffbf);
+    }
+
+    /* the current scanline and where its centre line crosses the two edges */
+    if (!last || strcmp(c->view, "color") == 0)
+        return;
+    if (last->kind != TRACE_ROW && last->kind != TRACE_SPAN)
+        return;
+    double yc = last->y + 0.5, xl = last->aux[0], xr = last->aux[1];
+    cairo_set_line_width(cr, 1.5 * c->unit);
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+    cairo_move_to(cr, t->minx, yc);
+    cairo_line_to(cr, t->maxx + 1, yc);
+    cairo_stroke(cr);
+    double xs[2] = { xl, xr };
+    const char *names[2] = { "xl", "xr" };
+    for (int k = 0; k < 2; k++) {
+        cairo_arc(cr, xs[k], yc, 5 * c->unit, 0, 6.283185307179586);
+        cairo_set_source_rgb(cr, 1, 0.3, 0.5);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_stroke(cr);
+        char buf[32];
+        snprintf(buf, sizeof buf, "%s %.3f", names[k], xs[k]);
+        double lx = k ? xs[k] + 8 * c->unit : xs[k] - 68 * c->unit;
+        c->label(c, lx, yc + 6 * c->unit, buf, 10, 0xff5080);
+    }
+}
+
 static const struct lesson_variant variants[] = {
     { "exact", "fixed-point edges, exact presteps, top-left rule: equal to the reference",
       rasterize, false },
@@ -447,4 +631,6 @@ const struct lesson lesson_01 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
+    .overlay = overlay,
+    .constants = constants,
 };

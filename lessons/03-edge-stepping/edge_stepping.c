@@ -42,6 +42,9 @@
  */
 #include "lesson.h"
 
+#include <stdio.h>
+#include <string.h>
+
 static const char *const pseudocode[] = {
     "snap A, B, C; I0k, J0k, K0k of edges 01, 02, 03 (6)-(8)",  /* 0 */
     "K0k += bias0k   (top-left rule: 0 or -1)",                 /* 1 */
@@ -300,6 +303,84 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
     }
 }
 
+/* --- what the explorer draws ----------------------------------------------------
+ *
+ * The watch panel's TRIANGLE section: I0k and J0k of each edge, raw (1/256
+ * px) and in pixels, and the two steps the loop adds, 256 I0k to the right
+ * and 256 J0k down. The canvas, in every view but the colour view: at the
+ * current pixel, the two steps as arrows to the next centre right ("+I") and
+ * below ("+J"); in the edges view also each edge's normal (I, J), the
+ * direction in which its F grows, at the edge's middle in the edge's colour. */
+static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf,
+                      size_t n)
+{
+    (void)p;
+    size_t at = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < 3 && at < n; k++) {
+        int w = snprintf(buf + at, n - at, "I0%d = %lld (%.5g px), J0%d = %lld (%.5g px)\n", k + 1,
+                         (long long)t->I[k], (double)t->I[k] / SUBPIXEL_ONE, k + 1,
+                         (long long)t->J[k], (double)t->J[k] / SUBPIXEL_ONE);
+        at = w < 0 ? n : at + (size_t)w;
+    }
+    if (at < n)
+        snprintf(buf + at, n - at, "right: F0k += 256 I0k = %lld, %lld, %lld\n"
+                 "down:  F0k += 256 J0k = %lld, %lld, %lld\n",
+                 (long long)(t->I[0] * SUBPIXEL_ONE), (long long)(t->I[1] * SUBPIXEL_ONE),
+                 (long long)(t->I[2] * SUBPIXEL_ONE), (long long)(t->J[0] * SUBPIXEL_ONE),
+                 (long long)(t->J[1] * SUBPIXEL_ONE), (long long)(t->J[2] * SUBPIXEL_ONE));
+}
+
+static void arrow(const struct lesson_canvas *c, double x, double y, double ex, double ey,
+                  uint32_t rgb)
+{
+    cairo_t *cr = c->cr;
+    double dx = ex - x, dy = ey - y, d = hypot(dx, dy), h = 9 * c->unit;
+    if (!(d > 0))
+        return;
+    dx /= d, dy /= d;
+    cairo_set_source_rgb(cr, (rgb >> 16 & 255) / 255.0, (rgb >> 8 & 255) / 255.0,
+                         (rgb & 255) / 255.0);
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, ex - dx * h * 0.8, ey - dy * h * 0.8);
+    cairo_stroke(cr);
+    cairo_move_to(cr, ex, ey);
+    cairo_line_to(cr, ex - dx * h - dy * h * 0.5, ey - dy * h + dx * h * 0.5);
+    cairo_line_to(cr, ex - dx * h + dy * h * 0.5, ey - dy * h - dx * h * 0.5);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+}
+
+static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
+                    const struct raster_params *p, const struct trace_event *last)
+{
+    (void)p;
+    if (t->area2 <= 0 || strcmp(c->view, "color") == 0)
+        return;
+    cairo_set_line_width(c->cr, 2.5 * c->unit);
+    if (strcmp(c->view, "edges") == 0) {
+        for (int k = 0; k < 3; k++) {
+            int b = (k + 1) % 3;
+            double mx = (t->x[k] + t->x[b]) / 2.0 / SUBPIXEL_ONE;
+            double my = (t->y[k] + t->y[b]) / 2.0 / SUBPIXEL_ONE;
+            double nx = (double)t->I[k], ny = (double)t->J[k], d = hypot(nx, ny);
+            double len = 45 * c->unit;
+            arrow(c, mx, my, mx + nx / d * len, my + ny / d * len, c->edge_rgb[k]);
+            char buf[40];
+            snprintf(buf, sizeof buf, "(I0%d, J0%d)", k + 1, k + 1);
+            c->label(c, mx + nx / d * len + 4 * c->unit, my + ny / d * len, buf, 10, c->edge_rgb[k]);
+        }
+    }
+    if (!last || (last->kind != TRACE_PIXEL_TEST && last->kind != TRACE_PIXEL_WRITE
+                  && last->kind != TRACE_ROW))
+        return;
+    double x = last->x + 0.5, y = last->y + 0.5;
+    arrow(c, x, y, x + 1, y, 0xffffff);
+    arrow(c, x, y, x, y + 1, 0xffffff);
+    c->label(c, x + 1 + 3 * c->unit, y - 8 * c->unit, "+I", 11, 0xffffff);
+    c->label(c, x + 3 * c->unit, y + 1 + 1 * c->unit, "+J", 11, 0xffffff);
+}
+
 static const struct lesson_variant variants[] = {
     { "stepping", "integer edge values stepped by additions: exact (seed 001)", rasterize, false },
     { "float", "exhibit: the same loop in single-precision float drifts on large triangles",
@@ -316,4 +397,6 @@ const struct lesson lesson_03 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_SUBPIXEL,
+    .overlay = overlay,
+    .constants = constants,
 };

@@ -30,7 +30,9 @@
  * Both shade a pixel with the same function, so they write the same bytes.
  */
 #include <emmintrin.h>      /* SSE2: four floats or four int32 per register */
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "lesson.h"
 
@@ -663,6 +665,59 @@ static void rasterize_or_inside(const struct tri_setup *t, const struct raster_p
     rasterize_blocks(t, p, fb, tr, (struct block_options){ .rule = RULE_OR_INSIDE });
 }
 
+/* --- what the explorer draws ----------------------------------------------------
+ *
+ * In the blocks and coverage views, at each of the four corner pixel centres
+ * of the block just classified, three small discs, one per edge in the
+ * edge's colour from left to right (F01, F02, F03): filled with a "+" when the
+ * corner is inside that edge (its bit of the mask is set), hollow with a "-"
+ * when it is outside. The class follows from the twelve signs: one edge all
+ * "-" is empty, all twelve "+" is full, anything else partial. */
+static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
+                    const struct raster_params *p, const struct trace_event *last)
+{
+    (void)t, (void)p;
+    if (!last || last->kind != TRACE_BLOCK)
+        return;
+    if (strcmp(c->view, "blocks") != 0 && strcmp(c->view, "coverage") != 0)
+        return;
+    cairo_t *cr = c->cr;
+    const double u = c->unit, r = 4.5 * u, gap = 10.5 * u;
+    /* corners as corner_masks() numbers them: bit 3 top-left ... bit 0 bottom-right */
+    const int cx[4] = { last->x1, last->x, last->x1, last->x };
+    const int cy[4] = { last->y1, last->y1, last->y, last->y };
+    for (int bit = 0; bit < 4; bit++) {
+        double x = cx[bit] + 0.5, y = cy[bit] + 0.5;
+        cairo_set_source_rgba(cr, 0, 0, 0, 0.75);
+        cairo_rectangle(cr, x - 1.5 * gap, y - gap * 0.6, 3 * gap, 1.2 * gap);
+        cairo_fill(cr);
+        for (int k = 0; k < 3; k++) {
+            uint32_t h = c->edge_rgb[k];
+            double er = (h >> 16 & 255) / 255.0, eg = (h >> 8 & 255) / 255.0, eb = (h & 255) / 255.0;
+            double dx = x + (k - 1) * gap;
+            bool in = (last->mask[k] >> bit) & 1;
+            cairo_arc(cr, dx, y, r, 0, 6.283185307179586);
+            cairo_set_source_rgb(cr, er, eg, eb);
+            if (in)
+                cairo_fill(cr);
+            else {
+                cairo_set_line_width(cr, 1.5 * u);
+                cairo_stroke(cr);
+            }
+            cairo_set_line_width(cr, 1.5 * u);
+            if (in)
+                cairo_set_source_rgb(cr, 0, 0, 0);
+            cairo_move_to(cr, dx - r * 0.6, y);
+            cairo_line_to(cr, dx + r * 0.6, y);
+            if (in) {
+                cairo_move_to(cr, dx, y - r * 0.6);
+                cairo_line_to(cr, dx, y + r * 0.6);
+            }
+            cairo_stroke(cr);
+        }
+    }
+}
+
 static const struct lesson_variant variants[] = {
     { "q8", "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time",
       rasterize_q8, false },
@@ -688,4 +743,5 @@ const struct lesson lesson_05 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_BLOCK,
+    .overlay = overlay,
 };

@@ -655,6 +655,52 @@ static void paint_current(struct painter *p)
         outline(p, ex->pin_x, ex->pin_y, ex->pin_x + 1, ex->pin_y + 1, C_PIN, w);
 }
 
+/* --- the lesson's own drawings ------------------------------------------------ */
+
+struct overlay_painter {
+    struct painter *p;
+    cairo_matrix_t screen;          /* the context's matrix before the scene transform */
+};
+
+static void overlay_label(const struct lesson_canvas *c, double x, double y, const char *str,
+                          double size, uint32_t rgb)
+{
+    const struct overlay_painter *o = c->painter;
+    struct painter *p = o->p;
+    const struct explorer_layout *L = &p->L;
+    cairo_save(p->cr);
+    cairo_set_matrix(p->cr, &o->screen);
+    double sx = L->ox + x * L->zoom, sy = L->oy + y * L->zoom;
+    double tw = text_width(p, str, size), th = size * 1.3 * p->s;
+    set_rgba(p->cr, 0x000000, 0.7);
+    cairo_rectangle(p->cr, sx - 2 * p->s, sy, tw + 4 * p->s, th);
+    cairo_fill(p->cr);
+    text(p, sx, sy, 0, str, size, rgb, false);
+    cairo_restore(p->cr);
+}
+
+static void paint_overlay(struct painter *p)
+{
+    struct explorer *ex = p->ex;
+    if (!ex->lesson->overlay || ex->scene.ntris == 0)
+        return;
+    const struct explorer_layout *L = &p->L;
+    struct overlay_painter o = { .p = p };
+    cairo_get_matrix(p->cr, &o.screen);
+    struct lesson_canvas c = {
+        .cr = p->cr, .unit = 1 / L->zoom, .view = explorer_view_name(ex, ex->view),
+        .label = overlay_label, .painter = &o,
+    };
+    for (int k = 0; k < 3; k++)
+        c.edge_rgb[k] = edge_colours[k];
+    cairo_save(p->cr);
+    cairo_translate(p->cr, L->ox, L->oy);
+    cairo_scale(p->cr, L->zoom, L->zoom);
+    cairo_new_path(p->cr);
+    ex->lesson->overlay(&c, &ex->tri, &ex->params, ex->has_last ? &ex->last : NULL);
+    cairo_restore(p->cr);
+}
+
 static void paint_numbers(struct painter *p, int x0, int y0, int x1, int y1)
 {
     struct explorer *ex = p->ex;
@@ -732,6 +778,7 @@ static void paint_canvas(struct painter *p)
     cairo_stroke(cr);
     paint_current(p);
     paint_triangle(p);
+    paint_overlay(p);
     if (ex->message[0]) {
         double h = 24 * p->s;
         double tw = text_width(p, ex->message, 12);
@@ -1119,6 +1166,14 @@ static void paint_panel(struct painter *p)
     y += pseudocode(p, x, y, w) + 8 * s;
     y += heading(p, x, y, w, "WATCH");
     y += watch(p, x, y, w) + 8 * s;
+    if (ex->lesson->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
+        buf[0] = '\0';
+        ex->lesson->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
+            buf[e - 1] = '\0';
+        y += heading(p, x, y, w, "TRIANGLE");
+        y += text(p, x, y, w, buf, 11.5, C_TEXT, false) + 8 * s;
+    }
     y += heading(p, x, y, w, "SO FAR");
     y += counters(p, x, y, w) + 8 * s;
     (void)y;
