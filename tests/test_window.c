@@ -368,7 +368,12 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
     char denv[32], size[32];
     snprintf(denv, sizeof denv, "DISPLAY=%s", display);
     snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
-    const char *const env[] = { denv, "SDL_RENDER_VSYNC=0", "SDL_VIDEODRIVER=x11", NULL };
+    /* Under the sanitizer, SDL's X11 backend leaves D-Bus and Xlib allocations
+     * in libraries it unloads at SDL_Quit (unnamed in LeakSanitizer's report,
+     * so no suppression can match them): leak checking is off for this run
+     * only; the dummy-driver test runs the same program code with it on. */
+    const char *const env[] = { denv, "SDL_RENDER_VSYNC=0", "SDL_VIDEODRIVER=x11",
+                                "ASAN_OPTIONS=detect_leaks=0", NULL };
     char *argv[] = { (char *)program(), "--size", size, NULL };
     app_pid = start(argv, env, "app.out", "app.err");
 
