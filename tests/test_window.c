@@ -278,6 +278,26 @@ Test(window, dummy_driver_keys_step_switch_views_export_quit, .fini = cleanup, .
     }
 }
 
+Test(window, space_plays_at_the_speed_and_pauses, .fini = cleanup, .timeout = 60)
+{
+    make_dir();
+    /* 16 events a second, doubled twice by "+": about 64 in 1.2 s */
+    write_text(in_dir("keys"), "+\n+\n+\n+\nSpace\nwait\nwait\nwait\nwait\nwait\nwait\n"
+                               "wait\nwait\nwait\nwait\nwait\nwait\nSpace\ne\nwait\nwait\ne\nq\n");
+    char *argv[] = { (char *)program(), "--keys", "keys", NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    cr_assert_eq(st, 0, "exit status %d", st);
+    char *out = read_all(in_dir("out"), NULL);
+    const char *at = out ? strstr(out, "tristep-" PROGRAM "-step") : NULL;
+    cr_assert(at, "no export message:\n%s", out ? out : "");
+    unsigned long step = strtoul(at + strlen("tristep-" PROGRAM "-step"), NULL, 10);
+    cr_assert(step >= 20 && step <= 200, "played to step %lu in about 1.2 s at 64/s", step);
+    const char *again = strstr(at + 1, "tristep-" PROGRAM "-step");
+    cr_assert(again && strtoul(again + strlen("tristep-" PROGRAM "-step"), NULL, 10) == step,
+              "paused: the second export is of the same step:\n%s", out);
+    free(out);
+}
+
 Test(window, sdl_failure_names_the_call, .fini = cleanup, .timeout = 30)
 {
     make_dir();
@@ -320,6 +340,20 @@ static cairo_surface_t *screenshot(const char *display, const char *name)
     int st = run(argv, NULL, NULL, "import.err", 30000);
     cr_assert_eq(st, 0, "import (ImageMagick) failed with %d: make test installs it", st);
     return load_png(in_dir(name));
+}
+
+/* User plus system CPU time of a process, in clock ticks (/proc/PID/stat). */
+static long cpu_ticks(pid_t pid)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
+    char *t = read_all(path, NULL);
+    const char *p = t ? strrchr(t, ')') : NULL;      /* the name may hold spaces */
+    unsigned long ut, st;
+    long r = p && sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &ut,
+                         &st) == 2 ? (long)(ut + st) : -1;
+    free(t);
+    return r;
 }
 
 /* Start Xvfb on the first free display from :91; returns its name. */
@@ -381,6 +415,14 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
                              "--name", "^tristep " PROGRAM, NULL };
     cr_assert_eq(run(timeout_argv, env, "search.out", "search.err", 20000), 0,
                  "the window did not appear within 15 s");
+
+    /* nothing changes, nothing is drawn: a second of idle costs (almost) no CPU */
+    sleep_ms(300);
+    long cpu0 = cpu_ticks(app_pid);
+    sleep_ms(1000);
+    long cpu1 = cpu_ticks(app_pid);
+    cr_assert(cpu0 >= 0 && cpu1 - cpu0 <= 3, "idle for 1 s, the program used %ld clock ticks",
+              cpu1 - cpu0);
 
     /* the window fills the 1280x800 screen from (0, 0): screen = window
      * coordinates. Three steps by key. */

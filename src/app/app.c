@@ -330,6 +330,8 @@ static void wheel(struct app *a, int dy)
 
 /* --- --keys ------------------------------------------------------------------------- */
 
+static void play(struct app *a);
+
 static bool read_script(struct app *a, const char *path)
 {
     FILE *f = fopen(path, "r");
@@ -389,13 +391,18 @@ static bool push_mouse(Uint32 type, int x, int y)
 }
 
 /* Turn the next script line into events. "Shift+Right", "Ctrl+Left", "v",
- * "PageDown" (SDL's key names), "wait" (one frame), "drag X1 Y1 X2 Y2". */
+ * "PageDown" (SDL's key names), "wait" (a frame and 100 ms), "drag X1 Y1 X2 Y2". */
 static void next_script_line(struct app *a)
 {
     const char *line = a->script[a->at++];
     int x1, y1, x2, y2;
     if (strcmp(line, "wait") == 0) {
-        a->dirty = true;
+        a->dirty = true;            /* one frame, and a tenth of a second to play in */
+        if (!present(a))
+            a->quit = true;
+        SDL_Delay(100);
+        if (a->ex.playing)
+            play(a);
         return;
     }
     if (sscanf(line, "drag %d %d %d %d", &x1, &y1, &x2, &y2) == 4) {
