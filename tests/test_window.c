@@ -489,6 +489,25 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
                  said ? said : "");
     free(said);
 
+    /* the wheel zooms the canvas at the pointer; a click pins a cell's
+     * values in the watch panel */
+    char cx[16], cy[16];
+    snprintf(cx, sizeof cx, "%d", (int)(L.ox + 10.5 * L.zoom));
+    snprintf(cy, sizeof cy, "%d", (int)(L.oy + 12.5 * L.zoom));
+    const char *zoom[] = { "mousemove", cx, cy, "sleep", "0.2", "click", "4", "sleep", "0.5", NULL };
+    cr_assert_eq(xdotool(display, zoom), 0);
+    cairo_surface_t *shot3 = screenshot(display, "shot3.png");
+    long zoomed = differing(shot2, shot3, (int)L.cx, (int)L.cy, (int)(L.cx + L.cw), (int)(L.cy + L.ch));
+    long panel = differing(shot2, shot3, (int)L.px, 0, WIN_W, WIN_H);
+    cr_assert_gt(zoomed, 20000, "the wheel changed only %ld pixels of the canvas", zoomed);
+    const char *pin[] = { "click", "1", "sleep", "0.5", NULL };
+    cr_assert_eq(xdotool(display, pin), 0);
+    cairo_surface_t *shot4 = screenshot(display, "shot4.png");
+    long pinned = differing(shot3, shot4, (int)L.px, 0, WIN_W, WIN_H);
+    cr_assert_gt(pinned, panel + 50, "the click changed only %ld pixels of the panel", pinned);
+    cairo_surface_destroy(shot3);
+    cairo_surface_destroy(shot4);
+
     const char *quit[] = { "key", "q", NULL };
     cr_assert_eq(xdotool(display, quit), 0);
     int status = finish(&app_pid, 10000);

@@ -38,6 +38,8 @@ struct app {
     int drag_vertex;
     double down_x, down_y, last_x, last_y;
     bool moved;
+    double drop_x, drop_y;      /* scene position the dragged vertex goes to */
+    bool drop_pending;
 
     /* playing: events owed to the clock */
     double play_debt;
@@ -282,9 +284,10 @@ static void mouse_move(struct app *a, double x, double y)
     if (fabs(x - a->down_x) > 3 || fabs(y - a->down_y) > 3)
         a->moved = true;
     if (a->drag == DRAG_VERTEX) {
+        /* moved once per frame (drop_vertex): every move re-runs the lesson */
         a->ex.hover_vertex = a->drag_vertex;
-        if (!explorer_move_vertex(&a->ex, a->drag_vertex, (x - L.ox) / L.zoom, (y - L.oy) / L.zoom))
-            out_of_memory(a);
+        a->drop_x = (x - L.ox) / L.zoom, a->drop_y = (y - L.oy) / L.zoom;
+        a->drop_pending = true;
         a->dirty = true;
     } else if (a->drag == DRAG_PAN && a->moved) {
         explorer_pan(&a->ex, &L, x - a->last_x, y - a->last_y);
@@ -297,9 +300,20 @@ static void mouse_move(struct app *a, double x, double y)
     a->last_x = x, a->last_y = y;
 }
 
+/* Move the dragged vertex to where the mouse last was. */
+static void drop_vertex(struct app *a)
+{
+    if (!a->drop_pending)
+        return;
+    a->drop_pending = false;
+    if (!explorer_move_vertex(&a->ex, a->drag_vertex, a->drop_x, a->drop_y))
+        out_of_memory(a);
+}
+
 static void mouse_up(struct app *a, double x, double y)
 {
     mouse_move(a, x, y);
+    drop_vertex(a);
     if (a->drag == DRAG_PAN && !a->moved) {
         /* a click on a cell pins its values; a second click unpins */
         struct explorer_layout L;
@@ -515,6 +529,7 @@ static void run(struct app *a)
             handle(a, &ev);
             while (!a->quit && SDL_PollEvent(&ev))
                 handle(a, &ev);
+            drop_vertex(a);
         }
         if (a->ex.playing && !a->quit)
             play(a);
