@@ -34,7 +34,7 @@ $(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTE
 $(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
 $(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
 $(B)/libtristep.a: $(LIB_OBJ) ; $(AR) rcs $@ $^
-$(PROGRAMS): $(B)/%: $$(addprefix $(B)/obj/,$$(subst .c,.o,$$(wildcard lessons/$$*/*.c))) $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/libtristep.a
+$(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 # Every lesson, both builds, listed for the tests and the bench (again when

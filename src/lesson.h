@@ -34,6 +34,12 @@ struct lesson_variant {
     bool exhibit;           /* deliberately not exact: shown against the exact rule */
 };
 
+#define LESSON_COMPARE_MAX 2
+
+/* Every lesson, narrated (NULL-terminated): every program links them all, so
+ * the explorer can run an earlier lesson on the same scene for comparison. */
+extern const struct lesson *const all_lessons[];
+
 /* Which raster_params a lesson reacts to: the explorer offers keys for
  * exactly these (and lists them in its help overlay). */
 enum lesson_param_flags {
@@ -100,6 +106,10 @@ struct lesson {
     int nvariants;
     const char *const *aux_names;       /* names of trace_event.aux[], NULL-terminated */
     unsigned params;                    /* enum lesson_param_flags it reacts to */
+    /* ids of earlier lessons (at most LESSON_COMPARE_MAX, NULL-terminated)
+     * that the explorer runs on the same scene, to show their counters
+     * (pixels tested, arithmetic per pixel) beside this lesson's */
+    const char *const *compare;
     const struct lesson_view *views;    /* views of its own, or NULL */
     int nviews;
 

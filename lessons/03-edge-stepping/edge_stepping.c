@@ -387,7 +387,10 @@ static const struct lesson_variant variants[] = {
       rasterize_float, true },
 };
 
+static const char *const compare[] = { "02-barycentric", NULL };
+
 const struct lesson lesson_03 = {
+    .compare = compare,
     .id = "03-edge-stepping",
     .title = "Incremental edge functions",
     .pseudocode = pseudocode,

@@ -732,7 +732,10 @@ static const struct lesson_variant variants[] = {
       rasterize_or_inside, true },
 };
 
+static const char *const compare[] = { "02-barycentric", "03-edge-stepping", NULL };
+
 const struct lesson lesson_05 = {
+    .compare = compare,
     .id = "05-block-classification",
     .title = "q x q block classification",
     .pseudocode = pseudocode,

@@ -292,12 +292,37 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
 /* --- variants, params, vertices ---------------------------------------------- */
 
 /* The scene, variant or params changed: count again, keep the step. */
+/* Run the lessons named by lesson->compare on the same scene and params. */
+static bool compare_init(struct explorer *ex)
+{
+    for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
+        for (int k = 0; all_lessons[k]; k++)
+            if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
+                if (!replay_init(&ex->compare_replay[ex->ncompare], &ex->scene,
+                                 &all_lessons[k]->variants[0], &ex->params))
+                    return false;
+                ex->compare[ex->ncompare++] = all_lessons[k];
+            }
+    return true;
+}
+
+static bool compare_recount(struct explorer *ex)
+{
+    for (int i = 0; i < ex->ncompare; i++) {
+        ex->compare_replay[i].params = ex->params;
+        ex->compare_replay[i].scene = &ex->scene;
+        if (!replay_recount(&ex->compare_replay[i]))
+            return false;
+    }
+    return true;
+}
+
 static bool rerun(struct explorer *ex, uint64_t step)
 {
     ex->replay.variant = &ex->lesson->variants[ex->variant];
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
-    if (!replay_recount(&ex->replay))
+    if (!replay_recount(&ex->replay) || !compare_recount(ex))
         return false;
     ex->marks_tri = -1;
     ex->exact_upto = -1;
@@ -462,12 +487,18 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
         scene_free(&ex->scene);
         return false;
     }
+    if (!compare_init(ex)) {
+        explorer_free(ex);
+        return false;
+    }
     return explorer_set_step(ex, d->step_end ? ex->replay.total : d->step);
 }
 
 void explorer_free(struct explorer *ex)
 {
     replay_free(&ex->replay);
+    for (int i = 0; i < ex->ncompare; i++)
+        replay_free(&ex->compare_replay[i]);
     target_free(&ex->fb);
     target_free(&ex->scratch);
     target_free(&ex->exact);

@@ -116,6 +116,11 @@ struct explorer {
     int diff_done;                  /* triangles compared (finished at this step) */
     uint64_t extra, missing;
 
+    /* earlier lessons on the same scene (lesson->compare), for the counters */
+    int ncompare;
+    const struct lesson *compare[LESSON_COMPARE_MAX];
+    struct replay compare_replay[LESSON_COMPARE_MAX];
+
     /* presentation */
     int view;
     int edge;                       /* edges view: -1 all three, or 0..2 */

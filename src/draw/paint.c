@@ -1066,6 +1066,30 @@ static double watch(struct painter *p, double x, double y, double w)
     return text(p, x, y, w, buf, 11.5, C_TEXT, false);
 }
 
+/* The lesson beside earlier ones on the triangles finished so far: pixels
+ * tested, and arithmetic per tested pixel. */
+static double compare_lines(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    int done = ex->cur < 0 ? 0 : ex->cur;
+    if (ex->cur >= 0 && ex->local + 1 >= ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur])
+        done = ex->cur + 1;     /* the current triangle has finished too */
+    char buf[1024];
+    size_t at = 0, n = sizeof buf;
+    at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
+    for (int i = -1; i < ex->ncompare; i++) {
+        const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        const struct trace_counters *c = &r->sums[done];
+        double px = c->tested ? (double)c->tested : 1;
+        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
+                 (unsigned long long)c->tested, (double)c->mul / px, (double)c->add / px);
+    }
+    while (at > 0 && at <= n && buf[at - 1] == '\n')
+        buf[--at] = '\0';
+    return text(p, x, y, w, buf, 11.5, C_DIM, false);
+}
+
 static double counters(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
@@ -1098,6 +1122,8 @@ static double counters(struct painter *p, double x, double y, double w)
     at = cat(buf, n, at, "multiplications %9llu   adds %10llu", (unsigned long long)c.mul,
              (unsigned long long)c.add);
     double h = text(p, x, y, w, buf, 11.5, C_TEXT, false);
+    if (ex->ncompare > 0)
+        h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
     if (ex->lesson->variants[ex->variant].exhibit) {
         char e[256];
         snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
