@@ -709,9 +709,7 @@ static void paint_numbers(struct painter *p, int x0, int y0, int x1, int y1)
         return;
     cairo_t *cr = p->cr;
     /* the size that fits: widest label about 5 characters of 0.6 em */
-    char probe[3][16];
     int lines = ex->view == VIEW_COLOR || ex->view == VIEW_BARY || (ex->view == VIEW_EDGES && ex->edge < 0) ? 3 : 1;
-    (void)probe;
     double size = fmin(fmin(L->zoom * 0.86 / (lines * 1.2), L->zoom * 0.86 / (5.2 * 0.602)), 13 * p->s);
     if (size < (ex->numbers == NUMBERS_ALWAYS ? 3.0 : 7.0))
         return;
