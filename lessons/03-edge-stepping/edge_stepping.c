@@ -390,7 +390,6 @@ static const struct lesson_variant variants[] = {
 static const char *const compare[] = { "02-barycentric", NULL };
 
 const struct lesson lesson_03 = {
-    .compare = compare,
     .id = "03-edge-stepping",
     .title = "Incremental edge functions",
     .pseudocode = pseudocode,
@@ -400,6 +399,7 @@ const struct lesson lesson_03 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_SUBPIXEL,
+    .compare = compare,
     .overlay = overlay,
     .constants = constants,
 };

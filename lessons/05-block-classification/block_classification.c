@@ -735,7 +735,6 @@ static const struct lesson_variant variants[] = {
 static const char *const compare[] = { "02-barycentric", "03-edge-stepping", NULL };
 
 const struct lesson lesson_05 = {
-    .compare = compare,
     .id = "05-block-classification",
     .title = "q x q block classification",
     .pseudocode = pseudocode,
@@ -746,5 +745,6 @@ const struct lesson lesson_05 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_BLOCK,
+    .compare = compare,
     .overlay = overlay,
 };

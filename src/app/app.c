@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "draw/explorer.h"
+#include "draw/figure.h"
 
 #define SPEED_MAX 40        /* 2^20 events per second */
 #define FRAME_MS 16         /* at most one frame this often while playing */
@@ -558,29 +559,14 @@ int explorer_run(const struct lesson *l, const struct cli_options *o, struct sce
 {
     struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
     char name[160];
-    if (o->scene_path)
-        snprintf(name, sizeof name, "%s", o->scene_path);
-    else
-        snprintf(name, sizeof name, "builtin:%s", l->builtin_scene);
-    if (o->view) {
-        struct explorer probe = { .lesson = l, .edge = -1 };
-        if (!explorer_set_view_name(&probe, o->view)) {
-            fprintf(stderr, "%s: --view '%s': no such view; views:", l->id, o->view);
-            for (int i = 0; i < explorer_view_count(&probe); i++)
-                fprintf(stderr, " %s", explorer_view_name(&probe, i));
-            fprintf(stderr, " edge-ab edge-bc edge-ca\n");
-            return EXIT_USAGE;
-        }
-    }
+    struct explorer_desc d;
+    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
+    if (status >= 0)
+        return status;
     if (o->keys && !read_script(&a, o->keys))
         return EXIT_USAGE;
-    struct explorer_desc d = {
-        .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
-        .variant = o->variant, .params = o->params, .view = o->view,
-        .step = o->step, .step_end = o->step_end, .zoom = o->zoom, .scale = o->scale,
-    };
     explorer_fonts();
-    int status = EXIT_OK;
+    status = EXIT_OK;
     if (!explorer_init(&a.ex, &d)) {
         fprintf(stderr, "%s: out of memory for the scene\n", l->id);
         status = EXIT_RUN;

@@ -63,15 +63,15 @@ bool explorer_export(struct explorer *ex, const char *path, int w, int h, char *
     return write_file_atomic(path, write_figure, &job, err, errlen);
 }
 
-int figure_export(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+int explorer_desc_from_cli(const struct lesson *l, const struct cli_options *o,
+                           const struct scene *s, char *name, size_t n,
+                           struct explorer_desc *d)
 {
-    char name[160];
     if (o->scene_path)
-        snprintf(name, sizeof name, "%s", o->scene_path);
+        snprintf(name, n, "%s", o->scene_path);
     else
-        snprintf(name, sizeof name, "builtin:%s", l->builtin_scene);
-    struct explorer ex;
-    struct explorer_desc d = {
+        snprintf(name, n, "builtin:%s", l->builtin_scene);
+    *d = (struct explorer_desc){
         .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
         .variant = o->variant, .params = o->params, .step = o->step, .step_end = o->step_end,
         .zoom = o->zoom, .scale = o->scale,
@@ -86,8 +86,19 @@ int figure_export(const struct lesson *l, const struct cli_options *o, const str
             fprintf(stderr, " edge-ab edge-bc edge-ca\n");
             return EXIT_USAGE;
         }
-        d.view = o->view;
+        d->view = o->view;
     }
+    return -1;
+}
+
+int figure_export(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+{
+    char name[160];
+    struct explorer ex;
+    struct explorer_desc d;
+    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
+    if (status >= 0)
+        return status;
     explorer_fonts();
     if (!explorer_init(&ex, &d)) {
         fprintf(stderr, "%s: out of memory for the scene\n", l->id);
@@ -95,7 +106,7 @@ int figure_export(const struct lesson *l, const struct cli_options *o, const str
     }
     int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
     char err[512];
-    int status = EXIT_OK;
+    status = EXIT_OK;
     if (!explorer_export(&ex, o->figure, w, h, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;
