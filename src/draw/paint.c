@@ -1252,16 +1252,22 @@ static void paint_help(struct painter *p)
         "       click a pixel to pin its values in the watch");
     double tw = fmin(L->w - 40 * s, 600 * s);
     double x = (L->w - tw) / 2, y = 40 * s;
+    /* the text first, into a group, so the box can be as tall as it is */
+    cairo_push_group(cr);
+    double h = text(p, x + 20 * s, y + 16 * s, tw - 40 * s, "Keys", 15, C_ACCENT, false);
+    h += text(p, x + 20 * s, y + 24 * s + h, tw - 40 * s, keys, 12, C_TEXT, false);
+    cairo_pattern_t *words = cairo_pop_group(cr);
     set_rgba(cr, 0x000000, 0.55);
     cairo_paint(cr);
     set_rgb(cr, C_PANEL);
-    cairo_rectangle(cr, x, y, tw, fmin(L->h - 80 * s, 520 * s));
+    cairo_rectangle(cr, x, y, tw, fmin(L->h - 2 * y, h + 44 * s));
     cairo_fill_preserve(cr);
     set_rgb(cr, C_ACCENT);
     cairo_set_line_width(cr, 1.5 * s);
     cairo_stroke(cr);
-    double h = text(p, x + 20 * s, y + 16 * s, tw - 40 * s, "Keys", 15, C_ACCENT, false);
-    text(p, x + 20 * s, y + 24 * s + h, tw - 40 * s, keys, 12, C_TEXT, false);
+    cairo_set_source(cr, words);
+    cairo_paint(cr);
+    cairo_pattern_destroy(words);
 }
 
 /* --- the frame --------------------------------------------------------------------- */
