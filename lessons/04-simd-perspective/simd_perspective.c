@@ -28,6 +28,8 @@
  * Lanes as the text names them: w = F01 / Area2 is the weight of C (edge AB
  * is opposite C), u = F02 / Area2 the weight of A, v = F03 / Area2 that of B.
  */
+#include <string.h>
+
 #include "lesson.h"
 
 static const char *const pseudocode[] = {
@@ -499,7 +501,72 @@ static bool affine_error_cell(const struct tri_setup *t, const struct trace_even
     return true;
 }
 
+/* "lanes": the register of the pixel being tested, drawn lane by lane beside
+ * it, each lane a labelled bar with the scalar it stands for:
+ *
+ *     +--------+--------+--------+--------+
+ *     |  1/z   |   w    |   u    |   v    |    one __m128: Cx
+ *     +--------+--------+--------+--------+
+ *      depth     weight   weight   weight
+ *      z = 1/lane0  of C   of A     of B
+ *
+ * w, u, v run from 0 to 1 inside the triangle; the 1/z bar is drawn against
+ * the largest 1/z of the three vertices (the nearest one). The cells show
+ * w, u, v as blue, red, green, like the vertices they weigh. */
+static bool lanes_cell(const struct tri_setup *t, const struct trace_event *test,
+                       const struct trace_event *write, double rgb[3])
+{
+    (void)t;
+    (void)write;
+    if (!test)
+        return false;
+    double k = test->flags & TRACE_INSIDE ? 0.8 : 0.25;
+    rgb[0] = k * fmin(fmax(test->aux[LANE_U], 0), 1);
+    rgb[1] = k * fmin(fmax(test->aux[LANE_V], 0), 1);
+    rgb[2] = k * fmin(fmax(test->aux[LANE_W], 0), 1);
+    return true;
+}
+
+static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
+                    const struct raster_params *p, const struct trace_event *last)
+{
+    (void)p;
+    if (strcmp(c->view, "lanes") != 0 || !last || last->kind != TRACE_PIXEL_TEST
+        || t->area2 <= 0)
+        return;
+    static const char *const name[4] = { "1/z", "w", "u", "v" };
+    static const uint32_t rgb[4] = { 0xdddddd, 0x5b8def, 0xef5b5b, 0x5bd16a };
+    double max_inv_z = fmax(fmax(1 / t->v[0].z, 1 / t->v[1].z), 1 / t->v[2].z);
+    double u = c->unit, bw = 46 * u, bh = 70 * u;
+    double x0 = last->x + 1.5, base = last->y + 0.5 + bh / 2;
+    cairo_t *cr = c->cr;
+    cairo_set_source_rgba(cr, 0.08, 0.09, 0.11, 0.9);
+    cairo_rectangle(cr, x0 - 6 * u, base - bh - 30 * u, 4 * bw + 12 * u, bh + 58 * u);
+    cairo_fill(cr);
+    for (int i = 0; i < 4; i++) {
+        double v = last->aux[i], full = i == LANE_INV_Z ? max_inv_z : 1;
+        double f = fmin(fmax(v / full, 0), 1);
+        double x = x0 + i * bw;
+        cairo_set_source_rgb(cr, (rgb[i] >> 16) / 255.0, (rgb[i] >> 8 & 255) / 255.0,
+                             (rgb[i] & 255) / 255.0);
+        cairo_rectangle(cr, x + 6 * u, base - f * bh, bw - 12 * u, f * bh);
+        cairo_fill(cr);
+        cairo_set_line_width(cr, 1 * u);
+        cairo_rectangle(cr, x + 6 * u, base - bh, bw - 12 * u, bh);
+        cairo_stroke(cr);
+        char buf[32];
+        snprintf(buf, sizeof buf, "%.2f", v);
+        c->label(c, x + 4 * u, base - bh - 24 * u, buf, 10, rgb[i]);
+        c->label(c, x + 10 * u, base + 4 * u, name[i], 11, rgb[i]);
+    }
+    char z[48];
+    snprintf(z, sizeof z, "z = 1/lane 0 = %.4g", last->aux[LANE_INV_Z] > 0 ? 1 / last->aux[LANE_INV_Z] : 0);
+    c->label(c, x0, base + 18 * u, z, 10, 0xdddddd);
+}
+
 static const struct lesson_view views[] = {
+    { "lanes", "the register (1/z, w, u, v) of the pixel tested, as bars; cells: u, v, w as "
+               "red, green, blue", lanes_cell },
     { "st", "texture coordinates s (red), t (green) of the pixels that show", st_cell },
     { "inv-z", "lane 0, 1/z, as brightness: brighter is nearer; dim outside", inv_z_cell },
     { "affine-error", "|affine - correct| of (s, t): black 0, red, yellow 0.25 or more",
@@ -526,5 +593,6 @@ const struct lesson lesson_04 = {
     .aux_names = aux_names,
     .params = LESSON_PARAM_AFFINE,
     .views = views,
+    .overlay = overlay,
     .nviews = sizeof views / sizeof views[0],
 };
