@@ -314,9 +314,12 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
 static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf,
                       size_t n)
 {
-    (void)p;
-    size_t at = 0;
-    buf[0] = '\0';
+    /* the overflow budget of the bits in use (README, "The overflow budget"):
+     * |F| <= 8 R^2 keeps R below 2^14 units in 32 bits, 2^30 units in 64 */
+    int bits = p->subpixel_bits;
+    int w = snprintf(buf, n, "%d sub-pixel bits: |coordinates| < %ld px in 32-bit, "
+                     "%ld px in 64-bit edges\n", bits, (1L << 14) >> bits, (1L << 30) >> bits);
+    size_t at = w < 0 ? n : (size_t)w;
     for (int k = 0; k < 3 && at < n; k++) {
         int w = snprintf(buf + at, n - at, "I0%d = %lld (%.5g px), J0%d = %lld (%.5g px)\n", k + 1,
                          (long long)t->I[k], (double)t->I[k] / SUBPIXEL_ONE, k + 1,
