@@ -438,3 +438,21 @@ Test(lesson03, overflow_budget_table_is_what_the_arithmetic_allows)
         cr_expect(strstr(text, row) != NULL, README " lacks the table row\n%s", row);
     }
 }
+
+/* The watch panel states the overflow budget of the bits in use, as the
+ * README's table does: 32-bit edges keep |F| <= 8 R^2 below 2^31, so R < 2^14
+ * units; at 2 bits a unit is 1/4 px, so 4,096 px. */
+Test(lesson03, watch_panel_states_the_range_of_the_bits_in_use)
+{
+    struct vertex v[3] = { { .x = 2, .y = 2, .z = 1 }, { .x = 12, .y = 3, .z = 1 },
+                           { .x = 5, .y = 11, .z = 1 } };
+    struct tri_setup t;
+    cr_assert(tri_setup(&t, v, 16, 16));
+    char buf[1024];
+    struct raster_params p = { .subpixel_bits = 2 };
+    lesson_03.constants(&t, &p, buf, sizeof buf);
+    cr_expect(strstr(buf, "< 4096 px in 32-bit, 268435456 px in 64-bit") != NULL, "%s", buf);
+    p.subpixel_bits = 8;
+    lesson_03.constants(&t, &p, buf, sizeof buf);
+    cr_expect(strstr(buf, "< 64 px in 32-bit, 4194304 px in 64-bit") != NULL, "%s", buf);
+}
