@@ -19,7 +19,7 @@ LDFLAGS  += -fsanitize=address,undefined
 endif
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench clean deps-test deps-bench
+.PHONY: all run test figures bench clean deps-test deps-bench FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -47,15 +47,20 @@ $(B)/lessons.c: Makefile lessons | $(B)/config.mk
 $(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
+# Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
+# changes, so the bench is rebuilt once `make bench` has installed it.
 OSMESA   := $(shell pkg-config --exists osmesa 2>/dev/null && echo -lOSMesa)
+$(B)/osmesa.flag: FORCE ; @echo '$(OSMESA)' | cmp -s - $@ || echo '$(OSMESA)' > $@
 $(B)/obj/tests/bench/%.o: CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
+$(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
-bench: deps-bench all $(B)/tristep-bench
+bench: deps-bench all
+	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
 # Every figure of figures/list, one process each (cairo's SVG ids count per process).
 figures: all ; sh figures/make-figures.sh $(B)
