@@ -92,6 +92,9 @@ struct lesson_canvas {
     uint32_t edge_rgb[3];
     void (*label)(const struct lesson_canvas *c, double x, double y, const char *text,
                   double size, uint32_t rgb);
+    /* an arrow from (x0, y0) to (x1, y1), scene pixels, in the explorer's style */
+    void (*arrow)(const struct lesson_canvas *c, double x0, double y0, double x1, double y1,
+                  uint32_t rgb);
     void *painter;                      /* the explorer's, for `label` */
 };
 

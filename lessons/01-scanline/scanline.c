@@ -499,23 +499,6 @@ static void constants(const struct tri_setup *t, const struct raster_params *p, 
                              : "[B] (2 is the middle vertex, on the right)");
 }
 
-static void arrow(cairo_t *cr, double x, double y, double dx, double dy, double len, double unit)
-{
-    double d = hypot(dx, dy);
-    if (!(d > 0))
-        return;
-    dx /= d, dy /= d;
-    double ex = x + dx * len, ey = y + dy * len, h = 9 * unit;
-    cairo_move_to(cr, x, y);
-    cairo_line_to(cr, ex, ey);
-    cairo_stroke(cr);
-    cairo_move_to(cr, ex, ey);
-    cairo_line_to(cr, ex - dx * h - dy * h * 0.5, ey - dy * h + dx * h * 0.5);
-    cairo_line_to(cr, ex - dx * h + dy * h * 0.5, ey - dy * h - dx * h * 0.5);
-    cairo_close_path(cr);
-    cairo_fill(cr);
-}
-
 /* The change of an attribute per pixel in y, from the plane through the
  * three vertices (the companion of formula (1)). */
 static double per_row(const struct tri_setup *t, const struct point *p1, const struct point *p2,
@@ -577,12 +560,11 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     + 0.114 * per_row(t, &p1, &p2, &p3, ATTR_B);
         double zx = g.dc[ATTR_Z], zy = per_row(t, &p1, &p2, &p3, ATTR_Z);
         double len = 70 * c->unit;
-        cairo_set_line_width(cr, 2.5 * c->unit);
-        cairo_set_source_rgb(cr, 1, 1, 0.55);
-        arrow(cr, gx, gy, lx, ly, len, c->unit);
-        cairo_set_source_rgb(cr, 0.55, 1, 0.75);
-        arrow(cr, gx, gy, zx, zy, len, c->unit);
         double n;
+        if ((n = hypot(lx, ly)) > 0)
+            c->arrow(c, gx, gy, gx + lx / n * len, gy + ly / n * len, 0xffff8c);
+        if ((n = hypot(zx, zy)) > 0)
+            c->arrow(c, gx, gy, gx + zx / n * len, gy + zy / n * len, 0x8cffbf);
         if ((n = hypot(lx, ly)) > 0)
             c->label(c, gx + lx / n * len + 6 * c->unit, gy + ly / n * len + 4 * c->unit, "brighter", 10, 0xffff8c);
         if ((n = hypot(zx, zy)) > 0)

@@ -334,26 +334,6 @@ static void constants(const struct tri_setup *t, const struct raster_params *p, 
                  (long long)(t->J[1] * SUBPIXEL_ONE), (long long)(t->J[2] * SUBPIXEL_ONE));
 }
 
-static void arrow(const struct lesson_canvas *c, double x, double y, double ex, double ey,
-                  uint32_t rgb)
-{
-    cairo_t *cr = c->cr;
-    double dx = ex - x, dy = ey - y, d = hypot(dx, dy), h = 9 * c->unit;
-    if (!(d > 0))
-        return;
-    dx /= d, dy /= d;
-    cairo_set_source_rgb(cr, (rgb >> 16 & 255) / 255.0, (rgb >> 8 & 255) / 255.0,
-                         (rgb & 255) / 255.0);
-    cairo_move_to(cr, x, y);
-    cairo_line_to(cr, ex - dx * h * 0.8, ey - dy * h * 0.8);
-    cairo_stroke(cr);
-    cairo_move_to(cr, ex, ey);
-    cairo_line_to(cr, ex - dx * h - dy * h * 0.5, ey - dy * h + dx * h * 0.5);
-    cairo_line_to(cr, ex - dx * h + dy * h * 0.5, ey - dy * h - dx * h * 0.5);
-    cairo_close_path(cr);
-    cairo_fill(cr);
-}
-
 static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     const struct raster_params *p, const struct trace_event *last)
 {
@@ -368,7 +348,7 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
             double my = (t->y[k] + t->y[b]) / 2.0 / SUBPIXEL_ONE;
             double nx = (double)t->I[k], ny = (double)t->J[k], d = hypot(nx, ny);
             double len = 45 * c->unit;
-            arrow(c, mx, my, mx + nx / d * len, my + ny / d * len, c->edge_rgb[k]);
+            c->arrow(c, mx, my, mx + nx / d * len, my + ny / d * len, c->edge_rgb[k]);
             char buf[40];
             snprintf(buf, sizeof buf, "(I0%d, J0%d)", k + 1, k + 1);
             c->label(c, mx + nx / d * len + 4 * c->unit, my + ny / d * len, buf, 10, c->edge_rgb[k]);
@@ -378,8 +358,8 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                   && last->kind != TRACE_ROW))
         return;
     double x = last->x + 0.5, y = last->y + 0.5;
-    arrow(c, x, y, x + 1, y, 0xffffff);
-    arrow(c, x, y, x, y + 1, 0xffffff);
+    c->arrow(c, x, y, x + 1, y, 0xffffff);
+    c->arrow(c, x, y, x, y + 1, 0xffffff);
     c->label(c, x + 1 + 3 * c->unit, y - 8 * c->unit, "+I", 11, 0xffffff);
     c->label(c, x + 3 * c->unit, y + 1 + 1 * c->unit, "+J", 11, 0xffffff);
 }

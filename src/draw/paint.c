@@ -662,6 +662,29 @@ struct overlay_painter {
     cairo_matrix_t screen;          /* the context's matrix before the scene transform */
 };
 
+/* Arrows for the lessons' overlays: a shaft 2.5 screen pixels wide and a head
+ * of 9, whatever the zoom. */
+static void overlay_arrow(const struct lesson_canvas *c, double x, double y, double ex, double ey,
+                          uint32_t rgb)
+{
+    cairo_t *cr = c->cr;
+    double dx = ex - x, dy = ey - y, d = hypot(dx, dy), h = 9 * c->unit;
+    if (!(d > 0))
+        return;
+    dx /= d, dy /= d;
+    cairo_set_source_rgb(cr, (rgb >> 16 & 255) / 255.0, (rgb >> 8 & 255) / 255.0,
+                         (rgb & 255) / 255.0);
+    cairo_set_line_width(cr, 2.5 * c->unit);
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, ex - dx * h * 0.8, ey - dy * h * 0.8);
+    cairo_stroke(cr);
+    cairo_move_to(cr, ex, ey);
+    cairo_line_to(cr, ex - dx * h - dy * h * 0.5, ey - dy * h + dx * h * 0.5);
+    cairo_line_to(cr, ex - dx * h + dy * h * 0.5, ey - dy * h - dx * h * 0.5);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+}
+
 static void overlay_label(const struct lesson_canvas *c, double x, double y, const char *str,
                           double size, uint32_t rgb)
 {
@@ -689,7 +712,7 @@ static void paint_overlay(struct painter *p)
     cairo_get_matrix(p->cr, &o.screen);
     struct lesson_canvas c = {
         .cr = p->cr, .unit = 1 / L->zoom, .view = explorer_view_name(ex, ex->view),
-        .label = overlay_label, .painter = &o,
+        .label = overlay_label, .arrow = overlay_arrow, .painter = &o,
     };
     for (int k = 0; k < 3; k++)
         c.edge_rgb[k] = edge_colours[k];
