@@ -61,6 +61,8 @@ struct row {
 
 static struct row rows[MAX_ROWS];
 static int nrows;
+static double frame_ms = -1;     /* explorer frame, < 0 not measured */
+static double figures_s = -1;    /* make figures, < 0 not measured */
 
 static double now(void)
 {
@@ -349,6 +351,11 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
     for (int i = 0; i < NSCENES; i++)
         fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1\n",
                 sc[i].name, sc[i].s.w, sc[i].s.h, (unsigned long long)sc[i].pixels, limit);
+    /* not scenes: the explorer's frame and make figures, in seconds */
+    if (frame_ms > 0)
+        fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
+    if (figures_s > 0)
+        fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -402,6 +409,18 @@ static void print_target(const char *what, double got, double goal, const char *
            met ? "met" : "MISSED", met ? 100 * (got / goal - 1) : 100 * (1 - got / goal));
 }
 
+/* The same for a time that must stay under its goal. */
+static void print_target_under(const char *what, double got, double goal, const char *unit)
+{
+    if (got <= 0) {
+        printf("  %-52s not measured\n", what);
+        return;
+    }
+    bool met = got <= goal;
+    printf("  %-52s %7.2f%s (goal under %.0f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
+           met ? "met" : "MISSED", met ? 100 * (1 - got / goal) : 100 * (got / goal - 1));
+}
+
 static void print_targets(const struct bench_scene *sc, double limit)
 {
     const struct row *l05 = find_row("05-", NULL);
@@ -418,6 +437,8 @@ static void print_targets(const struct bench_scene *sc, double limit)
     double bw = l05 && limit > 0 ? mpix(&sc[SCENE_LARGE], &l05->t[SCENE_LARGE]) / limit : 0;
     print_target("lesson 05 on large, share of the memory limit", 100 * bw,
                  100 * TARGET_BANDWIDTH, "%");
+    print_target_under("explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
+                       TARGET_FRAME_MS, " ms");
     /* the fastest exact variant of lesson 05 on each scene, for the record */
     for (int i = 0; i < NSCENES && lp; i++) {
         const struct row *best = NULL;
@@ -590,20 +611,20 @@ int main(int argc, char **argv)
            "(%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram,
            dram_gbs);
 
-    double frame = explorer_frame(o.quick ? 5 : 60);
-    if (frame > 0)
-        printf("\nexplorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms "
-               "(goal under %.0f ms: %s)\n", frame, TARGET_FRAME_MS,
-               frame < TARGET_FRAME_MS ? "met" : "MISSED");
+    frame_ms = explorer_frame(o.quick ? 5 : 60);
+    if (frame_ms > 0)
+        printf("\nexplorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n", frame_ms);
     else
         printf("\nexplorer frame: could not be measured (out of memory)\n");
     if (o.figures_cmd) {
         char note[512];
         double t = time_command(o.figures_cmd, note, sizeof note);
-        if (t > 0)
+        if (t > 0) {
+            figures_s = t;
             printf("make figures: %.1f s (%s)\n", t, note);
-        else
+        } else {
             printf("make figures: %s\n", note);
+        }
     }
 
     print_targets(sc, limit);
