@@ -461,6 +461,18 @@ static void paint_cells(struct painter *p, int x0, int y0, int x1, int y1)
     }
 }
 
+/* The font size of the numbers in cells, or 0 when they are not shown:
+ * the widest label is about 5 characters of 0.6 em. */
+static double numbers_size(const struct painter *p)
+{
+    const struct explorer *ex = p->ex;
+    if (ex->numbers == NUMBERS_OFF)
+        return 0;
+    int lines = ex->view == VIEW_COLOR || ex->view == VIEW_BARY || (ex->view == VIEW_EDGES && ex->edge < 0) ? 3 : 1;
+    double size = fmin(fmin(p->L.zoom * 0.86 / (lines * 1.2), p->L.zoom * 0.86 / (5.2 * 0.602)), 13 * p->s);
+    return size < (ex->numbers == NUMBERS_ALWAYS ? 3.0 : 7.0) ? 0 : size;
+}
+
 static void paint_grid(struct painter *p, int x0, int y0, int x1, int y1)
 {
     cairo_t *cr = p->cr;
@@ -484,10 +496,15 @@ static void paint_grid(struct painter *p, int x0, int y0, int x1, int y1)
     if (L->zoom >= 14) {    /* pixel centres: the samples that decide coverage */
         double r = fmax(1.0, L->zoom * 0.05);
         set_rgba(cr, 0xffffff, 0.55);
+        bool numbers = numbers_size(p) > 0;
+        char out[3][16];
         for (int y = y0; y < y1; y++)
-            for (int x = x0; x < x1; x++)
+            for (int x = x0; x < x1; x++) {
+                if (numbers && cell_numbers(p->ex, x, y, out) > 0)
+                    continue;       /* the cell's numbers sit where its centre is */
                 cairo_rectangle(cr, L->ox + (x + 0.5) * L->zoom - r, L->oy + (y + 0.5) * L->zoom - r,
                                 2 * r, 2 * r);
+            }
         cairo_fill(cr);
     }
     cairo_restore(cr);
@@ -731,10 +748,8 @@ static void paint_numbers(struct painter *p, int x0, int y0, int x1, int y1)
     if (ex->numbers == NUMBERS_OFF || !mono_face())
         return;
     cairo_t *cr = p->cr;
-    /* the size that fits: widest label about 5 characters of 0.6 em */
-    int lines = ex->view == VIEW_COLOR || ex->view == VIEW_BARY || (ex->view == VIEW_EDGES && ex->edge < 0) ? 3 : 1;
-    double size = fmin(fmin(L->zoom * 0.86 / (lines * 1.2), L->zoom * 0.86 / (5.2 * 0.602)), 13 * p->s);
-    if (size < (ex->numbers == NUMBERS_ALWAYS ? 3.0 : 7.0))
+    double size = numbers_size(p);
+    if (size <= 0)
         return;
     cairo_save(cr);
     cairo_set_font_face(cr, mono_face());
