@@ -11,8 +11,8 @@ LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
 CFLAGS   ?= -O2 -g
-CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS)
+CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc -pthread $(PKG_CFLAGS)
+LDLIBS   += $(PKG_LIBS) -pthread
 ifdef SANITIZE
 CFLAGS   += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 LDFLAGS  += -fsanitize=address,undefined

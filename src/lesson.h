@@ -20,10 +20,22 @@ struct raster_params {
     int block_size;       /* q for block lessons (0 = the lesson's default) */
     bool affine;          /* texture affinely, not perspective-correct (exhibit) */
     int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
+    int threads;          /* worker threads of a scene-level run (lesson 07), 0 = one per core */
+    /* The narrated replay of a scene-level lesson (lesson 07) runs one
+     * triangle inside one tile at a time: tile > 0 restricts `rasterize` to
+     * tile number tile - 1 (row-major, 64 x 64), and these say where that
+     * unit stands, for the narration. tile == 0: the whole target. */
+    int tile;
+    int bin_size, bin_entry, thread;
 };
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
+/* A whole scene at once, in whatever order and on whatever threads the
+ * lesson likes, as long as the picture is that of drawing the triangles one
+ * after another. Returns false when out of memory. */
+typedef bool (*rasterize_scene_fn)(const struct scene *s, const struct raster_params *p,
+                                   struct target *fb);
 
 /* One way of running the lesson: the algorithm itself, a faster twin, or an
  * exhibit that reproduces a slip of the source texts. */
@@ -131,7 +143,22 @@ struct lesson {
      * for an empty triangle. */
     void (*constants)(const struct tri_setup *t, const struct raster_params *p, char *buf,
                       size_t n);
+
+    /* Optional, one per variant (lesson 07: bins need every triangle before
+     * the first pixel): what the headless modes and the bench call instead
+     * of variants[i].rasterize per triangle. `rasterize` stays: one triangle
+     * through the same pipeline, for the tests and the narrated replay. */
+    const rasterize_scene_fn *rasterize_scene;
 };
+
+/* The scene-level twin of variant v of lesson l, or NULL. */
+static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
+                                                 const struct lesson_variant *v)
+{
+    if (!l->rasterize_scene || v < l->variants || v >= l->variants + l->nvariants)
+        return NULL;
+    return l->rasterize_scene[v - l->variants];
+}
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
 

@@ -285,10 +285,10 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
 
 /* --- the program ------------------------------------------------------------------- */
 
-static int dump(const struct cli_options *o, const struct scene *s)
+static int dump(const struct lesson *l, const struct cli_options *o, const struct scene *s)
 {
     struct target fb;
-    if (!render_scene(s, o->variant, &o->params, &fb)) {
+    if (!render_lesson_scene(l, s, o->variant, &o->params, &fb)) {
         fprintf(stderr, "out of memory for a %d x %d target\n", s->w, s->h);
         return EXIT_RUN;
     }
@@ -330,7 +330,7 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     bool headless = o.dump_coverage || o.dump_image || o.figure;
     status = EXIT_OK;
     if (o.dump_coverage || o.dump_image)
-        status = dump(&o, &s);
+        status = dump(l, &o, &s);
     if (status == EXIT_OK && o.figure)
         status = figure_export(l, &o, &s);
     if (!headless)

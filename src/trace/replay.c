@@ -155,3 +155,18 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
     }
     return true;
 }
+
+bool render_lesson_scene(const struct lesson *l, const struct scene *s,
+                         const struct lesson_variant *v, const struct raster_params *p,
+                         struct target *fb)
+{
+    rasterize_scene_fn whole = lesson_scene_fn(l, v);
+    if (!whole)
+        return render_scene(s, v, p, fb);
+    if (!target_init(fb, s->w, s->h, scene_background(s)))
+        return false;
+    if (whole(s, p, fb))
+        return true;
+    target_free(fb);
+    return false;
+}

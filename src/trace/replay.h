@@ -50,5 +50,9 @@ int replay_to(struct replay *r, uint64_t step, struct target *fb,
 /* Run a whole scene with a variant, no narration: what --dump-* writes. */
 bool render_scene(const struct scene *s, const struct lesson_variant *v,
                   const struct raster_params *p, struct target *fb);
+/* The same through the lesson's scene-level twin when it has one (lesson 07). */
+bool render_lesson_scene(const struct lesson *l, const struct scene *s,
+                         const struct lesson_variant *v, const struct raster_params *p,
+                         struct target *fb);
 
 #endif
