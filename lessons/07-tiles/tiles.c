@@ -741,10 +741,7 @@ draw_in_tile(const struct tri *t, const float *st, struct rect r, bool full, con
              struct trace *tr, cover_fn cover, shade_fn shade)
 {
     struct tt c = tt_make(t, st, r);
-    if (full) {
-        NARRATE(tr, .kind = TRACE_BLOCK, .line = L_FULL_TILE, .x = r.x0, .y = r.y0,
-                .x1 = r.x0 + r.w - 1, .y1 = r.y0 + r.h - 1, .klass = BLOCK_FULL,
-                .aux = { TILE, 1 });
+    if (full) {     /* narrated by the tile's own (FULL) step: the caller's */
         draw_rows(&c, d, tr, 0, 0, r.w - 1, r.h - 1, false, cover, shade);
         return;
     }
@@ -1021,7 +1018,7 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
             struct rect rc = tile_rect(&g, tile);
             enum block_class k = classify_rect(&t, rc, o.use_wrong_corner);
             NARRATE(tr, .kind = TRACE_BLOCK,
-                    .line = k == BLOCK_EMPTY ? L_REJECT : k == BLOCK_FULL ? L_ACCEPT : L_PARTIAL_TILE,
+                    .line = k == BLOCK_EMPTY ? L_REJECT : k == BLOCK_FULL ? L_FULL_TILE : L_PARTIAL_TILE,
                     .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
                     .klass = (uint8_t)k, .aux = { TILE, 0, (float)p->bin_size, (float)p->bin_entry,
                                                  (float)p->thread });

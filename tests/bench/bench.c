@@ -35,11 +35,18 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define SCENE_SMALL 1
 #define SCENE_MIXED 2
 
-/* Targets of the benchmark issue, single thread, medians. */
-#define TARGET_LARGE_X 2.0      /* lesson 05 vs llvmpipe, Mpix/s on large */
-#define TARGET_SMALL_X 5.0      /* ... Mtri/s on small */
-#define TARGET_MIXED_X 2.0      /* ... on mixed */
-#define TARGET_BANDWIDTH 0.25   /* lesson 05 on large, share of the memory limit */
+/* Targets, medians of the same run. Lesson 07 against llvmpipe (issue 15): */
+#define TARGET_L07_LARGE_X 2.0  /* lesson 07 vs llvmpipe, both on every core, Mpix/s on large */
+#define TARGET_L07_SMALL_X 5.0  /* ... Mtri/s on small */
+#define TARGET_L07_MIXED_X 2.0  /* ... Mtri/s on mixed */
+#define TARGET_L07_ONE_X 2.0    /* lesson 07 --threads 1 vs LP_NUM_THREADS=0, every scene */
+#define TARGET_L07_SCALE_X 1.8  /* lesson 07 from 1 to 2 threads, large and mixed */
+#define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
+/* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
+ * 2015: their best speed-up of block classification over the bounding box is
+ * 9.72x on large triangles; on tiny ones blocks lose, 0.85x). */
+#define PAPER_L05_LARGE_X 9.72
+#define PAPER_L05_TINY_X 0.85
 #define TARGET_FRAME_MS 16.0    /* explorer frame at 1280 x 800 */
 
 struct options {
@@ -57,12 +64,23 @@ struct row {
     const char *variant;        /* "top-left", "1 thread" */
     bool exhibit, peer;
     struct bench_timing t[NSCENES];
+    const struct lesson *lesson;        /* NULL for a peer */
+    const struct lesson_variant *var;
 };
 
 static struct row rows[MAX_ROWS];
 static int nrows;
 static double frame_ms = -1;     /* explorer frame, < 0 not measured */
 static double figures_s = -1;    /* make figures, < 0 not measured */
+
+/* The targets as printed, kept for bench.csv. */
+struct target_line {
+    char id[64];
+    double got, goal;
+    bool under, met, measured;
+};
+static struct target_line targets[24];
+static int ntargets;
 
 static double now(void)
 {
@@ -99,50 +117,52 @@ static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
 
 /* --- the lessons ------------------------------------------------------------ */
 
-static void draw_scene(const struct scene *s, const struct lesson_variant *v,
+/* The whole scene: through the lesson's scene-level twin when it has one
+ * (lesson 07 bins every triangle, then draws tile by tile on every core),
+ * else tri_setup + rasterize triangle after triangle. */
+static void draw_scene(const struct row *row, const struct scene *s,
                        const struct raster_params *p, struct target *fb)
 {
+    rasterize_scene_fn whole = lesson_scene_fn(row->lesson, row->var);
+    if (whole) {
+        if (!whole(s, p, fb)) {
+            fprintf(stderr, "tristep-bench: %s %s: out of memory\n", row->program, row->variant);
+            exit(1);
+        }
+        return;
+    }
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        v->rasterize(&t, p, fb, NULL);
+        row->var->rasterize(&t, p, fb, NULL);
     }
 }
 
-static void time_variant(struct row *row, const struct lesson_variant *v,
-                         struct bench_scene *sc, uint8_t *const peer_cov[],
-                         const struct options *o)
+/* One timed run of a row on scene i (r < 0: the warm-up, not kept). The
+ * target is cleared outside the clock and does not count coverage. */
+static void time_once(struct row *row, int i, const struct scene *s, struct target *fb, int r)
 {
     const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
-    for (int i = 0; i < NSCENES; i++) {
-        const struct scene *s = &sc[i].s;
-        struct target fb;
-        if (!target_init(&fb, s->w, s->h, scene_background(s))) {
-            fprintf(stderr, "tristep-bench: out of memory\n");
-            exit(1);
-        }
-        /* timed: the target does not count coverage (count == NULL) */
-        struct target timed = fb;
-        timed.count = NULL;
-        struct bench_timing *bt = &row->t[i];
-        bt->runs = o->runs;
-        for (int r = -1; r < o->runs; r++) {
-            target_clear(&fb);
-            double t0 = now();
-            draw_scene(s, v, &p, &timed);
-            if (r >= 0)
-                bt->t[r] = now() - t0;
-        }
-        bench_timing_stats(bt);
+    target_clear(fb);
+    struct target timed = *fb;
+    timed.count = NULL;
+    double t0 = now();
+    draw_scene(row, s, &p, &timed);
+    if (r >= 0)
+        row->t[i].t[r] = now() - t0;
+}
 
-        /* untimed: the same code once more, counting coverage */
-        target_clear(&fb);
-        draw_scene(s, v, &p, &fb);
-        size_t n = (size_t)s->w * (size_t)s->h;
-        bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
-        bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
-        target_free(&fb);
-    }
+/* Untimed: the same code once more, counting coverage, against the
+ * reference and llvmpipe. */
+static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
+                           uint8_t *const peer_cov[], struct target *fb)
+{
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    target_clear(fb);
+    draw_scene(row, &sc->s, &p, fb);
+    size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
+    row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
+    row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
 }
 
 /* --- the memory limit ----------------------------------------------------- */
@@ -180,6 +200,38 @@ static double bandwidth_limit(size_t n, int runs, double *gbs)
     free(d);
     *gbs = 16.0 * (double)n / bt.median * 1e-9;
     return (double)n / bt.median * 1e-6;
+}
+
+/* The same pass over one 64 x 64 tile's colour and depth (32 KB), again and
+ * again until n pixels are done: the rate when every access hits the cache,
+ * what a tiled rasterizer's overdraw costs at best. Returns Mpix/s. */
+static double cache_resident_limit(size_t n, int runs, double *gbs)
+{
+    enum { TILE_PIX = 64 * 64 };
+    static uint32_t c[TILE_PIX];
+    static float d[TILE_PIX];
+    for (size_t i = 0; i < TILE_PIX; i++) {
+        c[i] = (uint32_t)i;
+        d[i] = (float)(i & 1023);
+    }
+    size_t passes = n / TILE_PIX + 1;
+    struct bench_timing bt = { .runs = runs };
+    for (int r = -1; r < runs; r++) {
+        double t0 = now();
+        for (size_t p = 0; p < passes; p++) {
+            for (size_t i = 0; i < TILE_PIX; i++) {
+                c[i] ^= 0x00010101u;
+                d[i] += 1.0f;
+            }
+            __asm__ volatile("" ::: "memory");  /* each pass really reads and writes */
+        }
+        if (r >= 0)
+            bt.t[r] = now() - t0;
+    }
+    bench_timing_stats(&bt);
+    double pix = (double)(passes * TILE_PIX);
+    *gbs = 16.0 * pix / bt.median * 1e-9;
+    return pix / bt.median * 1e-6;
 }
 
 /* --- the explorer's frame ------------------------------------------------- */
@@ -356,6 +408,13 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
         fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
         fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+    /* the targets: program target-met or target-missed, variant = its id,
+     * median_s = the value measured, min_s = the goal */
+    for (int k = 0; k < ntargets; k++)
+        if (targets[k].measured)
+            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1\n",
+                    targets[k].met ? "target-met" : "target-missed", targets[k].id,
+                    targets[k].got, targets[k].goal);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -397,58 +456,85 @@ static bool write_chart(const char *dir, const struct bench_scene *sc, double li
     return true;
 }
 
-/* One target line: measured ratio against the goal, met or missed by how much. */
-static void print_target(const char *what, double got, double goal, const char *unit)
+/* One target line: measured value against the goal, met or missed by how
+ * much (under: the value must stay under the goal). */
+static void print_target(const char *id, const char *what, double got, double goal,
+                         const char *unit, bool under)
 {
+    struct target_line *t = ntargets < 24 ? &targets[ntargets++] : &targets[23];
+    snprintf(t->id, sizeof t->id, "%s", id);
+    t->got = got, t->goal = goal, t->under = under, t->measured = got > 0;
     if (got <= 0) {
-        printf("  %-52s not measured\n", what);
+        printf("  %-60s not measured\n", what);
         return;
     }
-    bool met = got >= goal;
-    printf("  %-52s %7.2f%s (goal %.2f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
-           met ? "met" : "MISSED", met ? 100 * (got / goal - 1) : 100 * (1 - got / goal));
+    t->met = under ? got <= goal : got >= goal;
+    double by = under ? (t->met ? 1 - got / goal : got / goal - 1)
+                      : (t->met ? got / goal - 1 : 1 - got / goal);
+    printf("  %-60s %7.2f%s (goal %s%.2f%s)  %s by %.0f%%\n", what, got, unit,
+           under ? "under " : "", goal, unit, t->met ? "met" : "MISSED", 100 * by);
 }
 
-/* The same for a time that must stay under its goal. */
-static void print_target_under(const char *what, double got, double goal, const char *unit)
+/* Ratio of medians b / a on scene i (a faster: > 1), 0 when a row is missing. */
+static double speedup(const struct row *fast, const struct row *slow, int i)
 {
-    if (got <= 0) {
-        printf("  %-52s not measured\n", what);
-        return;
+    return fast && slow ? slow->t[i].median / fast->t[i].median : 0;
+}
+
+static void print_targets(const struct bench_scene *sc, double limit, double cache_limit)
+{
+    const struct row *l07 = find_row("07-", "tiles"), *l07_1 = find_row("07-", "1-thread");
+    const struct row *lp1 = find_row("llvmpipe", "1 thread");
+    const struct row *lpn = find_row("llvmpipe", "default threads");
+    const struct row *l05 = find_row("05-", NULL), *l02 = find_row("02-", NULL);
+    static const char *const scene_id[NSCENES] = { "large", "small", "mixed" };
+    static const char *const unit[NSCENES] = { "Mpix/s", "Mtri/s", "Mtri/s" };
+    static const double goal[NSCENES] = { TARGET_L07_LARGE_X, TARGET_L07_SMALL_X, TARGET_L07_MIXED_X };
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    char what[160], id[64];
+
+    printf("\ntargets (medians of the same run; lesson 07 = 07-tiles on %ld threads, one per "
+           "core; llvmpipe with its default threads):\n", cores);
+    for (int i = 0; i < NSCENES; i++) {
+        snprintf(what, sizeof what, "lesson 07 vs llvmpipe on %s (%s)", scene_id[i], unit[i]);
+        snprintf(id, sizeof id, "l07-vs-llvmpipe-%s", scene_id[i]);
+        print_target(id, what, speedup(l07, lpn, i), goal[i], "x", false);
     }
-    bool met = got <= goal;
-    printf("  %-52s %7.2f%s (goal under %.0f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
-           met ? "met" : "MISSED", met ? 100 * (1 - got / goal) : 100 * (got / goal - 1));
-}
+    for (int i = 0; i < NSCENES; i++) {
+        snprintf(what, sizeof what, "lesson 07, 1 thread vs llvmpipe, 1 thread, on %s", scene_id[i]);
+        snprintf(id, sizeof id, "l07-1-thread-vs-llvmpipe-1-thread-%s", scene_id[i]);
+        print_target(id, what, speedup(l07_1, lp1, i), TARGET_L07_ONE_X, "x", false);
+    }
+    for (int i = 0; i < NSCENES; i += 2) {     /* large and mixed */
+        snprintf(what, sizeof what, "lesson 07 from 1 to %ld threads on %s", cores, scene_id[i]);
+        snprintf(id, sizeof id, "l07-1-to-%ld-threads-%s", cores, scene_id[i]);
+        print_target(id, what, speedup(l07, l07_1, i), TARGET_L07_SCALE_X, "x", false);
+    }
+    double rate = l07 ? mpix(&sc[SCENE_LARGE], &l07->t[SCENE_LARGE]) : 0;
+    print_target("l07-large-vs-memory-limit", "lesson 07 on large, times the memory limit",
+                 limit > 0 ? rate / limit : 0, TARGET_L07_MEMORY_X, "x", false);
+    if (rate > 0 && cache_limit > 0)
+        printf("  %-60s %6.0f%%  (%.0f of %.0f Mpix/s)\n",
+               "  ... that is of the cache-resident limit (one 64 x 64 tile)",
+               100 * rate / cache_limit, rate, cache_limit);
 
-static void print_targets(const struct bench_scene *sc, double limit)
-{
-    const struct row *l05 = find_row("05-", NULL);
-    const struct row *lp = find_row("llvmpipe", "1 thread");
-    printf("\ntargets (single thread, medians; lesson 05 = %s %s, llvmpipe = LP_NUM_THREADS=0):\n",
-           l05 ? l05->program : "(not built)", l05 ? l05->variant : "");
-    double x[NSCENES] = { 0, 0, 0 };
-    for (int i = 0; i < NSCENES; i++)
-        if (l05 && lp)
-            x[i] = lp->t[i].median / l05->t[i].median;
-    print_target("lesson 05 vs llvmpipe on large (Mpix/s)", x[SCENE_LARGE], TARGET_LARGE_X, "x");
-    print_target("lesson 05 vs llvmpipe on small (Mtri/s)", x[SCENE_SMALL], TARGET_SMALL_X, "x");
-    print_target("lesson 05 vs llvmpipe on mixed (Mtri/s)", x[SCENE_MIXED], TARGET_MIXED_X, "x");
-    double bw = l05 && limit > 0 ? mpix(&sc[SCENE_LARGE], &l05->t[SCENE_LARGE]) / limit : 0;
-    print_target("lesson 05 on large, share of the memory limit", 100 * bw,
-                 100 * TARGET_BANDWIDTH, "%");
-    print_target_under("explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
-                       TARGET_FRAME_MS, " ms");
-    /* the fastest exact variant of lesson 05 on each scene, for the record */
-    for (int i = 0; i < NSCENES && lp; i++) {
+    printf("\nlesson 05 against lesson 02, the paper's figures (Mileff, Nehez, Dudra 2015):\n");
+    print_target("l05-vs-l02-large", "lesson 05 vs lesson 02 on large (paper's best: 9.72x)",
+                 speedup(l05, l02, SCENE_LARGE), PAPER_L05_LARGE_X, "x", false);
+    print_target("l05-vs-l02-tiny", "lesson 05 vs lesson 02 on small, tiny triangles (paper: 0.85x)",
+                 speedup(l05, l02, SCENE_SMALL), PAPER_L05_TINY_X, "x", false);
+    print_target("explorer-frame-ms", "explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
+                 TARGET_FRAME_MS, " ms", true);
+    /* the fastest exact variant of every lesson on each scene, for the record */
+    for (int i = 0; i < NSCENES && lp1; i++) {
         const struct row *best = NULL;
         for (int k = 0; k < nrows; k++)
-            if (strncmp(rows[k].program, "05-", 3) == 0 && !rows[k].exhibit
+            if (!rows[k].peer && !rows[k].exhibit
                 && (!best || rows[k].t[i].median < best->t[i].median))
                 best = &rows[k];
         if (best)
-            printf("  fastest lesson 05 variant on %-6s %-16s %.2fx llvmpipe\n", sc[i].name,
-                   best->variant, lp->t[i].median / best->t[i].median);
+            printf("  fastest on %-6s: %s %-12s %.2fx llvmpipe 1 thread\n", sc[i].name,
+                   best->program, best->variant, lp1->t[i].median / best->t[i].median);
     }
 }
 
@@ -540,46 +626,18 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    /* the peer first: its coverage is the second oracle for every lesson */
-    uint8_t *peer_cov[NSCENES] = { NULL };
-    bool have_peer = false;
-    if (o.peer) {
-        static const struct { int threads; const char *name; } cfg[] = {
-            { 0, "1 thread" }, { -1, "default threads" },
-        };
-        for (int i = 0; i < NSCENES; i++)
-            peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
-        for (int c = 0; c < 2; c++) {
-            struct row *r = &rows[nrows];
-            char why[256];
-            uint8_t *cov[NSCENES];
-            for (int i = 0; i < NSCENES; i++)
-                cov[i] = c == 0 ? peer_cov[i] : malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
-            if (peer_run(sc, NSCENES, cfg[c].threads, 1, o.runs, r->t, cov, why, sizeof why)) {
-                r->program = "llvmpipe";
-                r->variant = cfg[c].name;
-                r->peer = true;
-                for (int i = 0; i < NSCENES; i++) {
-                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
-                    r->t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
-                    r->t[i].diff_peer = count_diff(cov[i], peer_cov[i], n);
-                }
-                nrows++;
-                have_peer = c == 0 ? true : have_peer;
-            } else {
-                printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
-            }
-            for (int i = 0; c == 1 && i < NSCENES; i++)
-                free(cov[i]);
-            if (c == 0 && !have_peer)
-                break;
-        }
-        if (have_peer)
-            printf("peer: %s\n", peer_renderer);
-    } else {
+    /* The rows: llvmpipe on one thread and on its default threads, then
+     * every lesson variant. */
+    static const struct { int threads; const char *name; } cfg[] = {
+        { 0, "1 thread" }, { -1, "default threads" },
+    };
+    int npeers = 0;
+    if (o.peer)
+        for (int c = 0; c < 2; c++)
+            rows[nrows++] = (struct row){ .program = "llvmpipe", .variant = cfg[c].name, .peer = true };
+    else
         printf("llvmpipe: not run (--no-llvmpipe)\n");
-    }
-
+    npeers = nrows;
     for (const struct lesson *const *l = all_lessons_fast; *l; l++) {
         if (o.only && strncmp((*l)->id, o.only, strlen(o.only)) != 0)
             continue;
@@ -587,17 +645,85 @@ int main(int argc, char **argv)
             const struct lesson_variant *var = &(*l)->variants[v];
             if (var->exhibit && !o.exhibits)
                 continue;
-            struct row *r = &rows[nrows++];
-            *r = (struct row){ (*l)->id, var->name, var->exhibit, false, { { .runs = 0 } } };
-            fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
-            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o);
+            rows[nrows++] = (struct row){ .program = (*l)->id, .variant = var->name,
+                                          .exhibit = var->exhibit, .lesson = *l, .var = var };
         }
     }
+
+    /* Interleaved, round after round: every row runs once per scene in each
+     * round, so that a slow phase of the shared machine hits every program
+     * alike (FACTS.md). llvmpipe runs in a child process per round (it reads
+     * its thread count once per process), with its own warm-up. */
+    uint8_t *peer_cov[NSCENES] = { NULL };
+    bool have_peer = false;
+    struct target fb[NSCENES];
+    for (int i = 0; i < NSCENES; i++) {
+        peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
+        if (!peer_cov[i] || !target_init(&fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
+            fprintf(stderr, "tristep-bench: out of memory\n");
+            return 1;
+        }
+    }
+    for (int k = npeers; k < nrows; k++) {
+        rows[k].t[0].runs = rows[k].t[1].runs = rows[k].t[2].runs = o.runs;
+        for (int i = 0; i < NSCENES; i++)
+            time_once(&rows[k], i, &sc[i].s, &fb[i], -1);
+    }
+    bool peer_ok[2] = { npeers > 0, npeers > 1 };
+    for (int r = 0; r < o.runs; r++) {
+        fprintf(stderr, "round %d of %d...\n", r + 1, o.runs);
+        for (int c = 0; c < npeers; c++) {
+            if (!peer_ok[c])
+                continue;
+            char why[256];
+            struct bench_timing one[NSCENES];
+            uint8_t *cov[NSCENES];
+            for (int i = 0; i < NSCENES; i++)
+                cov[i] = c == 0 && r == 0 ? peer_cov[i] : fb[i].count;   /* scratch after the first */
+            if (!peer_run(sc, NSCENES, cfg[c].threads, 1, 1, one, cov, why, sizeof why)) {
+                printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
+                peer_ok[c] = false;
+                continue;
+            }
+            for (int i = 0; i < NSCENES; i++) {
+                rows[c].t[i].t[r] = one[i].t[0];
+                rows[c].t[i].runs = r + 1;
+                if (r == 0) {
+                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+                    rows[c].t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
+                    rows[c].t[i].diff_peer = c == 0 ? 0 : count_diff(cov[i], peer_cov[i], n);
+                }
+            }
+        }
+        for (int k = npeers; k < nrows; k++)
+            for (int i = 0; i < NSCENES; i++)
+                time_once(&rows[k], i, &sc[i].s, &fb[i], r);
+    }
+    have_peer = peer_ok[0];
+    /* a peer that failed leaves the table */
+    int kept = 0;
+    for (int k = 0; k < nrows; k++)
+        if (!rows[k].peer || peer_ok[k])
+            rows[kept++] = rows[k];
+    nrows = kept;
+    if (have_peer)
+        printf("peer: %s\n", peer_renderer);
+    for (int k = 0; k < nrows; k++) {
+        for (int i = 0; i < NSCENES; i++) {
+            bench_timing_stats(&rows[k].t[i]);
+            if (!rows[k].peer)
+                check_coverage(&rows[k], i, &sc[i], have_peer ? peer_cov : NULL, &fb[i]);
+        }
+    }
+    for (int i = 0; i < NSCENES; i++)
+        target_free(&fb[i]);
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
     double limit = bandwidth_limit(npix, o.runs < 5 ? 5 : o.runs, &gbs);
     double dram = bandwidth_limit(o.quick ? npix : 8 * npix, 3, &dram_gbs);
+    double cache_gbs = 0;
+    double cache_limit = cache_resident_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
     print_table(sc, limit);
     char l3[32] = "?";
     FILE *cf = fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r");
@@ -608,8 +734,9 @@ int main(int argc, char **argv)
     printf("\nmemory limit: one read-modify-write pass over colour + depth, 8 bytes a pixel, "
            "one core:\n  same buffers (%d x %d, %.1f MB; L3 cache %s): %.1f Mpix/s (%.1f GB/s), "
            "the %% mem column\n  8 times larger buffers (beyond the caches): %.1f Mpix/s "
-           "(%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram,
-           dram_gbs);
+           "(%.1f GB/s)\n  one 64 x 64 tile over and over (cache-resident): %.1f Mpix/s (%.1f GB/s)\n",
+           sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram, dram_gbs,
+           cache_limit, cache_gbs);
 
     frame_ms = explorer_frame(o.quick ? 5 : 60);
     if (frame_ms > 0)
@@ -627,7 +754,7 @@ int main(int argc, char **argv)
         }
     }
 
-    print_targets(sc, limit);
+    print_targets(sc, limit, cache_limit);
 
     /* verdict on exactness: every exact variant, every scene */
     int64_t bad = 0;
