@@ -56,8 +56,14 @@ $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
 
+# Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
+# does not run under TSan), run by tests/test_lesson07.c.
+TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c src/scene/scene.c src/scene/builtin.c
+$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h | $(B)/config.mk
+	$(CC) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -g -fsanitize=thread $(TSAN_SRC) -lm -o $@
+
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
