@@ -101,13 +101,18 @@ static const char *const aux_names[] = { "q", "level", "bin", "entry", "thread",
 enum { PL_INV_Z, PL_R, PL_G, PL_B, PL_COUNT };
 enum { ST_S, ST_T, ST_COUNT };      /* texture planes, N s / z and N t / z */
 
-/* One triangle after set-up: 112 bytes, what the tiles read. */
+/* One triangle after set-up: 136 bytes, what the tiles read. The bins hold
+ * copies of it, so that a worker reads its tile's triangles one after
+ * another instead of all over memory. */
 struct tri {
     int64_t c[3];               /* F_k + bias_k at the centre of pixel (0, 0) */
     int32_t di[3], dj[3];       /* I_k, J_k: F_k grows by 256 I_k per pixel right, 256 J_k per row */
     int16_t minx, miny, maxx, maxy; /* pixels whose centre may be covered, on the target */
     uint8_t bias_neg;           /* bit k: bias_k = -1 (edge k neither top nor left) */
+    bool textured;              /* st holds the planes of N s / z and N t / z */
+    bool full;                  /* in a bin: the tile lies wholly inside */
     float p0[PL_COUNT], px[PL_COUNT], py[PL_COUNT];
+    float st[3 * ST_COUNT];     /* P0, Px, Py of s, then of t */
 };
 
 /* Floor of a / 256 for any sign (a >> 8 without implementation-defined shifts). */
@@ -118,9 +123,11 @@ static int64_t floor_div256(int64_t a)
 
 /* The record of a triangle that tri_setup() has snapped and normalised
  * (tristep's shared set-up, so coverage is decided on the same numbers as
- * every other lesson). `st` receives the texture planes when it is not NULL. */
-static void tri_record(struct tri *r, float *st, const struct tri_setup *t, int checker)
+ * every other lesson); the texture planes only for a textured scene. */
+static void tri_record(struct tri *r, const struct tri_setup *t, int checker)
 {
+    r->textured = checker > 0;
+    r->full = false;
     for (int k = 0; k < 3; k++) {
         r->c[k] = edge_value(t, k, 0, 0) + t->bias[k];
         r->di[k] = (int32_t)t->I[k];
@@ -147,7 +154,7 @@ static void tri_record(struct tri *r, float *st, const struct tri_setup *t, int 
     double f[3];
     for (int k = 0; k < 3; k++)
         f[k] = (double)edge_value(t, k, t->minx, t->miny);
-    for (int q = 0; q < PL_COUNT + (st ? ST_COUNT : 0); q++) {
+    for (int q = 0; q < PL_COUNT + (r->textured ? ST_COUNT : 0); q++) {
         const double *a = val[q];
         double p0 = (f[EDGE_BC] * a[0] + f[EDGE_CA] * a[1] + f[EDGE_AB] * a[2]) * inv_area2;
         double px = ((double)t->I[EDGE_BC] * a[0] + (double)t->I[EDGE_CA] * a[1]
@@ -157,7 +164,7 @@ static void tri_record(struct tri *r, float *st, const struct tri_setup *t, int 
         if (q < PL_COUNT) {
             r->p0[q] = (float)p0, r->px[q] = (float)px, r->py[q] = (float)py;
         } else {
-            float *o = st + 3 * (q - PL_COUNT);
+            float *o = r->st + 3 * (q - PL_COUNT);
             o[0] = (float)p0, o[1] = (float)px, o[2] = (float)py;
         }
     }
@@ -240,40 +247,98 @@ static struct rect tile_rect(const struct grid *g, int tile)
     return r;
 }
 
-/* A bin: scene-ordered triangle numbers, each shifted left once with the low
- * bit set when the triangle covers the whole tile. */
-struct bin {
-    uint32_t *e;
-    uint32_t n, cap;
+/* A bin: copies of the records of the triangles that may touch a tile, in
+ * scene order, each marked `full` when it covers the whole tile, in a chain
+ * of blocks of BIN_BLOCK records (4 KB): read one after another, written
+ * without ever moving. */
+#define BIN_BLOCK 30
+
+struct bin_block {
+    struct bin_block *next;
+    uint32_t n;
+    struct tri rec[BIN_BLOCK];
 };
 
-static bool bin_push(struct bin *b, uint32_t entry)
+struct bin {
+    struct bin_block *first, *last;
+};
+
+/* Blocks are kept from one run to the next, as llvmpipe keeps its scenes:
+ * fresh memory from the system costs a page fault per 4 KB, about as much
+ * as drawing the small triangles it holds. The pool is shared by every run
+ * and every worker, under a lock taken once per block. */
+#define POOL_MAX 16384          /* blocks kept: 64 MB */
+static pthread_mutex_t pool_lock = PTHREAD_MUTEX_INITIALIZER;
+static struct bin_block *pool;
+static int pool_size;
+
+static struct bin_block *block_get(void)
 {
-    if (b->n == b->cap) {
-        uint32_t cap = b->cap ? 2 * b->cap : 16;
-        uint32_t *e = realloc(b->e, cap * sizeof *e);
-        if (!e)
-            return false;
-        b->e = e;
-        b->cap = cap;
+    pthread_mutex_lock(&pool_lock);
+    struct bin_block *b = pool;
+    if (b) {
+        pool = b->next;
+        pool_size--;
     }
-    b->e[b->n++] = entry;
+    pthread_mutex_unlock(&pool_lock);
+    if (!b && !(b = malloc(sizeof *b)))
+        return NULL;
+    b->next = NULL;
+    b->n = 0;
+    return b;
+}
+
+/* Give a bin's blocks back to the pool (beyond POOL_MAX, to the system). */
+static void bin_free(struct bin *bin)
+{
+    struct bin_block *b = bin->first;
+    pthread_mutex_lock(&pool_lock);
+    while (b) {
+        struct bin_block *next = b->next;
+        if (pool_size < POOL_MAX) {
+            b->next = pool;
+            pool = b;
+            pool_size++;
+        } else {
+            free(b);
+        }
+        b = next;
+    }
+    pthread_mutex_unlock(&pool_lock);
+    bin->first = bin->last = NULL;
+}
+
+static bool bin_push(struct bin *bin, const struct tri *t, bool full)
+{
+    struct bin_block *b = bin->last;
+    if (!b || b->n == BIN_BLOCK) {
+        struct bin_block *fresh = block_get();
+        if (!fresh)
+            return false;
+        if (b)
+            b->next = fresh;
+        else
+            bin->first = fresh;
+        bin->last = b = fresh;
+    }
+    b->rec[b->n] = *t;
+    b->rec[b->n++].full = full;
     return true;
 }
 
-/* Put triangle `index` into the bins of the tiles it may touch. A box within
- * one tile needs no test: the tile's blocks will sort it out. */
-static bool bin_triangle(const struct tri *t, uint32_t index, const struct grid *g,
-                         struct bin *bins, bool use_wrong_corner)
+/* Put a triangle into the bins of the tiles it may touch. A box within one
+ * tile needs no test: the tile's blocks will sort it out. */
+static bool bin_triangle(const struct tri *t, const struct grid *g, struct bin *bins,
+                         bool use_wrong_corner)
 {
     int tx0 = t->minx / TILE, tx1 = t->maxx / TILE, ty0 = t->miny / TILE, ty1 = t->maxy / TILE;
     if (tx0 == tx1 && ty0 == ty1)
-        return bin_push(&bins[ty0 * g->nx + tx0], index << 1);
+        return bin_push(&bins[ty0 * g->nx + tx0], t, false);
     for (int ty = ty0; ty <= ty1; ty++)
         for (int tx = tx0; tx <= tx1; tx++) {
             int tile = ty * g->nx + tx;
             enum block_class k = classify_rect(t, tile_rect(g, tile), use_wrong_corner);
-            if (k != BLOCK_EMPTY && !bin_push(&bins[tile], index << 1 | (k == BLOCK_FULL)))
+            if (k != BLOCK_EMPTY && !bin_push(&bins[tile], t, k == BLOCK_FULL))
                 return false;
         }
     return true;
@@ -342,14 +407,26 @@ struct tt {
     int32_t e0[3];
 };
 
-static struct tt tt_make(const struct tri *t, const float *st, struct rect r)
+static struct tt tt_make(const struct tri *t, struct rect r)
 {
-    struct tt c = { t, st, r.x0, r.y0, { 0, 0, 0 } };
+    struct tt c = { t, t->textured ? t->st : NULL, r.x0, r.y0, { 0, 0, 0 } };
     for (int k = 0; k < 3; k++) {
         int64_t e = floor_div256(edge_at(t, k, r.x0, r.y0));
         c.e0[k] = (int32_t)(e > E_LIMIT ? E_LIMIT : e < -E_LIMIT - 1 ? -E_LIMIT - 1 : e);
     }
     return c;
+}
+
+/* Row terms P0 + Py (y - miny) of every plane, for row j of the tile. */
+static inline void plane_rows(const struct tt *c, int j, float row[PL_COUNT], float st_row[ST_COUNT])
+{
+    const struct tri *t = c->t;
+    float dyf = (float)(c->ty + j - t->miny);
+    for (int q = 0; q < PL_COUNT; q++)
+        row[q] = t->p0[q] + t->py[q] * dyf;
+    if (c->st)
+        for (int q = 0; q < ST_COUNT; q++)
+            st_row[q] = c->st[3 * q] + c->st[3 * q + 2] * dyf;
 }
 
 /* Saturating coverage counts of the lanes in `mask` (bit l = column i + l). */
@@ -450,23 +527,16 @@ static bool shade1_c(const struct tt *c, const struct dst *d, const float row[PL
     return z < *dp;
 }
 
-/* Row terms P0 + Py (y - miny) of every plane, for row j of the tile. */
-static void plane_rows(const struct tt *c, int j, float row[PL_COUNT], float st_row[ST_COUNT])
-{
-    const struct tri *t = c->t;
-    float dyf = (float)(c->ty + j - t->miny);
-    for (int q = 0; q < PL_COUNT; q++)
-        row[q] = t->p0[q] + t->py[q] * dyf;
-    if (c->st)
-        for (int q = 0; q < ST_COUNT; q++)
-            st_row[q] = c->st[3 * q] + c->st[3 * q + 2] * dyf;
-}
+/* Row terms of the planes for row j, computed once a row by the caller. */
+struct rows {
+    float p[PL_COUNT], st[ST_COUNT];
+};
 
-static void shade8_c(const struct tt *c, const struct dst *d, int i, int j, unsigned mask)
+static void shade8_c(const struct tt *c, const struct dst *d, const struct rows *rw, int i, int j,
+                     unsigned mask)
 {
     count_lanes(d, i, j, mask);
-    float row[PL_COUNT], st_row[ST_COUNT];
-    plane_rows(c, j, row, st_row);
+    const float *row = rw->p, *st_row = rw->st;
     for (int l = 0; l < LANES; l++) {
         float z;
         uint32_t rgba;
@@ -552,25 +622,24 @@ static void shade4_sse2(const struct tt *c, const struct dst *d, const float row
                      _mm_or_si128(_mm_and_si128(pass_i, rgba), _mm_andnot_si128(pass_i, old_c)));
 }
 
-static void shade8_sse2(const struct tt *c, const struct dst *d, int i, int j, unsigned mask)
+static void shade8_sse2(const struct tt *c, const struct dst *d, const struct rows *rw, int i,
+                        int j, unsigned mask)
 {
     if (i + LANES > d->wide) {      /* no room for whole registers: lane by lane */
-        shade8_c(c, d, i, j, mask);
+        shade8_c(c, d, rw, i, j, mask);
         return;
     }
     count_lanes(d, i, j, mask);
-    float row[PL_COUNT], st_row[ST_COUNT];
-    plane_rows(c, j, row, st_row);
     if (mask & 0xF)
-        shade4_sse2(c, d, row, st_row, i, j, mask & 0xF);
+        shade4_sse2(c, d, rw->p, rw->st, i, j, mask & 0xF);
     if (mask >> 4)
-        shade4_sse2(c, d, row, st_row, i + 4, j, mask >> 4);
+        shade4_sse2(c, d, rw->p, rw->st, i + 4, j, mask >> 4);
 }
 
 #if TILES_AVX2
 #define AVX2 __attribute__((target("avx2")))
 
-AVX2 static unsigned cover8_avx2(const struct tt *c, int i, int j)
+AVX2 static inline __attribute__((always_inline)) unsigned cover8_avx2(const struct tt *c, int i, int j)
 {
     const struct tri *t = c->t;
     __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -597,16 +666,17 @@ AVX2 static __m256i byte_avx2(__m256 v)
                             _mm256_set1_epi32(255));
 }
 
-AVX2 static void shade8_avx2(const struct tt *c, const struct dst *d, int i, int j, unsigned mask)
+AVX2 static inline __attribute__((always_inline)) void
+shade8_avx2(const struct tt *c, const struct dst *d, const struct rows *rw, int i, int j,
+            unsigned mask)
 {
     if (i + LANES > d->wide) {
-        shade8_c(c, d, i, j, mask);
+        shade8_c(c, d, rw, i, j, mask);
         return;
     }
     count_lanes(d, i, j, mask);
     const struct tri *t = c->t;
-    float row[PL_COUNT], st_row[ST_COUNT];
-    plane_rows(c, j, row, st_row);
+    const float *row = rw->p, *st_row = rw->st;
     __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     __m256 in = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
         _mm256_and_si256(_mm256_set1_epi32((int)mask), bits), bits));
@@ -653,28 +723,26 @@ AVX2 static void shade8_avx2(const struct tt *c, const struct dst *d, int i, int
 /* --- the descent: tile -> blocks -> 8 pixels a register ------------------ */
 
 typedef unsigned (*cover_fn)(const struct tt *c, int i, int j);
-typedef void (*shade_fn)(const struct tt *c, const struct dst *d, int i, int j, unsigned mask);
+typedef void (*shade_fn)(const struct tt *c, const struct dst *d, const struct rows *rw, int i,
+                         int j, unsigned mask);
 
 /* Which twin draws: chosen once per run. */
 enum twin { TWIN_BEST, TWIN_AVX2, TWIN_SSE2, TWIN_C };
 
-/* The lanes of columns i .. i + 7 that lie in [x0, x1]. */
-static unsigned lanes_within(int i, int x0, int x1)
+/* The lanes of columns i .. i + 7 that lie in [x0, x1] (x0 - 7 <= i <= x1). */
+static inline unsigned lanes_within(int i, int x0, int x1)
 {
-    unsigned m = 0;
-    for (int l = 0; l < LANES; l++)
-        m |= (unsigned)(i + l >= x0 && i + l <= x1) << l;
-    return m;
+    int lo = x0 - i < 0 ? 0 : x0 - i, hi = x1 - i > LANES - 1 ? LANES - 1 : x1 - i;
+    return (2u << hi) - (1u << lo);
 }
 
 /* Narrated pixel by pixel, writing the target as it goes (what the
  * explorer steps through): the test (E), then the scalar twin's shading. */
-static void narrate_pixels(const struct tt *c, const struct dst *d, struct trace *tr,
-                           int i0, int j, unsigned mask)
+static void narrate_pixels(const struct tt *c, const struct dst *d, const struct rows *rw,
+                           struct trace *tr, int i0, int j, unsigned mask)
 {
     const struct tri *t = c->t;
-    float row[PL_COUNT], st_row[ST_COUNT];
-    plane_rows(c, j, row, st_row);
+    const float *row = rw->p, *st_row = rw->st;
     for (int l = 0; l < LANES; l++) {
         if (!(mask >> l & 1))
             continue;
@@ -718,11 +786,13 @@ static inline __attribute__((always_inline)) void
 draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int y0, int x1,
           int y1, bool test, cover_fn cover, shade_fn shade)
 {
-    for (int j = y0; j <= y1; j++)
+    for (int j = y0; j <= y1; j++) {
+        struct rows rw;
+        plane_rows(c, j, rw.p, rw.st);
         for (int i = x0; i <= x1; i += LANES) {
             unsigned m = lanes_within(i, x0, x1);
             if (NARRATING && tr && test) {
-                narrate_pixels(c, d, tr, i, j, m);
+                narrate_pixels(c, d, &rw, tr, i, j, m);
                 continue;
             }
             if (frozen(tr))
@@ -730,17 +800,18 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
             if (test)
                 m &= cover(c, i, j);
             if (m)
-                shade(c, d, i, j, m);
+                shade(c, d, &rw, i, j, m);
         }
+    }
 }
 
 /* Draw triangle t into the tile r (pixels written through d). `full`: the
  * binning found the tile wholly inside. */
 static inline __attribute__((always_inline)) void
-draw_in_tile(const struct tri *t, const float *st, struct rect r, bool full, const struct dst *d,
-             struct trace *tr, cover_fn cover, shade_fn shade)
+draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d, struct trace *tr,
+             cover_fn cover, shade_fn shade)
 {
-    struct tt c = tt_make(t, st, r);
+    struct tt c = tt_make(t, r);
     if (full) {     /* narrated by the tile's own (FULL) step: the caller's */
         draw_rows(&c, d, tr, 0, 0, r.w - 1, r.h - 1, false, cover, shade);
         return;
@@ -789,28 +860,28 @@ draw_in_tile(const struct tri *t, const float *st, struct rect r, bool full, con
     }
 }
 
-static void draw_c(const struct tri *t, const float *st, struct rect r, bool full,
-                   const struct dst *d, struct trace *tr)
+static void draw_c(const struct tri *t, struct rect r, bool full, const struct dst *d,
+                   struct trace *tr)
 {
-    draw_in_tile(t, st, r, full, d, tr, cover8_c, shade8_c);
+    draw_in_tile(t, r, full, d, tr, cover8_c, shade8_c);
 }
 
-static void draw_sse2(const struct tri *t, const float *st, struct rect r, bool full,
-                      const struct dst *d, struct trace *tr)
+static void draw_sse2(const struct tri *t, struct rect r, bool full, const struct dst *d,
+                   struct trace *tr)
 {
-    draw_in_tile(t, st, r, full, d, tr, cover8_sse2, shade8_sse2);
+    draw_in_tile(t, r, full, d, tr, cover8_sse2, shade8_sse2);
 }
 
 #if TILES_AVX2
-AVX2 static void draw_avx2(const struct tri *t, const float *st, struct rect r, bool full,
-                           const struct dst *d, struct trace *tr)
+AVX2 static void draw_avx2(const struct tri *t, struct rect r, bool full, const struct dst *d,
+                           struct trace *tr)
 {
-    draw_in_tile(t, st, r, full, d, tr, cover8_avx2, shade8_avx2);
+    draw_in_tile(t, r, full, d, tr, cover8_avx2, shade8_avx2);
 }
 #endif
 
-typedef void (*draw_fn)(const struct tri *t, const float *st, struct rect r, bool full,
-                        const struct dst *d, struct trace *tr);
+typedef void (*draw_fn)(const struct tri *t, struct rect r, bool full, const struct dst *d,
+                        struct trace *tr);
 
 /* The twin to run: AVX2 only where the CPU says it has it. */
 static draw_fn pick_twin(enum twin w)
@@ -842,9 +913,6 @@ struct run {
     draw_fn draw;
     struct grid g;
     int nchunks;
-    struct tri *tris;
-    float *st;                  /* 6 texture floats per triangle, or NULL */
-    bool *live;                 /* triangle covers some pixel centre of the target */
     struct bin *bins;           /* nchunks x g.n, chunk-major */
     atomic_int next_tile;
     atomic_bool failed;
@@ -861,12 +929,11 @@ static void bin_chunk(struct run *r, int c)
     struct bin *bins = r->bins + (size_t)c * (size_t)r->g.n;
     for (int i = lo; i < hi; i++) {
         struct tri_setup t;
-        float *st = r->st ? r->st + 6 * (size_t)i : NULL;
-        r->live[i] = tri_setup_bits(&t, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
-        if (!r->live[i])
+        struct tri rec;
+        if (!tri_setup_bits(&t, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits))
             continue;
-        tri_record(&r->tris[i], st, &t, r->p->checker);
-        if (!bin_triangle(&r->tris[i], (uint32_t)i, &r->g, bins, r->o.use_wrong_corner)) {
+        tri_record(&rec, &t, r->p->checker);
+        if (!bin_triangle(&rec, &r->g, bins, r->o.use_wrong_corner)) {
             atomic_store(&r->failed, true);
             return;
         }
@@ -876,10 +943,10 @@ static void bin_chunk(struct run *r, int c)
 /* Draw one tile: load it, every chunk's bin in order, store it. */
 static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
 {
-    size_t entries = 0;
-    for (int c = 0; c < r->nchunks; c++)
-        entries += r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile].n;
-    if (entries == 0)
+    bool empty = true;
+    for (int c = 0; c < r->nchunks && empty; c++)
+        empty = !r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile].first;
+    if (empty)
         return;
     if (r->thread_of)
         r->thread_of[tile] = (uint8_t)worker;
@@ -889,10 +956,9 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
         /* the exhibit starts with the worker's own chunk: order depends on who took the tile */
         int c = r->o.unordered ? (k + worker) % r->nchunks : k;
         const struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
-        for (uint32_t e = 0; e < b->n; e++) {
-            uint32_t i = b->e[e] >> 1;
-            r->draw(&r->tris[i], r->st ? r->st + 6 * (size_t)i : NULL, rc, b->e[e] & 1, &d, NULL);
-        }
+        for (const struct bin_block *blk = b->first; blk; blk = blk->next)
+            for (uint32_t e = 0; e < blk->n; e++)
+                r->draw(&blk->rec[e], rc, blk->rec[e].full, &d, NULL);
     }
     if (r->o.tile_buffers)
         tile_store(buf, r->fb, rc);
@@ -952,12 +1018,8 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
     r->thread_of = thread_of;
     atomic_init(&r->next_tile, 0);
     atomic_init(&r->failed, false);
-    size_t n = (size_t)s->ntris;
-    r->tris = malloc((n ? n : 1) * sizeof *r->tris);
-    r->live = malloc(n ? n : 1);
-    r->st = p->checker > 0 ? malloc((n ? n : 1) * 6 * sizeof *r->st) : NULL;
     r->bins = calloc((size_t)r->nchunks * (size_t)r->g.n, sizeof *r->bins);
-    bool ok = r->tris && r->live && r->bins && (p->checker <= 0 || r->st);
+    bool ok = r->bins;
     pthread_t tid[MAX_THREADS];
     struct worker w[MAX_THREADS];
     int started = 1;
@@ -984,11 +1046,8 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
         ok = ok && !atomic_load(&r->failed);
     }
     for (size_t b = 0; r->bins && b < (size_t)r->nchunks * (size_t)r->g.n; b++)
-        free(r->bins[b].e);
+        bin_free(&r->bins[b]);
     free(r->bins);
-    free(r->tris);
-    free(r->live);
-    free(r->st);
     free(r);
     return ok;
 }
@@ -1006,8 +1065,7 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
     if (ts->empty)
         return;
     struct tri t;
-    float st[6];
-    tri_record(&t, p->checker > 0 ? st : NULL, ts, p->checker);
+    tri_record(&t, ts, p->checker);
     draw_fn draw = pick_twin(o.twin);
     struct grid g = grid_of(fb->w, fb->h);
     for (int ty = t.miny / TILE; ty <= t.maxy / TILE; ty++)
@@ -1025,7 +1083,7 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
             if (k == BLOCK_EMPTY || frozen(tr))
                 continue;
             struct dst d = target_dst(fb, rc);
-            draw(&t, p->checker > 0 ? st : NULL, rc, k == BLOCK_FULL, &d, tr);
+            draw(&t, rc, k == BLOCK_FULL, &d, tr);
         }
 }
 

@@ -55,6 +55,7 @@ struct options {
     uint64_t seed;
     const char *out;            /* directory for bench.csv/svg/png */
     const char *only;           /* run only lessons whose id starts with this */
+    const char *only_variant;   /* ... and only this variant */
     const char *figures_cmd;    /* command that runs `make figures`, timed */
 };
 
@@ -543,7 +544,7 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
 static int usage(FILE *f, int status)
 {
     fprintf(f,
-        "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--lesson NN]\n"
+        "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--lesson NN [--variant NAME]]\n"
         "                     [--exhibits] [--no-llvmpipe] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
         "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
@@ -551,6 +552,7 @@ static int usage(FILE *f, int status)
         "  --runs N       timed runs after one warm-up (default 7, at least 5)\n"
         "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
         "  --lesson NN    only lessons whose id starts with NN\n"
+        "  --variant NAME only that variant of them\n"
         "  --exhibits     also run the exhibits (their coverage is expected to differ)\n"
         "  --figures-cmd  the command that runs `make figures`, timed\n"
         "Exit status: 0 all exact, 1 a coverage difference or a failure, 2 bad usage.\n");
@@ -587,6 +589,8 @@ static bool parse(struct options *o, int argc, char **argv)
             o->out = argv[++i];
         } else if (val && strcmp(a, "--lesson") == 0) {
             o->only = argv[++i];
+        } else if (val && strcmp(a, "--variant") == 0) {
+            o->only_variant = argv[++i];
         } else if (val && strcmp(a, "--figures-cmd") == 0) {
             o->figures_cmd = argv[++i];
         } else {
@@ -643,7 +647,7 @@ int main(int argc, char **argv)
             continue;
         for (int v = 0; v < (*l)->nvariants && nrows < MAX_ROWS; v++) {
             const struct lesson_variant *var = &(*l)->variants[v];
-            if (var->exhibit && !o.exhibits)
+            if ((var->exhibit && !o.exhibits) || (o.only_variant && strcmp(var->name, o.only_variant)))
                 continue;
             rows[nrows++] = (struct row){ .program = (*l)->id, .variant = var->name,
                                           .exhibit = var->exhibit, .lesson = *l, .var = var };
