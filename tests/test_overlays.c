@@ -183,7 +183,8 @@ static bool same(cairo_surface_t *a, cairo_surface_t *b)
 
 Test(overlays, explorer_calls_both_hooks)
 {
-    explorer_fonts();
+    char why[512];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
     struct lesson l = lesson_01;
     l.overlay = record_overlay;
     l.constants = record_constants;
@@ -207,7 +208,8 @@ Test(overlays, explorer_calls_both_hooks)
  * with the overlay differs from the one without. */
 static void assert_overlay_draws(const struct lesson *real, const char *view, uint64_t step)
 {
-    explorer_fonts();
+    char why[512];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
     struct lesson bare = *real;
     bare.overlay = NULL;
     bare.constants = NULL;
