@@ -22,8 +22,9 @@ TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN)
 CC_ALL    = $(CC) $(CFLAGS) $(TS_CFLAGS)
 LD_ALL    = $(CC) $(LDFLAGS) $(SAN)
 LIBS      = $(LDLIBS) $(PKG_LIBS)
-# make test and make bench install their packages before anything compiles.
-DEPS     := $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
+# What comes before any compiling (order-only): the library flags, and the
+# packages of make test and make bench (so make -j2 test installs them first).
+FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
 .PHONY: all run test figures bench clean deps-test deps-bench FORCE
@@ -38,9 +39,9 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
 # What the explorer adds for a lesson (NAME_explorer.c) only narrated.
-$(B)/obj/%.o: %.c | $(B)/config.mk $(DEPS) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
-$(B)/fast/%.o: %.c | $(B)/config.mk $(DEPS) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
-$(B)/obj/main-%.o: src/cli/main.c | $(B)/config.mk $(DEPS) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
+$(B)/obj/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/main-%.o: src/cli/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
 # The library anew when src/ gains or loses a file (its folders' mtimes):
 # no member left over from a file moved away.
 $(B)/libtristep.a: $(LIB_OBJ) src $(wildcard src/*/) ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
@@ -56,7 +57,7 @@ $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
 	@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@
 	@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@
-$(B)/obj/lessons.o: $(B)/lessons.c ; $(CC_ALL) -c $< -o $@
+$(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
 # Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
