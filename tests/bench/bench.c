@@ -23,7 +23,7 @@
 #include <unistd.h>
 
 #include "bench.h"
-#include "draw/explorer.h"
+#include "draw/paint.h"
 #include "lesson.h"
 
 extern const struct lesson *const all_lessons_fast[];
@@ -250,15 +250,20 @@ static double explorer_frame(int frames)
     char err[256];
     if (!scene_parse(&s, "frame", text, sizeof text - 1, err, sizeof err))
         return -1;
-    explorer_fonts();
+    if (!explorer_fonts(err, sizeof err)) {
+        fprintf(stderr, "explorer frame: %s\n", err);
+        scene_free(&s);
+        return -1;
+    }
     struct explorer ex;
-    struct explorer_desc d = { .lesson = all_lessons[0], .scene = &s, .scene_name = "frame",
-                               .params = { .subpixel_bits = SUBPIXEL_BITS } };
+    struct explorer_desc d = { .lesson = all_lessons[0], .scene = &s, .scene_name = "frame" };
     for (int i = 0; all_lessons[i]; i++)
         if (strncmp(all_lessons[i]->id, "02", 2) == 0)
             d.lesson = all_lessons[i];
     double ms = -1;
-    if (explorer_init(&ex, &d)) {
+    if (!explorer_init(&ex, &d, err, sizeof err))
+        fprintf(stderr, "%s\n", err);
+    else {
         explorer_set_step(&ex, ex.replay.total / 2);
         ex.numbers = NUMBERS_ALWAYS;   /* one number a cell: at 12 px cells, three would not fit */
         explorer_set_view_name(&ex, "depth");

@@ -7,27 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const view_names[VIEW_BUILTIN_COUNT] = {
-    "color", "coverage", "edges", "bary", "depth", "blocks", "spans",
-};
-
-static const char *const edge_view_names[3] = { "edge-ab", "edge-bc", "edge-ca" };
-
-/* --- scenes ------------------------------------------------------------------ */
-
-static bool scene_copy(struct scene *dst, const struct scene *src)
-{
-    *dst = *src;
-    dst->tris = NULL;
-    dst->ntris = dst->cap = 0;
-    for (int i = 0; i < src->ntris; i++)
-        if (!scene_add(dst, src->tris[i].v)) {
-            scene_free(dst);
-            return false;
-        }
-    return true;
-}
-
 /* --- replaying a step ------------------------------------------------------- */
 
 static struct cell *explorer_cell_mut(struct explorer *ex, int x, int y)
@@ -83,7 +62,13 @@ static void take_event(void *ctx, const struct trace_event *ev)
             c->flags = (uint8_t)((c->flags & ~CELL_INSIDE) | CELL_TESTED
                                  | ((ev->flags & TRACE_INSIDE) ? CELL_INSIDE : 0));
             memcpy(c->e, ev->e, sizeof c->e);
-            memcpy(c->bary, ev->bary, sizeof c->bary);
+            /* the weights follow from the edge values: u, v, w = F_bc, F_ca, F_ab / area2 */
+            if (ex->tri.area2 > 0) {
+                double b[3];
+                barycentric(&ex->tri, ev->e, b);
+                for (int k = 0; k < 3; k++)
+                    c->bary[k] = (float)b[k];
+            }
             memcpy(c->aux, ev->aux, sizeof c->aux);
         }
         break;
@@ -127,9 +112,22 @@ static bool prepare_cells(struct explorer *ex, const struct tri_setup *t)
     return true;
 }
 
-static uint64_t tri_events(const struct explorer *ex, int i)
+int explorer_finished(const struct explorer *ex)
 {
-    return ex->replay.start[i + 1] - ex->replay.start[i];
+    if (ex->cur < 0)
+        return 0;
+    uint64_t events = ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur];
+    return ex->local + 1 >= events ? ex->cur + 1 : ex->cur;
+}
+
+void explorer_counters(const struct explorer *ex, struct trace_counters *c)
+{
+    const struct trace_counters *before = &ex->replay.sums[ex->cur >= 0 ? ex->cur : 0];
+    trace_counters_add(c, before, &ex->tri_c);
+    /* the arithmetic: what the last event carries, done before it in its
+     * triangle (the trace went on counting until the next event froze it) */
+    c->mul = before->mul + (ex->has_last ? ex->last.mul : 0);
+    c->add = before->add + (ex->has_last ? ex->last.add : 0);
 }
 
 /* Draw triangles [0, upto) with variants[0] into the exact target. */
@@ -161,15 +159,9 @@ static bool compare_exhibit(struct explorer *ex)
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
     if (!ex->diff && !(ex->diff = malloc(n)))
         return false;
-    int done = 0;
-    const uint8_t *count = ex->replay.base.count;   /* triangles [0, cur) */
-    if (ex->cur >= 0) {
-        done = ex->cur;
-        if (ex->local + 1 == tri_events(ex, ex->cur)) {
-            done = ex->cur + 1;                     /* the current one is finished */
-            count = ex->fb.count;
-        }
-    }
+    int done = explorer_finished(ex);
+    /* the picture of exactly the finished triangles */
+    const uint8_t *count = ex->cur >= 0 && done > ex->cur ? ex->fb.count : ex->replay.base.count;
     if (!advance_exact(ex, done))
         return false;
     ex->diff_done = done;
@@ -240,20 +232,6 @@ static void find_marks(struct explorer *ex, int i)
     ex->marks_tri = i;
 }
 
-/* Largest i with start[i] <= step (strict: start[i] < step). */
-static int tri_at(const struct replay *r, uint64_t step, bool strict)
-{
-    int lo = 0, hi = r->ntris - 1;
-    while (lo < hi) {
-        int mid = lo + (hi - lo + 1) / 2;
-        if (strict ? r->start[mid] < step : r->start[mid] <= step)
-            lo = mid;
-        else
-            hi = mid - 1;
-    }
-    return lo;
-}
-
 uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
 {
     const struct replay *r = &ex->replay;
@@ -265,7 +243,7 @@ uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
     if (unit == STEP_EVENT || r->ntris == 0)
         return dir > 0 ? s + 1 : s - 1;
     if (dir > 0) {
-        int i = tri_at(r, s, false);
+        int i = replay_triangle_of(r, s);      /* the triangle of the next event */
         if (unit == STEP_GROUP) {
             find_marks(ex, i);
             for (size_t k = 0; k < ex->nmarks; k++)
@@ -274,7 +252,7 @@ uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
         }
         return r->start[i + 1];
     }
-    int i = tri_at(r, s, true);
+    int i = replay_triangle_of(r, s - 1);      /* the triangle of the last event */
     if (unit == STEP_GROUP) {
         find_marks(ex, i);
         for (size_t k = ex->nmarks; k-- > 0;)
@@ -299,8 +277,10 @@ static bool compare_init(struct explorer *ex)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
                 if (!replay_init(&ex->compare_replay[ex->ncompare], &ex->scene,
-                                 &all_lessons[k]->variants[0], &ex->params))
+                                 &all_lessons[k]->variants[0], &ex->params)) {
+                    replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
+                }
                 ex->compare[ex->ncompare++] = all_lessons[k];
             }
     return true;
@@ -420,52 +400,28 @@ bool explorer_move_vertex(struct explorer *ex, int k, double x, double y)
     return rerun(ex, ex->step);
 }
 
-/* --- views ---------------------------------------------------------------------- */
-
-int explorer_view_count(const struct explorer *ex)
-{
-    return VIEW_BUILTIN_COUNT + (ex->lesson->views ? ex->lesson->nviews : 0);
-}
-
-const char *explorer_view_name(const struct explorer *ex, int view)
-{
-    if (view < VIEW_BUILTIN_COUNT)
-        return view == VIEW_EDGES && ex->edge >= 0 ? edge_view_names[ex->edge] : view_names[view];
-    return ex->lesson->views[view - VIEW_BUILTIN_COUNT].name;
-}
-
-bool explorer_set_view_name(struct explorer *ex, const char *name)
-{
-    for (int k = 0; k < 3; k++)
-        if (strcmp(name, edge_view_names[k]) == 0) {
-            ex->view = VIEW_EDGES;
-            ex->edge = k;
-            return true;
-        }
-    for (int i = 0; i < explorer_view_count(ex); i++) {
-        const char *n = i < VIEW_BUILTIN_COUNT ? view_names[i]
-                                               : ex->lesson->views[i - VIEW_BUILTIN_COUNT].name;
-        if (strcmp(name, n) == 0) {
-            ex->view = i;
-            if (i == VIEW_EDGES)
-                ex->edge = -1;
-            return true;
-        }
-    }
-    return false;
-}
-
 /* --- life ------------------------------------------------------------------------ */
 
-bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
+bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err, size_t errlen)
 {
     memset(ex, 0, sizeof *ex);
     ex->lesson = d->lesson;
+    ex->side = d->side ? d->side : lesson_explorer_of(d->lesson);
     ex->scene_is_default = d->scene_is_default;
     snprintf(ex->scene_name, sizeof ex->scene_name, "%s", d->scene_name ? d->scene_name : "scene");
-    ex->params = d->params;
-    if (!ex->params.subpixel_bits)
-        ex->params.subpixel_bits = SUBPIXEL_BITS;
+    ex->params = d->params ? *d->params : (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS };
+    const char *id = d->lesson ? d->lesson->id : "explorer";
+    if (!d->lesson || !d->scene) {
+        snprintf(err, errlen, "%s: no %s to explore", id, d->lesson ? "scene" : "lesson");
+        return false;
+    }
+    bool ours = !d->variant;
+    for (int i = 0; i < d->lesson->nvariants; i++)
+        ours |= d->variant == &d->lesson->variants[i];
+    if (!ours) {
+        snprintf(err, errlen, "%s: variant '%s' is not one of this lesson's", id, d->variant->name);
+        return false;
+    }
     ex->variant = d->variant ? (int)(d->variant - d->lesson->variants) : 0;
     ex->edge = -1;
     ex->zoom = d->zoom;
@@ -474,24 +430,26 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
     ex->marks_tri = -1;
     ex->exact_upto = -1;
     ex->hover_vertex = -1;
+    const char *failed = NULL;
     if (!scene_copy(&ex->scene, d->scene))
-        return false;
-    ex->params.checker = ex->scene.checker;
-    ex->centre_x = ex->scene.w / 2.0;
-    ex->centre_y = ex->scene.h / 2.0;
-    if (d->view && !explorer_set_view_name(ex, d->view)) {
-        scene_free(&ex->scene);
-        return false;
+        failed = "copying the scene";
+    else {
+        ex->params.checker = ex->scene.checker;
+        ex->centre_x = ex->scene.w / 2.0;
+        ex->centre_y = ex->scene.h / 2.0;
+        if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+            failed = "counting the scene's events";
+        else if (!compare_init(ex))
+            failed = "running the lessons compared with this one";
+        else if (!explorer_set_step(ex, d->step_end ? ex->replay.total : d->step))
+            failed = "drawing the first step";
     }
-    if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params)) {
-        scene_free(&ex->scene);
-        return false;
-    }
-    if (!compare_init(ex)) {
-        explorer_free(ex);
-        return false;
-    }
-    return explorer_set_step(ex, d->step_end ? ex->replay.total : d->step);
+    if (!failed)
+        return true;
+    snprintf(err, errlen, "%s: out of memory %s (%d x %d pixels, %d triangles)", id, failed,
+             d->scene->w, d->scene->h, d->scene->ntris);
+    explorer_free(ex);
+    return false;
 }
 
 void explorer_free(struct explorer *ex)
