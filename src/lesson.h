@@ -26,7 +26,25 @@ struct raster_params {
      * unit stands, for the narration. tile == 0: the whole target. */
     int tile;
     int bin_size, bin_entry, thread;
+    /* ... and the whole narrated order, for the explorer's drawings (NULL
+     * outside a replay of such a lesson) */
+    const struct lesson_unit *units;
+    int nunits;
 };
+
+/* One unit of a scene-level lesson's narrated run: triangle `tri` of the
+ * scene drawn inside tile `tile`, entry `bin_entry` of the tile's `bin_size`
+ * triangles, in a tile that worker `thread` drew in the real run. */
+struct lesson_unit {
+    uint32_t tri;
+    int32_t tile, bin_size, bin_entry, thread;
+};
+
+/* The units of a narrated run in their order: writes at most `cap` of them
+ * to out (NULL when cap is 0) and returns how many there are, or -1 when
+ * out of memory. */
+typedef long (*lesson_units_fn)(const struct scene *s, const struct raster_params *p,
+                                struct lesson_unit *out, long cap);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
@@ -94,6 +112,9 @@ struct lesson {
      * of variants[i].rasterize per triangle. `rasterize` stays: one triangle
      * through the same pipeline, for the tests and the narrated replay. */
     const rasterize_scene_fn *rasterize_scene;
+    /* With it, the order the narrated replay steps through (the explorer
+     * keeps one count per unit instead of one per triangle), or NULL. */
+    lesson_units_fn narration_units;
 };
 
 /* The scene-level twin of variant v of lesson l, or NULL. */

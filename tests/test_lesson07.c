@@ -19,7 +19,7 @@
 #include <sys/wait.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_07, lesson_07_fast;
 

@@ -48,6 +48,7 @@
 #include <unistd.h>
 
 #include "lesson.h"
+#include "shade/shade.h"        /* CHECKER_DARK, the checkerboard every lesson shades */
 #include "simd.h"               /* SSE2: four lanes a register, on any CPU */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TRISTEP_SIMDE)
 #include <immintrin.h>          /* AVX2: eight lanes a register, where the CPU has it */
@@ -480,6 +481,16 @@ static uint32_t byte_of(int32_t v)
     return (uint32_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
+/* Named costs (trace/trace.h) per pixel, for the explorer's counters:
+ *   LANE_EDGE_COST   (E) of one edge in one lane: the row's value + I_k l
+ *   PLANE_AT_COST    one plane at a pixel: the row's term + Px (x - minx)
+ *   COLOUR_TIMES_Z_COST  r, g, b = (255 a / z) z
+ * z = 1 / (1/z) is RECIPROCAL_COST (shade/shade.h); rounding and packing are
+ * conversions, not arithmetic. */
+#define LANE_EDGE_COST { .mul = 1, .add = 1 }
+#define PLANE_AT_COST { .mul = 1, .add = 1 }
+#define COLOUR_TIMES_Z_COST { .mul = 3, .add = 0 }
+
 /* --- the three twins of the pixel work: plain C, SSE2, AVX2 ---------------
  *
  * cover8: which of the 8 pixels (i .. i + 7, j) of the tile pass (E) for all
@@ -750,6 +761,7 @@ static void narrate_pixels(const struct tt *c, const struct dst *d, const struct
         bool in = true;
         for (int k = 0; k < 3; k++)
             in = in && c->e0[k] + t->di[k] * i + t->dj[k] * j >= 0;
+        COUNT(tr, 3, LANE_EDGE_COST);
         /* the narration shows F_k itself: the bias taken out again */
         NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_BLOCK_PARTIAL, .x = c->tx + i, .y = c->ty + j,
                 .e = { edge_at(t, 0, c->tx + i, c->ty + j) + (t->bias_neg & 1),
@@ -761,6 +773,9 @@ static void narrate_pixels(const struct tt *c, const struct dst *d, const struct
         float z;
         uint32_t rgba;
         bool pass = shade1_c(c, d, row, st_row, i, j, &z, &rgba);
+        COUNT(tr, PL_COUNT, PLANE_AT_COST);
+        COUNT(tr, 1, RECIPROCAL_COST);
+        COUNT(tr, 1, COLOUR_TIMES_Z_COST);
         NARRATE(tr, .kind = TRACE_PIXEL_WRITE, .line = L_BLOCK_PARTIAL, .x = c->tx + i, .y = c->ty + j, .z = z,
                 .rgba = rgba, .flags = pass ? TRACE_DEPTH_PASS : 0);
         if (tr && tr->frozen)
@@ -797,6 +812,12 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
             }
             if (frozen(tr))
                 return;
+            if (!test) {    /* a FULL block or tile: shaded without a test */
+                int n = __builtin_popcount(m);
+                COUNT(tr, (unsigned)n * PL_COUNT, PLANE_AT_COST);
+                COUNT(tr, n, RECIPROCAL_COST);
+                COUNT(tr, n, COLOUR_TIMES_Z_COST);
+            }
             if (test)
                 m &= cover(c, i, j);
             if (m)
@@ -1087,6 +1108,81 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
         }
 }
 
+/* --- the narrated order ------------------------------------------------------ */
+
+/* The explorer steps through the run tile after tile, in row-major order,
+ * and inside a tile through its bin in scene order: one unit per (tile,
+ * triangle) pair that binning keeps. Which worker drew each tile comes from
+ * a real run of the scene on the run's threads. */
+static long narration_units(const struct scene *s, const struct raster_params *p,
+                            struct lesson_unit *out, long cap)
+{
+    struct grid g = grid_of(s->w, s->h);
+    size_t n = (size_t)s->ntris;
+    struct tri *recs = malloc((n ? n : 1) * sizeof *recs);
+    bool *live = calloc(n ? n : 1, 1);
+    long *count = calloc((size_t)g.n + 1, sizeof *count);
+    uint8_t *thread_of = calloc((size_t)g.n, 1);
+    struct target fb = { 0 };
+    long total = -1;
+    if (!recs || !live || !count || !thread_of)
+        goto done;
+    for (size_t i = 0; i < n; i++) {
+        struct tri_setup t;
+        live[i] = tri_setup_bits(&t, s->tris[i].v, s->w, s->h, p->subpixel_bits);
+        if (live[i])
+            tri_record(&recs[i], &t, p->checker);
+    }
+    /* bin sizes: the tiles that do not reject each triangle */
+    for (int pass = 0; pass < 2; pass++) {
+        long *next = count;     /* pass 1: where each tile's next unit goes */
+        for (size_t i = 0; i < n; i++) {
+            const struct tri *t = &recs[i];
+            for (int ty = t->miny / TILE; live[i] && ty <= t->maxy / TILE; ty++)
+                for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++) {
+                    int tile = ty * g.nx + tx;
+                    if (classify_rect(t, tile_rect(&g, tile), false) == BLOCK_EMPTY)
+                        continue;
+                    if (pass == 0) {
+                        count[tile + 1]++;
+                    } else if (next[tile] < cap) {
+                        out[next[tile]++] = (struct lesson_unit){ .tri = (uint32_t)i, .tile = tile };
+                    } else {
+                        next[tile]++;
+                    }
+                }
+        }
+        if (pass == 0) {
+            for (int tile = 0; tile < g.n; tile++)
+                count[tile + 1] += count[tile];     /* count[tile]: the tile's first unit */
+            total = count[g.n];
+            if (cap < total)
+                goto done;
+        }
+    }
+    /* count[tile] now points past the tile's last unit: number them */
+    if (!target_init(&fb, s->w, s->h, scene_background(s))
+        || !draw_scene(s, p, &fb, (struct tiles_options){ .tile_buffers = true }, thread_of)) {
+        total = -1;
+        goto done;
+    }
+    for (long u = 0, first = 0; u < total; u++) {
+        if (u == 0 || out[u].tile != out[u - 1].tile)
+            first = u;
+        int tile = out[u].tile;
+        out[u].bin_entry = (int32_t)(u - first);
+        out[u].bin_size = (int32_t)(count[tile] - first);
+        out[u].thread = thread_of[tile];
+    }
+done:
+    target_free(&fb);
+    free(recs);
+    free(live);
+    free(count);
+    free(thread_of);
+    return total;
+}
+
 /* --- the variants ------------------------------------------------------------- */
 
 #define VARIANT(name, ...)                                                                   \
@@ -1142,4 +1238,9 @@ const struct lesson lesson_07 = {
     .aux_names = aux_names,
     .compare = compare,
     .rasterize_scene = scenes,
+    .narration_units = narration_units,
+    .cost_tested = (const struct cost_term[]){ COST_TERM(3, LANE_EDGE_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(PL_COUNT, PLANE_AT_COST), COST_TERM(1, RECIPROCAL_COST),
+        COST_TERM(1, COLOUR_TIMES_Z_COST), { 0 } },
 };

@@ -153,7 +153,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "\n");
     }
     if (ex->side && ex->side->watch && ex->tri.area2 > 0 && at < n) {
-        ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
+        struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
+        ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
     return at;

@@ -143,7 +143,8 @@ static bool advance_exact(struct explorer *ex, int upto)
     for (; ex->exact_upto < upto; ex->exact_upto++) {
         struct tri_setup t;
         replay_setup(&ex->replay, ex->exact_upto, &t);
-        exact->rasterize(&t, &ex->params, &ex->exact, NULL);
+        struct raster_params p = replay_params(&ex->replay, ex->exact_upto);
+        exact->rasterize(&t, &p, &ex->exact, NULL);
     }
     return true;
 }
@@ -182,10 +183,10 @@ bool explorer_set_step(struct explorer *ex, uint64_t step)
     uint64_t local;
     int cur = replay_locate(&ex->replay, step, &local);
     ex->has_last = false;
-    ex->focus = cur >= 0 ? cur : 0;
+    ex->focus = cur >= 0 ? replay_unit_tri(&ex->replay, cur) : 0;
     memset(&ex->tri, 0, sizeof ex->tri);
-    if (ex->scene.ntris > 0)
-        replay_setup(&ex->replay, ex->focus, &ex->tri);
+    if (ex->scene.ntris > 0 && ex->replay.ntris > 0)
+        replay_setup(&ex->replay, cur >= 0 ? cur : 0, &ex->tri);
     if (!prepare_cells(ex, cur >= 0 ? &ex->tri : &(struct tri_setup){ .minx = 1, .maxx = 0 }))
         return false;
     int got = replay_to(&ex->replay, step, &ex->fb, take_event, ex, &ex->tri_c);
@@ -228,7 +229,8 @@ static void find_marks(struct explorer *ex, int i)
     replay_setup(&ex->replay, i, &t);
     struct trace tr = { .sink = collect_mark, .ctx = ex };
     trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-    ex->lesson->variants[ex->variant].rasterize(&t, &ex->params, &ex->scratch, &tr);
+    struct raster_params p = replay_params(&ex->replay, i);
+    ex->lesson->variants[ex->variant].rasterize(&t, &p, &ex->scratch, &tr);
     ex->marks_tri = i;
 }
 
@@ -437,7 +439,8 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
         ex->params.checker = ex->scene.checker;
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
-        if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+        if (!replay_init_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params,
+                               ex->lesson->narration_units))
             failed = "counting the scene's events";
         else if (!compare_init(ex))
             failed = "running the lessons compared with this one";

@@ -4,30 +4,70 @@
 #include <stdlib.h>
 #include <string.h>
 
+int replay_unit_tri(const struct replay *r, int i)
+{
+    return r->units ? (int)r->units[i].tri : i;
+}
+
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
 {
     int bits = r->params.subpixel_bits;     /* 0..8, taken as given: 0 is whole pixels */
-    return tri_setup_bits(t, r->scene->tris[i].v, r->scene->w, r->scene->h, bits);
+    return tri_setup_bits(t, r->scene->tris[replay_unit_tri(r, i)].v, r->scene->w, r->scene->h,
+                          bits);
+}
+
+struct raster_params replay_params(const struct replay *r, int i)
+{
+    struct raster_params p = r->params;
+    if (r->units && i >= 0 && i < r->ntris) {
+        const struct lesson_unit *u = &r->units[i];
+        p.tile = u->tile + 1;
+        p.bin_size = u->bin_size;
+        p.bin_entry = u->bin_entry;
+        p.thread = u->thread;
+        p.units = r->units;
+        p.nunits = r->ntris;
+    }
+    return p;
+}
+
+/* The units of the run: one per triangle, or the lesson's own order. */
+static bool list_units(struct replay *r)
+{
+    free(r->units);
+    r->units = NULL;
+    r->ntris = r->scene->ntris;
+    if (!r->units_fn)
+        return true;
+    long n = r->units_fn(r->scene, &r->params, NULL, 0);
+    if (n < 0 || n > INT32_MAX - 1)
+        return false;
+    r->units = malloc((size_t)(n ? n : 1) * sizeof *r->units);
+    if (!r->units || r->units_fn(r->scene, &r->params, r->units, n) != n)
+        return false;
+    r->ntris = (int)n;
+    return true;
 }
 
 bool replay_recount(struct replay *r)
 {
     struct target scratch;
+    if (!list_units(r))
+        return false;
     if (!target_init(&scratch, r->scene->w, r->scene->h, scene_background(r->scene)))
         return false;
-    uint64_t *start = realloc(r->start, ((size_t)r->scene->ntris + 1) * sizeof *start);
+    uint64_t *start = realloc(r->start, ((size_t)r->ntris + 1) * sizeof *start);
     if (!start) {
         target_free(&scratch);
         return false;
     }
     r->start = start;
-    struct trace_counters *sums = realloc(r->sums, ((size_t)r->scene->ntris + 1) * sizeof *sums);
+    struct trace_counters *sums = realloc(r->sums, ((size_t)r->ntris + 1) * sizeof *sums);
     if (!sums) {
         target_free(&scratch);
         return false;
     }
     r->sums = sums;
-    r->ntris = r->scene->ntris;
     uint64_t total = 0;
     memset(&sums[0], 0, sizeof sums[0]);
     struct trace tr = { 0 };
@@ -35,7 +75,8 @@ bool replay_recount(struct replay *r)
         struct tri_setup t;
         replay_setup(r, i, &t);
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-        r->variant->rasterize(&t, &r->params, &scratch, &tr);
+        struct raster_params p = replay_params(r, i);
+        r->variant->rasterize(&t, &p, &scratch, &tr);
         start[i] = total;
         total += tr.count;
         trace_counters_add(&sums[i + 1], &sums[i], &tr.c);
@@ -48,20 +89,28 @@ bool replay_recount(struct replay *r)
     return true;
 }
 
-bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
-                 const struct raster_params *p)
+bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, lesson_units_fn units)
 {
     memset(r, 0, sizeof *r);
     r->scene = s;
     r->variant = v;
     r->params = *p;
+    r->units_fn = units;
     return replay_recount(r);
+}
+
+bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                 const struct raster_params *p)
+{
+    return replay_init_units(r, s, v, p, NULL);
 }
 
 void replay_free(struct replay *r)
 {
     free(r->start);
     free(r->sums);
+    free(r->units);
     target_free(&r->base);
     memset(r, 0, sizeof *r);
 }
@@ -105,7 +154,8 @@ static bool advance_base(struct replay *r, int upto)
     for (; r->base_upto < upto; r->base_upto++) {
         struct tri_setup t;
         replay_setup(r, r->base_upto, &t);
-        r->variant->rasterize(&t, &r->params, &r->base, NULL);
+        struct raster_params p = replay_params(r, r->base_upto);
+        r->variant->rasterize(&t, &p, &r->base, NULL);
     }
     return true;
 }
@@ -126,7 +176,8 @@ int replay_to(struct replay *r, uint64_t step, struct target *fb,
     replay_setup(r, cur, &t);
     struct trace tr = { .sink = sink, .ctx = ctx };
     trace_begin(&tr, (uint32_t)cur, local + 1);
-    r->variant->rasterize(&t, &r->params, fb, &tr);
+    struct raster_params p = replay_params(r, cur);
+    r->variant->rasterize(&t, &p, fb, &tr);
     if (c)
         *c = tr.c;
     return cur;

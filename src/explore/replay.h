@@ -6,6 +6,12 @@
  * the events themselves are produced again, one triangle at a time, when a
  * step is shown. A cached target holds the picture of the triangles before
  * the current one, so stepping inside a triangle redraws only that triangle.
+ *
+ * A scene-level lesson (lesson 07) narrates in an order of its own: units,
+ * each one triangle inside one tile, tile after tile (lesson.h,
+ * lesson_units_fn). Then "triangle i" of the replay is unit i: replay_setup
+ * sets up its triangle and replay_params gives the run's params restricted
+ * to its tile.
  */
 #ifndef TRISTEP_REPLAY_H
 #define TRISTEP_REPLAY_H
@@ -24,17 +30,27 @@ struct replay {
     struct trace_counters *sums;    /* ntris + 1 entries: counters of triangles [0, i) */
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
+    lesson_units_fn units_fn;       /* NULL: one unit per triangle, in scene order */
+    struct lesson_unit *units;      /* ntris entries when units_fn */
 };
 
 /* Count every triangle's events (runs the whole scene once). */
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                  const struct raster_params *p);
+/* The same in the units of a scene-level lesson (units NULL: triangles). */
+bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, lesson_units_fn units);
 void replay_free(struct replay *r);
 /* Count again after the scene or params changed (a vertex was dragged). */
 bool replay_recount(struct replay *r);
 
-/* Set up triangle i of the scene with the run's precision. */
+/* Set up the triangle of unit i (triangle i of the scene without units)
+ * with the run's precision. */
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t);
+/* The scene's triangle of unit i. */
+int replay_unit_tri(const struct replay *r, int i);
+/* The params to run unit i with: the run's, restricted to its tile. */
+struct raster_params replay_params(const struct replay *r, int i);
 
 /* The triangle that global event number `event` belongs to: the last i
  * with start[i] <= event (0 for a scene without triangles). */
