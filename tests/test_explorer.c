@@ -70,6 +70,24 @@ static void count_kind(void *ctx, const struct trace_event *ev)
 /* The scene drawn by the variant with only the first `n` events happening
  * (n = UINT64_MAX: all), into fb. Returns the number of events that happened;
  * counts every kind of event and the row/block/span stops into *k. */
+/* The units the lesson's narration steps through: one per triangle in
+ * scene order, or the lesson's own order (lesson 07: a triangle inside a
+ * tile, tile after tile), from the lesson itself. Returns how many; *out
+ * is malloc'ed (NULL for one per triangle). */
+static int units_of(const struct lesson *l, const struct scene *s, const struct raster_params *p,
+                    struct lesson_unit **out)
+{
+    *out = NULL;
+    if (!l->narration_units)
+        return s->ntris;
+    long n = l->narration_units(s, p, NULL, 0);
+    cr_assert_geq(n, 0, "%s: listing its units failed", l->id);
+    *out = malloc((size_t)(n ? n : 1) * sizeof **out);
+    cr_assert_not_null(*out);
+    cr_assert_eq(l->narration_units(s, p, *out, n), n);
+    return (int)n;
+}
+
 static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *s, uint64_t n,
                            struct target *fb, struct kinds *k)
 {
@@ -80,19 +98,29 @@ static uint64_t run_frozen(const struct lesson *l, int variant, const struct sce
     struct kinds local = { 0 };
     if (!k)
         k = &local;
-    for (int i = 0; i < s->ntris; i++) {
+    struct lesson_unit *units;
+    int nunits = units_of(l, s, &p, &units);
+    for (int i = 0; i < nunits; i++) {
         struct tri_setup t;
-        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        struct raster_params up = p;
+        if (units) {    /* the triangle inside its tile, as lesson.h says */
+            up.tile = units[i].tile + 1;
+            up.bin_size = units[i].bin_size;
+            up.bin_entry = units[i].bin_entry;
+            up.thread = units[i].thread;
+        }
+        tri_setup(&t, s->tris[units ? (int)units[i].tri : i].v, s->w, s->h);
         struct trace tr = { .sink = count_kind, .ctx = k };
         k->base = done;
         trace_begin(&tr, (uint32_t)i, n - done);
-        l->variants[variant].rasterize(&t, &p, fb, &tr);
+        l->variants[variant].rasterize(&t, &up, fb, &tr);
         uint64_t happened = tr.count < n - done ? tr.count : n - done;
         done += happened;
         /* the triangle's end is a stop too (the group stop may coincide) */
         if (happened == tr.count && done != k->last_stop)
             k->group_stops++, k->last_stop = done;
     }
+    free(units);
     return done;
 }
 
@@ -189,15 +217,20 @@ Test(explorer, counts_per_step_kind)
             struct explorer ex;
             open_explorer(&ex, l, &s);
             cr_assert_eq(ex.replay.total, total, "%s scene %d: total events", l->id, kind);
-            cr_assert_eq(k.n[TRACE_SETUP], (uint64_t)s.ntris, "%s: one setup event a triangle",
+            struct raster_params p = default_params();
+            p.checker = s.checker;
+            struct lesson_unit *units;
+            uint64_t nunits = (uint64_t)units_of(l, &s, &p, &units);
+            free(units);
+            cr_assert_eq(k.n[TRACE_SETUP], nunits, "%s: one setup event a triangle (a unit)",
                          l->id);
             /* one event at a time replays the current triangle each time:
              * walked on scenes of modest size only */
             if (total <= 5000)
                 cr_assert_eq(walk(&ex, STEP_EVENT), total, "%s scene %d: event steps", l->id,
                              kind);
-            cr_assert_eq(walk(&ex, STEP_TRIANGLE), (uint64_t)s.ntris,
-                         "%s scene %d: triangle steps", l->id, kind);
+            cr_assert_eq(walk(&ex, STEP_TRIANGLE), nunits,
+                         "%s scene %d: triangle (unit) steps", l->id, kind);
             cr_assert_eq(walk(&ex, STEP_GROUP), k.group_stops,
                          "%s scene %d: row/block/span steps", l->id, kind);
             explorer_free(&ex);

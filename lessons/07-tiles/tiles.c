@@ -1112,8 +1112,11 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
 
 /* The explorer steps through the run tile after tile, in row-major order,
  * and inside a tile through its bin in scene order: one unit per (tile,
- * triangle) pair that binning keeps. Which worker drew each tile comes from
- * a real run of the scene on the run's threads. */
+ * triangle) pair that binning keeps. The tiles go to the workers as the
+ * pool hands them out: each tile to the first worker free, in that order,
+ * if a tile took as long as the pixels of its triangles' boxes in it (the
+ * real run's assignment depends on the machine's timing; this one is the
+ * same on every run, so that figures can be reproduced). */
 static long narration_units(const struct scene *s, const struct raster_params *p,
                             struct lesson_unit *out, long cap)
 {
@@ -1122,10 +1125,9 @@ static long narration_units(const struct scene *s, const struct raster_params *p
     struct tri *recs = malloc((n ? n : 1) * sizeof *recs);
     bool *live = calloc(n ? n : 1, 1);
     long *count = calloc((size_t)g.n + 1, sizeof *count);
-    uint8_t *thread_of = calloc((size_t)g.n, 1);
-    struct target fb = { 0 };
+    double *work = calloc((size_t)g.n, sizeof *work);
     long total = -1;
-    if (!recs || !live || !count || !thread_of)
+    if (!recs || !live || !count || !work)
         goto done;
     for (size_t i = 0; i < n; i++) {
         struct tri_setup t;
@@ -1141,10 +1143,16 @@ static long narration_units(const struct scene *s, const struct raster_params *p
             for (int ty = t->miny / TILE; live[i] && ty <= t->maxy / TILE; ty++)
                 for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++) {
                     int tile = ty * g.nx + tx;
-                    if (classify_rect(t, tile_rect(&g, tile), false) == BLOCK_EMPTY)
+                    struct rect r = tile_rect(&g, tile);
+                    if (classify_rect(t, r, false) == BLOCK_EMPTY)
                         continue;
                     if (pass == 0) {
                         count[tile + 1]++;
+                        int w = (t->maxx < r.x0 + r.w - 1 ? t->maxx : r.x0 + r.w - 1)
+                              - (t->minx > r.x0 ? t->minx : r.x0) + 1;
+                        int h = (t->maxy < r.y0 + r.h - 1 ? t->maxy : r.y0 + r.h - 1)
+                              - (t->miny > r.y0 ? t->miny : r.y0) + 1;
+                        work[tile] += (double)w * h;
                     } else if (next[tile] < cap) {
                         out[next[tile]++] = (struct lesson_unit){ .tri = (uint32_t)i, .tile = tile };
                     } else {
@@ -1160,26 +1168,30 @@ static long narration_units(const struct scene *s, const struct raster_params *p
                 goto done;
         }
     }
-    /* count[tile] now points past the tile's last unit: number them */
-    if (!target_init(&fb, s->w, s->h, scene_background(s))
-        || !draw_scene(s, p, &fb, (struct tiles_options){ .tile_buffers = true }, thread_of)) {
-        total = -1;
-        goto done;
-    }
+    /* count[tile] now points past the tile's last unit; the pool hands out
+     * the tiles with triangles in order, each to the worker free first */
+    int threads = p->threads > 0 ? p->threads : default_threads();
+    threads = threads > MAX_THREADS ? MAX_THREADS : threads;
+    double busy[MAX_THREADS] = { 0 };
+    int worker = 0;
     for (long u = 0, first = 0; u < total; u++) {
-        if (u == 0 || out[u].tile != out[u - 1].tile)
-            first = u;
         int tile = out[u].tile;
+        if (u == 0 || tile != out[u - 1].tile) {
+            first = u;
+            worker = 0;
+            for (int w = 1; w < threads; w++)
+                worker = busy[w] < busy[worker] ? w : worker;
+            busy[worker] += work[tile];
+        }
         out[u].bin_entry = (int32_t)(u - first);
         out[u].bin_size = (int32_t)(count[tile] - first);
-        out[u].thread = thread_of[tile];
+        out[u].thread = worker;
     }
 done:
-    target_free(&fb);
     free(recs);
     free(live);
     free(count);
-    free(thread_of);
+    free(work);
     return total;
 }
 
