@@ -40,11 +40,12 @@ struct lesson_unit {
     int32_t tile, bin_size, bin_entry, thread;
 };
 
-/* The units of a narrated run in their order: writes at most `cap` of them
- * to out (NULL when cap is 0) and returns how many there are, or -1 when
- * out of memory. */
-typedef long (*lesson_units_fn)(const struct scene *s, const struct raster_params *p,
-                                struct lesson_unit *out, long cap);
+/* The units of variant v's narrated run in their order: writes at most
+ * `cap` of them to out (NULL when cap is 0) and returns how many there are,
+ * or -1 when out of memory. */
+struct lesson_variant;
+typedef long (*lesson_units_fn)(const struct scene *s, const struct lesson_variant *v,
+                                const struct raster_params *p, struct lesson_unit *out, long cap);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);

@@ -74,17 +74,17 @@ static void count_kind(void *ctx, const struct trace_event *ev)
  * scene order, or the lesson's own order (lesson 07: a triangle inside a
  * tile, tile after tile), from the lesson itself. Returns how many; *out
  * is malloc'ed (NULL for one per triangle). */
-static int units_of(const struct lesson *l, const struct scene *s, const struct raster_params *p,
-                    struct lesson_unit **out)
+static int units_of(const struct lesson *l, int variant, const struct scene *s,
+                    const struct raster_params *p, struct lesson_unit **out)
 {
     *out = NULL;
     if (!l->narration_units)
         return s->ntris;
-    long n = l->narration_units(s, p, NULL, 0);
+    long n = l->narration_units(s, &l->variants[variant], p, NULL, 0);
     cr_assert_geq(n, 0, "%s: listing its units failed", l->id);
     *out = malloc((size_t)(n ? n : 1) * sizeof **out);
     cr_assert_not_null(*out);
-    cr_assert_eq(l->narration_units(s, p, *out, n), n);
+    cr_assert_eq(l->narration_units(s, &l->variants[variant], p, *out, n), n);
     return (int)n;
 }
 
@@ -99,7 +99,7 @@ static uint64_t run_frozen(const struct lesson *l, int variant, const struct sce
     if (!k)
         k = &local;
     struct lesson_unit *units;
-    int nunits = units_of(l, s, &p, &units);
+    int nunits = units_of(l, variant, s, &p, &units);
     for (int i = 0; i < nunits; i++) {
         struct tri_setup t;
         struct raster_params up = p;
@@ -220,7 +220,7 @@ Test(explorer, counts_per_step_kind)
             struct raster_params p = default_params();
             p.checker = s.checker;
             struct lesson_unit *units;
-            uint64_t nunits = (uint64_t)units_of(l, &s, &p, &units);
+            uint64_t nunits = (uint64_t)units_of(l, 0, &s, &p, &units);
             free(units);
             cr_assert_eq(k.n[TRACE_SETUP], nunits, "%s: one setup event a triangle (a unit)",
                          l->id);

@@ -210,6 +210,15 @@ static int64_t edge_at(const struct tri *t, int k, int x, int y)
     return t->c[k] + SUBPIXEL_ONE * ((int64_t)t->di[k] * x + (int64_t)t->dj[k] * y);
 }
 
+/* For the narration only: which of the four corner pixel centres of x0..x1,
+ * y0..y1 are inside edge k (bit 3 top-left, 2 top-right, 1 bottom-left, 0
+ * bottom-right, as lesson 05 shows them). The test itself reads two. */
+static inline uint16_t corner_bits(const struct tri *t, int k, int x0, int y0, int x1, int y1)
+{
+    return (uint16_t)((edge_at(t, k, x0, y0) >= 0) << 3 | (edge_at(t, k, x1, y0) >= 0) << 2
+                      | (edge_at(t, k, x0, y1) >= 0) << 1 | (edge_at(t, k, x1, y1) >= 0));
+}
+
 /* Is rectangle r outside the triangle (BLOCK_EMPTY), inside it (BLOCK_FULL)
  * or neither (BLOCK_PARTIAL)? */
 static enum block_class classify_rect(const struct tri *t, struct rect r, bool use_wrong_corner)
@@ -874,7 +883,10 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
                     .line = klass == BLOCK_EMPTY ? L_BLOCK_REJECT
                           : klass == BLOCK_FULL ? L_BLOCK_ACCEPT : L_BLOCK_PARTIAL,
                     .x = r.x0 + bx, .y = r.y0 + by, .x1 = r.x0 + bx1, .y1 = r.y0 + by1,
-                    .klass = (uint8_t)klass, .aux = { BLOCK, 1 });
+                    .klass = (uint8_t)klass, .aux = { BLOCK, 1 },
+                    .mask = { corner_bits(t, 0, r.x0 + bx, r.y0 + by, r.x0 + bx1, r.y0 + by1),
+                              corner_bits(t, 1, r.x0 + bx, r.y0 + by, r.x0 + bx1, r.y0 + by1),
+                              corner_bits(t, 2, r.x0 + bx, r.y0 + by, r.x0 + bx1, r.y0 + by1) });
             if (klass != BLOCK_EMPTY)
                 draw_rows(&c, d, tr, bx, by, bx1, by1, klass == BLOCK_PARTIAL, cover, shade);
         }
@@ -1100,7 +1112,10 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
                     .line = k == BLOCK_EMPTY ? L_REJECT : k == BLOCK_FULL ? L_FULL_TILE : L_PARTIAL_TILE,
                     .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
                     .klass = (uint8_t)k, .aux = { TILE, 0, (float)p->bin_size, (float)p->bin_entry,
-                                                 (float)p->thread });
+                                                 (float)p->thread },
+                    .mask = { corner_bits(&t, 0, rc.x0, rc.y0, rc.x0 + rc.w - 1, rc.y0 + rc.h - 1),
+                              corner_bits(&t, 1, rc.x0, rc.y0, rc.x0 + rc.w - 1, rc.y0 + rc.h - 1),
+                              corner_bits(&t, 2, rc.x0, rc.y0, rc.x0 + rc.w - 1, rc.y0 + rc.h - 1) });
             if (k == BLOCK_EMPTY || frozen(tr))
                 continue;
             struct dst d = target_dst(fb, rc);
@@ -1110,6 +1125,26 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
 
 /* --- the narrated order ------------------------------------------------------ */
 
+/* The exhibit `unordered` draws a tile's bin starting with the share of the
+ * scene its worker binned (draw_tile): the same order for the units of a
+ * tile drawn by `worker`, with the triangles cut into `shares` shares of a
+ * scene of n as bin_chunk cuts them. */
+static void rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, int worker)
+{
+    struct lesson_unit tmp[256];
+    if (m > 256)
+        return;     /* only the explorer's small scenes are shown so */
+    long k = 0;
+    for (int step = 0; step < shares; step++) {
+        int c = (step + worker) % shares;
+        size_t lo = n * (size_t)c / (size_t)shares, hi = n * (size_t)(c + 1) / (size_t)shares;
+        for (long e = 0; e < m; e++)
+            if (u[e].tri >= lo && u[e].tri < hi)
+                tmp[k++] = u[e];
+    }
+    memcpy(u, tmp, (size_t)m * sizeof *u);
+}
+
 /* The explorer steps through the run tile after tile, in row-major order,
  * and inside a tile through its bin in scene order: one unit per (tile,
  * triangle) pair that binning keeps. The tiles go to the workers as the
@@ -1117,9 +1152,10 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
  * if a tile took as long as the pixels of its triangles' boxes in it (the
  * real run's assignment depends on the machine's timing; this one is the
  * same on every run, so that figures can be reproduced). */
-static long narration_units(const struct scene *s, const struct raster_params *p,
-                            struct lesson_unit *out, long cap)
+static long narration_units(const struct scene *s, const struct lesson_variant *v,
+                            const struct raster_params *p, struct lesson_unit *out, long cap)
 {
+    bool unordered = strcmp(v->name, "unordered") == 0;
     struct grid g = grid_of(s->w, s->h);
     size_t n = (size_t)s->ntris;
     struct tri *recs = malloc((n ? n : 1) * sizeof *recs);
@@ -1182,6 +1218,8 @@ static long narration_units(const struct scene *s, const struct raster_params *p
             for (int w = 1; w < threads; w++)
                 worker = busy[w] < busy[worker] ? w : worker;
             busy[worker] += work[tile];
+            if (unordered)
+                rotate_shares(out + first, count[tile] - first, n, threads, worker);
         }
         out[u].bin_entry = (int32_t)(u - first);
         out[u].bin_size = (int32_t)(count[tile] - first);

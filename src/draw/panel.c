@@ -206,14 +206,20 @@ static double watch(struct painter *p, double x, double y, double w)
 static double compare_lines(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    int done = explorer_finished(ex);
+    int done = explorer_finished(ex), mine = done;
+    if (ex->replay.units) {
+        /* drawn tile by tile (lesson 07): a triangle is finished when the run is */
+        bool all = done >= ex->replay.ntris;
+        done = all ? ex->scene.ntris : 0;
+        mine = all ? ex->replay.ntris : 0;
+    }
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
-        const struct trace_counters *c = &r->sums[done];
+        const struct trace_counters *c = &r->sums[i < 0 ? mine : done];
         double px = c->tested ? (double)c->tested : 1;
         at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
                  (unsigned long long)c->tested, (double)c->mul / px, (double)c->add / px);

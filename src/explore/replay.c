@@ -39,11 +39,11 @@ static bool list_units(struct replay *r)
     r->ntris = r->scene->ntris;
     if (!r->units_fn)
         return true;
-    long n = r->units_fn(r->scene, &r->params, NULL, 0);
+    long n = r->units_fn(r->scene, r->variant, &r->params, NULL, 0);
     if (n < 0 || n > INT32_MAX - 1)
         return false;
     r->units = malloc((size_t)(n ? n : 1) * sizeof *r->units);
-    if (!r->units || r->units_fn(r->scene, &r->params, r->units, n) != n)
+    if (!r->units || r->units_fn(r->scene, r->variant, &r->params, r->units, n) != n)
         return false;
     r->ntris = (int)n;
     return true;
