@@ -219,18 +219,35 @@ static inline uint16_t corner_bits(const struct tri *t, int k, int x0, int y0, i
                       | (edge_at(t, k, x0, y1) >= 0) << 1 | (edge_at(t, k, x1, y1) >= 0));
 }
 
+/* Which corners decide: one per edge and test (the lesson), all four of
+ * each edge as lesson 05 tests them (to measure the difference), or the
+ * exhibit's wrong corner (the accept corner used to reject). */
+enum corners { CORNERS_ONE, CORNERS_FOUR, CORNERS_WRONG };
+
 /* Is rectangle r outside the triangle (BLOCK_EMPTY), inside it (BLOCK_FULL)
  * or neither (BLOCK_PARTIAL)? */
-static enum block_class classify_rect(const struct tri *t, struct rect r, bool use_wrong_corner)
+static enum block_class classify_rect(const struct tri *t, struct rect r, enum corners rule)
 {
     bool full = true;
     for (int k = 0; k < 3; k++) {
         int64_t f = edge_at(t, k, r.x0, r.y0);
-        int64_t far = use_wrong_corner ? accept_corner(t, k, f, r.w, r.h)
-                                       : reject_corner(t, k, f, r.w, r.h);
-        if (far < 0)
+        int64_t lo, hi;     /* the edge's smallest and largest value on r */
+        if (rule == CORNERS_FOUR) {
+            int64_t right = SUBPIXEL_ONE * (int64_t)t->di[k] * (r.w - 1);
+            int64_t down = SUBPIXEL_ONE * (int64_t)t->dj[k] * (r.h - 1);
+            int64_t c[4] = { f, f + right, f + down, f + right + down };
+            lo = hi = c[0];
+            for (int i = 1; i < 4; i++) {
+                lo = c[i] < lo ? c[i] : lo;
+                hi = c[i] > hi ? c[i] : hi;
+            }
+        } else {
+            lo = accept_corner(t, k, f, r.w, r.h);
+            hi = rule == CORNERS_WRONG ? lo : reject_corner(t, k, f, r.w, r.h);
+        }
+        if (hi < 0)
             return BLOCK_EMPTY;
-        full = full && accept_corner(t, k, f, r.w, r.h) >= 0;
+        full = full && lo >= 0;
     }
     return full ? BLOCK_FULL : BLOCK_PARTIAL;
 }
@@ -339,7 +356,7 @@ static bool bin_push(struct bin *bin, const struct tri *t, bool full)
 /* Put a triangle into the bins of the tiles it may touch. A box within one
  * tile needs no test: the tile's blocks will sort it out. */
 static bool bin_triangle(const struct tri *t, const struct grid *g, struct bin *bins,
-                         bool use_wrong_corner)
+                         enum corners rule)
 {
     int tx0 = t->minx / TILE, tx1 = t->maxx / TILE, ty0 = t->miny / TILE, ty1 = t->maxy / TILE;
     if (tx0 == tx1 && ty0 == ty1)
@@ -347,7 +364,7 @@ static bool bin_triangle(const struct tri *t, const struct grid *g, struct bin *
     for (int ty = ty0; ty <= ty1; ty++)
         for (int tx = tx0; tx <= tx1; tx++) {
             int tile = ty * g->nx + tx;
-            enum block_class k = classify_rect(t, tile_rect(g, tile), use_wrong_corner);
+            enum block_class k = classify_rect(t, tile_rect(g, tile), rule);
             if (k != BLOCK_EMPTY && !bin_push(&bins[tile], t, k == BLOCK_FULL))
                 return false;
         }
@@ -839,7 +856,7 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
  * binning found the tile wholly inside. */
 static inline __attribute__((always_inline)) void
 draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d, struct trace *tr,
-             cover_fn cover, shade_fn shade)
+             bool four, cover_fn cover, shade_fn shade)
 {
     struct tt c = tt_make(t, r);
     if (full) {     /* narrated by the tile's own (FULL) step: the caller's */
@@ -869,12 +886,21 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
         for (int bx = x0 & ~(BLOCK - 1); bx <= x1; bx += BLOCK) {
             enum block_class klass = BLOCK_FULL;
             for (int k = 0; k < 3; k++) {
-                int32_t e = c.e0[k] + t->di[k] * bx + t->dj[k] * by;
-                if (e + rej[k] < 0) {
+                int32_t e = c.e0[k] + t->di[k] * bx + t->dj[k] * by, lo = e + acc[k], hi = e + rej[k];
+                if (four) {     /* lesson 05's way, for the measurement: every corner */
+                    int32_t right = t->di[k] * (BLOCK - 1), down = t->dj[k] * (BLOCK - 1);
+                    int32_t q[4] = { e, e + right, e + down, e + right + down };
+                    lo = hi = q[0];
+                    for (int i = 1; i < 4; i++) {
+                        lo = q[i] < lo ? q[i] : lo;
+                        hi = q[i] > hi ? q[i] : hi;
+                    }
+                }
+                if (hi < 0) {
                     klass = BLOCK_EMPTY;
                     break;
                 }
-                if (e + acc[k] < 0)
+                if (lo < 0)
                     klass = BLOCK_PARTIAL;
             }
             int bx1 = bx + BLOCK - 1 < r.w ? bx + BLOCK - 1 : r.w - 1;
@@ -894,27 +920,27 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
 }
 
 static void draw_c(const struct tri *t, struct rect r, bool full, const struct dst *d,
-                   struct trace *tr)
+                   struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, cover8_c, shade8_c);
+    draw_in_tile(t, r, full, d, tr, four, cover8_c, shade8_c);
 }
 
 static void draw_sse2(const struct tri *t, struct rect r, bool full, const struct dst *d,
-                   struct trace *tr)
+                   struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, cover8_sse2, shade8_sse2);
+    draw_in_tile(t, r, full, d, tr, four, cover8_sse2, shade8_sse2);
 }
 
 #if TILES_AVX2
 AVX2 static void draw_avx2(const struct tri *t, struct rect r, bool full, const struct dst *d,
-                           struct trace *tr)
+                           struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, cover8_avx2, shade8_avx2);
+    draw_in_tile(t, r, full, d, tr, four, cover8_avx2, shade8_avx2);
 }
 #endif
 
 typedef void (*draw_fn)(const struct tri *t, struct rect r, bool full, const struct dst *d,
-                        struct trace *tr);
+                        struct trace *tr, bool four);
 
 /* The twin to run: AVX2 only where the CPU says it has it. */
 static draw_fn pick_twin(enum twin w)
@@ -932,7 +958,8 @@ struct tiles_options {
     enum twin twin;
     int threads;                /* 0: --threads, else one per core */
     bool tile_buffers;          /* false: draw into the target in place */
-    bool use_wrong_corner;      /* exhibit: reject tiles with the accept corner */
+    enum corners corners;       /* CORNERS_ONE, or the measurement, or the exhibit */
+    bool no_bins;               /* triangle after triangle through all its tiles, in place */
     bool unordered;             /* exhibit: each worker draws its own chunk's bins first */
 };
 
@@ -966,7 +993,7 @@ static void bin_chunk(struct run *r, int c)
         if (!tri_setup_bits(&t, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits))
             continue;
         tri_record(&rec, &t, r->p->checker);
-        if (!bin_triangle(&rec, &r->g, bins, r->o.use_wrong_corner)) {
+        if (!bin_triangle(&rec, &r->g, bins, r->o.corners)) {
             atomic_store(&r->failed, true);
             return;
         }
@@ -991,7 +1018,7 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
         const struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
         for (const struct bin_block *blk = b->first; blk; blk = blk->next)
             for (uint32_t e = 0; e < blk->n; e++)
-                r->draw(&blk->rec[e], rc, blk->rec[e].full, &d, NULL);
+                r->draw(&blk->rec[e], rc, blk->rec[e].full, &d, NULL, r->o.corners == CORNERS_FOUR);
     }
     if (r->o.tile_buffers)
         tile_store(buf, r->fb, rc);
@@ -1036,9 +1063,20 @@ static int default_threads(void)
 /* Draw the whole scene; `thread_of` (one byte per tile, or NULL) receives
  * the worker that drew each tile. Returns false when out of memory (the
  * target may then hold part of the scene). */
+static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
+                              struct target *fb, struct trace *tr, struct tiles_options o);
+
 static bool draw_scene(const struct scene *s, const struct raster_params *p, struct target *fb,
                        struct tiles_options o, uint8_t *thread_of)
 {
+    if (o.no_bins) {    /* for the measurement: what binning saves */
+        for (int i = 0; i < s->ntris; i++) {
+            struct tri_setup t;
+            tri_setup_bits(&t, s->tris[i].v, s->w, s->h, p->subpixel_bits);
+            rasterize_one_tri(&t, p, fb, NULL, o);
+        }
+        return true;
+    }
     struct run *r = calloc(1, sizeof *r);
     if (!r)
         return false;
@@ -1107,7 +1145,7 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
             if (p->tile > 0 && tile != p->tile - 1)
                 continue;
             struct rect rc = tile_rect(&g, tile);
-            enum block_class k = classify_rect(&t, rc, o.use_wrong_corner);
+            enum block_class k = classify_rect(&t, rc, o.corners);
             NARRATE(tr, .kind = TRACE_BLOCK,
                     .line = k == BLOCK_EMPTY ? L_REJECT : k == BLOCK_FULL ? L_FULL_TILE : L_PARTIAL_TILE,
                     .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
@@ -1119,7 +1157,7 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
             if (k == BLOCK_EMPTY || frozen(tr))
                 continue;
             struct dst d = target_dst(fb, rc);
-            draw(&t, rc, k == BLOCK_FULL, &d, tr);
+            draw(&t, rc, k == BLOCK_FULL, &d, tr, o.corners == CORNERS_FOUR);
         }
 }
 
@@ -1180,7 +1218,7 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
                 for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++) {
                     int tile = ty * g.nx + tx;
                     struct rect r = tile_rect(&g, tile);
-                    if (classify_rect(t, r, false) == BLOCK_EMPTY)
+                    if (classify_rect(t, r, CORNERS_ONE) == BLOCK_EMPTY)
                         continue;
                     if (pass == 0) {
                         count[tile + 1]++;
@@ -1249,20 +1287,26 @@ done:
 
 VARIANT(tiles, .twin = TWIN_BEST, .tile_buffers = true)
 VARIANT(one_thread, .twin = TWIN_BEST, .tile_buffers = true, .threads = 1)
-VARIANT(sse2, .twin = TWIN_SSE2, .tile_buffers = true)
-VARIANT(scalar, .twin = TWIN_C, .tile_buffers = true)
-VARIANT(in_place, .twin = TWIN_BEST, .tile_buffers = false)
-VARIANT(wrong_corner, .twin = TWIN_BEST, .tile_buffers = true, .use_wrong_corner = true)
+VARIANT(in_place, .twin = TWIN_BEST, .threads = 1)
+VARIANT(four_corners, .twin = TWIN_BEST, .tile_buffers = true, .threads = 1, .corners = CORNERS_FOUR)
+VARIANT(sse2, .twin = TWIN_SSE2, .tile_buffers = true, .threads = 1)
+VARIANT(scalar, .twin = TWIN_C, .tile_buffers = true, .threads = 1)
+VARIANT(no_bins, .twin = TWIN_BEST, .threads = 1, .no_bins = true)
+VARIANT(wrong_corner, .twin = TWIN_BEST, .tile_buffers = true, .corners = CORNERS_WRONG)
 VARIANT(unordered, .twin = TWIN_BEST, .tile_buffers = true, .unordered = true)
 
 static const struct lesson_variant variants[] = {
     { "tiles", "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 where the CPU "
       "has it), one worker per core (or --threads N)", rasterize_tiles, false },
     { "1-thread", "the same on one thread", rasterize_one_thread, false },
-    { "sse2", "the SSE2 twin: two registers of four pixels", rasterize_sse2, false },
-    { "scalar", "the plain C twin: one pixel at a time", rasterize_scalar, false },
-    { "in-place", "no tile buffers: every triangle drawn straight into the framebuffer",
+    { "in-place", "one thread, no tile buffers: each tile drawn straight into the framebuffer",
       rasterize_in_place, false },
+    { "four-corners", "one thread, every corner of every edge tested, as in lesson 05",
+      rasterize_four_corners, false },
+    { "sse2", "one thread, the SSE2 twin: two registers of four pixels", rasterize_sse2, false },
+    { "scalar", "one thread, the plain C twin: one pixel at a time", rasterize_scalar, false },
+    { "no-bins", "one thread, no bins: triangle after triangle through the tiles of its box",
+      rasterize_no_bins, false },
     { "wrong-corner", "exhibit: tiles rejected with the accept corner of each edge",
       rasterize_wrong_corner, true },
     { "unordered", "exhibit: each worker draws its own share of a bin first, so the order "
@@ -1270,8 +1314,8 @@ static const struct lesson_variant variants[] = {
 };
 
 static const rasterize_scene_fn scenes[] = {
-    scene_tiles, scene_one_thread, scene_sse2, scene_scalar, scene_in_place, scene_wrong_corner,
-    scene_unordered,
+    scene_tiles, scene_one_thread, scene_in_place, scene_four_corners, scene_sse2, scene_scalar,
+    scene_no_bins, scene_wrong_corner, scene_unordered,
 };
 
 static const char *const compare[] = { "05-block-classification", NULL };
