@@ -48,7 +48,7 @@
 #include <unistd.h>
 
 #include "lesson.h"
-#include "shade/shade.h"        /* CHECKER_DARK, the checkerboard every lesson shades */
+#include "shade/quad.h"         /* the planes of 1/z and a/z (lesson 04), CHECKER_DARK */
 #include "simd.h"               /* SSE2: four lanes a register, on any CPU */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TRISTEP_SIMDE)
 #include <immintrin.h>          /* AVX2: eight lanes a register, where the CPU has it */
@@ -99,8 +99,7 @@ static const char *const aux_names[] = { "q", "level", "bin", "entry", "thread",
  *     P(x, y) = (P0 + Py (y - miny)) + Px (x - minx)
  *
  * evaluated in that order, in float, at every pixel by every twin. */
-enum { PL_INV_Z, PL_R, PL_G, PL_B, PL_COUNT };
-enum { ST_S, ST_T, ST_COUNT };      /* texture planes, N s / z and N t / z */
+enum { ST_S, ST_T, ST_COUNT };      /* texture planes, N s / z and N t / z, apart */
 
 /* One triangle after set-up: 136 bytes, what the tiles read. The bins hold
  * copies of it, so that a worker reads its tile's triangles one after
@@ -112,7 +111,7 @@ struct tri {
     uint8_t bias_neg;           /* bit k: bias_k = -1 (edge k neither top nor left) */
     bool textured;              /* st holds the planes of N s / z and N t / z */
     bool full;                  /* in a bin: the tile lies wholly inside */
-    float p0[PL_COUNT], px[PL_COUNT], py[PL_COUNT];
+    float p0[QUAD_PLANES], px[QUAD_PLANES], py[QUAD_PLANES];
     float st[3 * ST_COUNT];     /* P0, Px, Py of s, then of t */
 };
 
@@ -138,36 +137,14 @@ static void tri_record(struct tri *r, const struct tri_setup *t, int checker)
     r->minx = (int16_t)t->minx, r->miny = (int16_t)t->miny;
     r->maxx = (int16_t)t->maxx, r->maxy = (int16_t)t->maxy;
 
-    /* weights u (of A) = F02 / Area2, v (of B) = F03 / Area2, w (of C) = F01 / Area2 */
-    double val[PL_COUNT + ST_COUNT][3];
-    int n = checker > 0 ? checker : 1;
-    for (int i = 0; i < 3; i++) {
-        const struct vertex *v = &t->v[i];
-        double inv_z = 1.0 / v->z;
-        val[PL_INV_Z][i] = inv_z;
-        val[PL_R][i] = 255.0 * v->r * inv_z;
-        val[PL_G][i] = 255.0 * v->g * inv_z;
-        val[PL_B][i] = 255.0 * v->b * inv_z;
-        val[PL_COUNT + ST_S][i] = n * v->s * inv_z;
-        val[PL_COUNT + ST_T][i] = n * v->t * inv_z;
-    }
-    double inv_area2 = 1.0 / (double)t->area2;
-    double f[3];
-    for (int k = 0; k < 3; k++)
-        f[k] = (double)edge_value(t, k, t->minx, t->miny);
-    for (int q = 0; q < PL_COUNT + (r->textured ? ST_COUNT : 0); q++) {
-        const double *a = val[q];
-        double p0 = (f[EDGE_BC] * a[0] + f[EDGE_CA] * a[1] + f[EDGE_AB] * a[2]) * inv_area2;
-        double px = ((double)t->I[EDGE_BC] * a[0] + (double)t->I[EDGE_CA] * a[1]
-                     + (double)t->I[EDGE_AB] * a[2]) * SUBPIXEL_ONE * inv_area2;
-        double py = ((double)t->J[EDGE_BC] * a[0] + (double)t->J[EDGE_CA] * a[1]
-                     + (double)t->J[EDGE_AB] * a[2]) * SUBPIXEL_ONE * inv_area2;
-        if (q < PL_COUNT) {
-            r->p0[q] = (float)p0, r->px[q] = (float)px, r->py[q] = (float)py;
-        } else {
-            float *o = r->st + 3 * (q - PL_COUNT);
-            o[0] = (float)p0, o[1] = (float)px, o[2] = (float)py;
-        }
+    /* lesson 04's planes, in double at (minx, miny) (src/shade/quad.c), kept in float */
+    struct planes pl;
+    planes_setup(&pl, t, &(struct raster_params){ .checker = checker });
+    for (int q = 0; q < QUAD_PLANES; q++)
+        r->p0[q] = (float)pl.p0[q], r->px[q] = (float)pl.px[q], r->py[q] = (float)pl.py[q];
+    for (int q = 0; r->textured && q < ST_COUNT; q++) {
+        float *o = r->st + 3 * q;
+        o[0] = (float)pl.p0[PL_S + q], o[1] = (float)pl.px[PL_S + q], o[2] = (float)pl.py[PL_S + q];
     }
 }
 
@@ -445,11 +422,11 @@ static struct tt tt_make(const struct tri *t, struct rect r)
 }
 
 /* Row terms P0 + Py (y - miny) of every plane, for row j of the tile. */
-static inline void plane_rows(const struct tt *c, int j, float row[PL_COUNT], float st_row[ST_COUNT])
+static inline void plane_rows(const struct tt *c, int j, float row[QUAD_PLANES], float st_row[ST_COUNT])
 {
     const struct tri *t = c->t;
     float dyf = (float)(c->ty + j - t->miny);
-    for (int q = 0; q < PL_COUNT; q++)
+    for (int q = 0; q < QUAD_PLANES; q++)
         row[q] = t->p0[q] + t->py[q] * dyf;
     if (c->st)
         for (int q = 0; q < ST_COUNT; q++)
@@ -538,7 +515,7 @@ static unsigned cover8_c(const struct tt *c, int i, int j)
 }
 
 /* One pixel, column i + l: the scalar twin, also used by the narration. */
-static bool shade1_c(const struct tt *c, const struct dst *d, const float row[PL_COUNT],
+static bool shade1_c(const struct tt *c, const struct dst *d, const float row[QUAD_PLANES],
                      const float st_row[ST_COUNT], int i, int j, float *z_out, uint32_t *rgba_out)
 {
     const struct tri *t = c->t;
@@ -566,7 +543,7 @@ static bool shade1_c(const struct tt *c, const struct dst *d, const float row[PL
 
 /* Row terms of the planes for row j, computed once a row by the caller. */
 struct rows {
-    float p[PL_COUNT], st[ST_COUNT];
+    float p[QUAD_PLANES], st[ST_COUNT];
 };
 
 static void shade8_c(const struct tt *c, const struct dst *d, const struct rows *rw, int i, int j,
@@ -610,14 +587,7 @@ static __m128i clamp_byte_sse2(__m128i v)
     return _mm_or_si128(_mm_andnot_si128(big, v), _mm_and_si128(big, _mm_set1_epi32(255)));
 }
 
-static __m128i floor_sse2(__m128 v)
-{
-    __m128i i = _mm_cvttps_epi32(v);
-    __m128 too_big = _mm_cmpgt_ps(_mm_cvtepi32_ps(i), v);
-    return _mm_add_epi32(i, _mm_castps_si128(too_big));
-}
-
-static void shade4_sse2(const struct tt *c, const struct dst *d, const float row[PL_COUNT],
+static void shade4_sse2(const struct tt *c, const struct dst *d, const float row[QUAD_PLANES],
                         const float st_row[ST_COUNT], int i, int j, unsigned mask4)
 {
     const struct tri *t = c->t;
@@ -639,7 +609,7 @@ static void shade4_sse2(const struct tt *c, const struct dst *d, const float row
     if (c->st) {
         __m128 s = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_S]), _mm_mul_ps(_mm_set1_ps(c->st[1]), dxf)), z);
         __m128 tt = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_T]), _mm_mul_ps(_mm_set1_ps(c->st[4]), dxf)), z);
-        __m128i square = _mm_add_epi32(floor_sse2(s), floor_sse2(tt));
+        __m128i square = _mm_add_epi32(floor_epi32(s), floor_epi32(tt));
         __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
                                                        _mm_set1_epi32(1)));
         __m128 scale = _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
@@ -767,7 +737,7 @@ typedef void (*shade_fn)(const struct tt *c, const struct dst *d, const struct r
 enum twin { TWIN_BEST, TWIN_AVX2, TWIN_SSE2, TWIN_C };
 
 /* The lanes of columns i .. i + 7 that lie in [x0, x1] (x0 - 7 <= i <= x1). */
-static inline unsigned lanes_within(int i, int x0, int x1)
+static inline unsigned lane_mask(int i, int x0, int x1)
 {
     int lo = x0 - i < 0 ? 0 : x0 - i, hi = x1 - i > LANES - 1 ? LANES - 1 : x1 - i;
     return (2u << hi) - (1u << lo);
@@ -799,7 +769,7 @@ static void narrate_pixels(const struct tt *c, const struct dst *d, const struct
         float z;
         uint32_t rgba;
         bool pass = shade1_c(c, d, row, st_row, i, j, &z, &rgba);
-        COUNT(tr, PL_COUNT, PLANE_AT_COST);
+        COUNT(tr, QUAD_PLANES, PLANE_AT_COST);
         COUNT(tr, 1, RECIPROCAL_COST);
         COUNT(tr, 1, COLOUR_TIMES_Z_COST);
         NARRATE(tr, .kind = TRACE_PIXEL_WRITE, .line = L_BLOCK_PARTIAL, .x = c->tx + i, .y = c->ty + j, .z = z,
@@ -831,7 +801,7 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
         struct rows rw;
         plane_rows(c, j, rw.p, rw.st);
         for (int i = x0; i <= x1; i += LANES) {
-            unsigned m = lanes_within(i, x0, x1);
+            unsigned m = lane_mask(i, x0, x1);
             if (NARRATING && tr && test) {
                 narrate_pixels(c, d, &rw, tr, i, j, m);
                 continue;
@@ -840,7 +810,7 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
                 return;
             if (!test) {    /* a FULL block or tile: shaded without a test */
                 int n = __builtin_popcount(m);
-                COUNT(tr, (unsigned)n * PL_COUNT, PLANE_AT_COST);
+                COUNT(tr, (unsigned)n * QUAD_PLANES, PLANE_AT_COST);
                 COUNT(tr, n, RECIPROCAL_COST);
                 COUNT(tr, n, COLOUR_TIMES_Z_COST);
             }
@@ -1335,6 +1305,6 @@ const struct lesson lesson_07 = {
     .narration_units = narration_units,
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, LANE_EDGE_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
-        COST_TERM(PL_COUNT, PLANE_AT_COST), COST_TERM(1, RECIPROCAL_COST),
+        COST_TERM(QUAD_PLANES, PLANE_AT_COST), COST_TERM(1, RECIPROCAL_COST),
         COST_TERM(1, COLOUR_TIMES_Z_COST), { 0 } },
 };
