@@ -190,6 +190,7 @@ static int64_t edge_at(const struct tri *t, int k, int x, int y)
 /* For the narration only: which of the four corner pixel centres of x0..x1,
  * y0..y1 are inside edge k (bit 3 top-left, 2 top-right, 1 bottom-left, 0
  * bottom-right, as lesson 05 shows them). The test itself reads two. */
+__attribute__((unused))     /* the fast build compiles the narration out */
 static inline uint16_t corner_bits(const struct tri *t, int k, int x0, int y0, int x1, int y1)
 {
     return (uint16_t)((edge_at(t, k, x0, y0) >= 0) << 3 | (edge_at(t, k, x1, y0) >= 0) << 2
