@@ -63,7 +63,7 @@ struct point {
     double c[ATTR_COUNT];
 };
 
-#define POINT_OF_COST { .mul = 5, .add = 0 }
+#define POINT_OF_COST { .mul = 5, .add = 0 }     /* r, g, b times 255; s, t times N */
 
 static struct point point_of(const struct tri_setup *t, const struct raster_params *p, int i)
 {
