@@ -943,13 +943,23 @@ struct run {
     struct tiles_options o;
     draw_fn draw;
     struct grid g;
-    int nchunks;
+    int threads, nchunks;       /* workers; shares of the scene (SHARES_PER_THREAD each) */
     struct bin *bins;           /* nchunks x g.n, chunk-major */
+    atomic_int next_chunk;
     atomic_int next_tile;
     atomic_bool failed;
     uint8_t *thread_of;         /* per tile: the worker that drew it, or NULL */
     pthread_barrier_t binned;
 };
+
+/* The scene is cut into a few shares per worker (more shares than workers:
+ * the last ones go to whoever is free). */
+#define SHARES_PER_THREAD 4
+
+static int shares(int threads)
+{
+    return threads > 1 ? SHARES_PER_THREAD * threads : 1;
+}
 
 /* Set-up and binning of chunk `c`: a contiguous share of the scene, so that
  * chunk 0's bins then chunk 1's hold every tile's triangles in scene order. */
@@ -984,8 +994,8 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
     struct rect rc = tile_rect(&r->g, tile);
     struct dst d = r->o.tile_buffers ? tile_load(buf, r->fb, rc) : target_dst(r->fb, rc);
     for (int k = 0; k < r->nchunks; k++) {
-        /* the exhibit starts with the worker's own chunk: order depends on who took the tile */
-        int c = r->o.unordered ? (k + worker) % r->nchunks : k;
+        /* the exhibit starts with the worker's own shares: order depends on who took the tile */
+        int c = r->o.unordered ? (k + worker * SHARES_PER_THREAD) % r->nchunks : k;
         const struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
         for (const struct bin_block *blk = b->first; blk; blk = blk->next)
             for (uint32_t e = 0; e < blk->n; e++)
@@ -1004,9 +1014,11 @@ static void *work(void *arg)
 {
     struct worker *w = arg;
     struct run *r = w->r;
-    if (w->id < r->nchunks)
-        bin_chunk(r, w->id);
-    if (r->nchunks > 1)
+    /* set-up and binning: shares taken one at a time, so that a worker the
+     * system puts to sleep for a while holds up no more than one share */
+    for (int c; (c = atomic_fetch_add(&r->next_chunk, 1)) < r->nchunks;)
+        bin_chunk(r, c);
+    if (r->threads > 1)
         pthread_barrier_wait(&r->binned);
     if (atomic_load(&r->failed))
         return NULL;
@@ -1056,9 +1068,11 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
     r->s = s, r->p = p, r->fb = fb, r->o = o;
     r->draw = pick_twin(o.twin);
     r->g = grid_of(fb->w, fb->h);
-    r->nchunks = threads;
+    r->threads = threads;
+    r->nchunks = shares(threads);
     r->thread_of = thread_of;
     atomic_init(&r->next_tile, 0);
+    atomic_init(&r->next_chunk, 0);
     atomic_init(&r->failed, false);
     r->bins = calloc((size_t)r->nchunks * (size_t)r->g.n, sizeof *r->bins);
     bool ok = r->bins;
@@ -1145,7 +1159,7 @@ static void rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, i
         return;     /* only the explorer's small scenes are shown so */
     long k = 0;
     for (int step = 0; step < shares; step++) {
-        int c = (step + worker) % shares;
+        int c = (step + worker * SHARES_PER_THREAD) % shares;
         size_t lo = n * (size_t)c / (size_t)shares, hi = n * (size_t)(c + 1) / (size_t)shares;
         for (long e = 0; e < m; e++)
             if (u[e].tri >= lo && u[e].tri < hi)
@@ -1228,7 +1242,7 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
                 worker = busy[w] < busy[worker] ? w : worker;
             busy[worker] += work[tile];
             if (unordered)
-                rotate_shares(out + first, count[tile] - first, n, threads, worker);
+                rotate_shares(out + first, count[tile] - first, n, shares(threads), worker);
         }
         out[u].bin_entry = (int32_t)(u - first);
         out[u].bin_size = (int32_t)(count[tile] - first);
