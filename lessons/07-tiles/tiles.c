@@ -949,7 +949,10 @@ struct run {
     atomic_int next_tile;
     atomic_bool failed;
     uint8_t *thread_of;         /* per tile: the worker that drew it, or NULL */
-    pthread_barrier_t binned;
+    /* every share binned: chunks_done == nchunks, announced under the lock */
+    pthread_mutex_t lock;
+    pthread_cond_t binned;
+    int chunks_done;
 };
 
 /* The scene is cut into a few shares per worker (more shares than workers:
@@ -1016,10 +1019,18 @@ static void *work(void *arg)
     struct run *r = w->r;
     /* set-up and binning: shares taken one at a time, so that a worker the
      * system puts to sleep for a while holds up no more than one share */
-    for (int c; (c = atomic_fetch_add(&r->next_chunk, 1)) < r->nchunks;)
+    for (int c; (c = atomic_fetch_add(&r->next_chunk, 1)) < r->nchunks;) {
         bin_chunk(r, c);
-    if (r->threads > 1)
-        pthread_barrier_wait(&r->binned);
+        pthread_mutex_lock(&r->lock);
+        if (++r->chunks_done == r->nchunks)
+            pthread_cond_broadcast(&r->binned);
+        pthread_mutex_unlock(&r->lock);
+    }
+    /* no tile before every share is binned: its bins are not complete */
+    pthread_mutex_lock(&r->lock);
+    while (r->chunks_done < r->nchunks)
+        pthread_cond_wait(&r->binned, &r->lock);
+    pthread_mutex_unlock(&r->lock);
     if (atomic_load(&r->failed))
         return NULL;
     struct tile_buf *buf = r->o.tile_buffers ? aligned_alloc(32, sizeof *buf) : NULL;
@@ -1079,27 +1090,26 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
     pthread_t tid[MAX_THREADS];
     struct worker w[MAX_THREADS];
     int started = 1;
-    if (ok && threads > 1 && pthread_barrier_init(&r->binned, NULL, (unsigned)threads) != 0)
-        ok = false;
+    bool sync = ok && pthread_mutex_init(&r->lock, NULL) == 0;
+    if (sync && pthread_cond_init(&r->binned, NULL) != 0) {
+        pthread_mutex_destroy(&r->lock);
+        sync = false;
+    }
+    ok = ok && sync;
     if (ok) {
         for (int i = 0; i < threads; i++)
             w[i] = (struct worker){ r, i };
+        /* a worker that cannot be started is no harm: the others take its
+         * shares and tiles */
         for (; started < threads; started++)
             if (pthread_create(&tid[started], NULL, work, &w[started]) != 0)
                 break;
-        if (started < threads) {
-            /* fewer workers than the barrier expects: finish alone */
-            atomic_store(&r->failed, true);
-            ok = false;
-            for (int i = started; i < threads; i++)
-                pthread_barrier_wait(&r->binned);
-        }
         work(&w[0]);
         for (int i = 1; i < started; i++)
             pthread_join(tid[i], NULL);
-        if (threads > 1)
-            pthread_barrier_destroy(&r->binned);
-        ok = ok && !atomic_load(&r->failed);
+        pthread_cond_destroy(&r->binned);
+        pthread_mutex_destroy(&r->lock);
+        ok = !atomic_load(&r->failed);
     }
     for (size_t b = 0; r->bins && b < (size_t)r->nchunks * (size_t)r->g.n; b++)
         bin_free(&r->bins[b]);
@@ -1152,11 +1162,11 @@ static void rasterize_one_tri(const struct tri_setup *ts, const struct raster_pa
  * scene its worker binned (draw_tile): the same order for the units of a
  * tile drawn by `worker`, with the triangles cut into `shares` shares of a
  * scene of n as bin_chunk cuts them. */
-static void rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, int worker)
+static bool rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, int worker)
 {
-    struct lesson_unit tmp[256];
-    if (m > 256)
-        return;     /* only the explorer's small scenes are shown so */
+    struct lesson_unit *tmp = malloc((size_t)(m ? m : 1) * sizeof *tmp);
+    if (!tmp)
+        return false;
     long k = 0;
     for (int step = 0; step < shares; step++) {
         int c = (step + worker * SHARES_PER_THREAD) % shares;
@@ -1166,6 +1176,8 @@ static void rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, i
                 tmp[k++] = u[e];
     }
     memcpy(u, tmp, (size_t)m * sizeof *u);
+    free(tmp);
+    return true;
 }
 
 /* The explorer steps through the run tile after tile, in row-major order,
@@ -1181,25 +1193,22 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
     bool unordered = strcmp(v->name, "unordered") == 0;
     struct grid g = grid_of(s->w, s->h);
     size_t n = (size_t)s->ntris;
-    struct tri *recs = malloc((n ? n : 1) * sizeof *recs);
-    bool *live = calloc(n ? n : 1, 1);
     long *count = calloc((size_t)g.n + 1, sizeof *count);
     double *work = calloc((size_t)g.n, sizeof *work);
     long total = -1;
-    if (!recs || !live || !count || !work)
+    if (!count || !work)
         goto done;
-    for (size_t i = 0; i < n; i++) {
-        struct tri_setup t;
-        live[i] = tri_setup_bits(&t, s->tris[i].v, s->w, s->h, p->subpixel_bits);
-        if (live[i])
-            tri_record(&recs[i], &t, p->checker);
-    }
-    /* bin sizes: the tiles that do not reject each triangle */
+    /* bin sizes: the tiles that do not reject each triangle (set up twice
+     * rather than kept: a scene may have millions of triangles) */
     for (int pass = 0; pass < 2; pass++) {
         long *next = count;     /* pass 1: where each tile's next unit goes */
         for (size_t i = 0; i < n; i++) {
-            const struct tri *t = &recs[i];
-            for (int ty = t->miny / TILE; live[i] && ty <= t->maxy / TILE; ty++)
+            struct tri_setup ts;
+            struct tri rec, *t = &rec;
+            bool live = tri_setup_bits(&ts, s->tris[i].v, s->w, s->h, p->subpixel_bits);
+            if (live)
+                tri_record(t, &ts, p->checker);
+            for (int ty = t->miny / TILE; live && ty <= t->maxy / TILE; ty++)
                 for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++) {
                     int tile = ty * g.nx + tx;
                     struct rect r = tile_rect(&g, tile);
@@ -1241,16 +1250,17 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
             for (int w = 1; w < threads; w++)
                 worker = busy[w] < busy[worker] ? w : worker;
             busy[worker] += work[tile];
-            if (unordered)
-                rotate_shares(out + first, count[tile] - first, n, shares(threads), worker);
+            if (unordered && !rotate_shares(out + first, count[tile] - first, n, shares(threads),
+                                            worker)) {
+                total = -1;
+                goto done;
+            }
         }
         out[u].bin_entry = (int32_t)(u - first);
         out[u].bin_size = (int32_t)(count[tile] - first);
         out[u].thread = worker;
     }
 done:
-    free(recs);
-    free(live);
     free(count);
     free(work);
     return total;
