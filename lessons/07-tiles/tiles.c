@@ -33,7 +33,8 @@
  *     F(i, j) >= 0   <=>   I i + J j + floor(F(0, 0) / 256) >= 0     (E)
  *
  * I i + J j stays below 2^30 inside a tile whatever the triangle (|I|, |J|
- * < 2^23, i, j < 64), so (E) is exact in int32: 8 pixels per AVX2 register.
+ * <= 2^23, 0 <= i, j < 64), so (E) is exact in int32: 8 pixels per AVX2
+ * register.
  *
  * Colour and depth as lesson 05: perspective-correct from the planes of 1/z
  * and a/z (seed 001, formula 23), z = 1 / (1/z) by a true division, the same
