@@ -230,12 +230,10 @@ static void float_errors_of(const struct tri_setup *t, struct float_errors *e)
     target_free(&exact);
 }
 
-/* A number the lesson text states: the digits right after `phrase`. */
-static long stated(const char *phrase)
+/* A number the lesson text states, by its marker (testlib.h). */
+static long stated(const char *key)
 {
-    const char *at = strstr(readme(), phrase);
-    cr_assert_not_null(at, README " does not say \"%s\"", phrase);
-    return strtol(at + strlen(phrase), NULL, 10);
+    return (long)text_number(README, key, NULL);
 }
 
 /* builtin:float-drift: two triangles sharing an edge, two of whose edges run
@@ -254,7 +252,7 @@ Test(lesson03, float_exhibit_is_wrong_on_its_scene_by_the_count_the_text_states)
         float_errors_of(&t, &e);
     }
     cr_expect_gt(e.extra + e.missing, 0, "the exhibit is not wrong anywhere");
-    cr_expect_eq(e.extra + e.missing, stated("float-drift` the float loop decides "),
+    cr_expect_eq(e.extra + e.missing, stated("l03.float.wrong"),
                  "%ld extra + %ld missing", e.extra, e.missing);
     cr_expect_eq(e.on_dropped_edge, e.extra, "every extra pixel is a centre on a right or bottom edge");
     cr_expect_eq(e.beyond_bound, 0);
@@ -267,7 +265,7 @@ Test(lesson03, float_exhibit_is_wrong_on_its_scene_by_the_count_the_text_states)
     for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++)
         twice += fb.count[i] > 1;
     cr_expect_gt(twice, 0);
-    cr_expect_eq(twice, stated("pixels drawn twice: "), "%ld drawn twice", twice);
+    cr_expect_eq(twice, stated("l03.float.twice"), "%ld drawn twice", twice);
     target_free(&fb);
     scene_free(&s);
 }
@@ -282,8 +280,8 @@ Test(lesson03, float_drift_on_a_large_triangle_stays_within_the_rounding_bound)
     float_errors_of(&t, &e);
     cr_expect_eq(e.beyond_bound, 0, "a wrong pixel farther from every edge than rounding explains");
     cr_expect_gt(e.missing, 0, "drift drops centres inside the triangle");
-    cr_expect_eq(e.extra, stated("2,000 pixels across, it covers "));
-    cr_expect_eq(e.missing, stated("centres outside and misses "));
+    cr_expect_eq(e.extra, stated("l03.large.extra"));
+    cr_expect_eq(e.missing, stated("l03.large.missing"));
 }
 
 /* --- interpolation ----------------------------------------------------------------- */

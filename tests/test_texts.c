@@ -1,0 +1,583 @@
+/* test_texts.c - the numbers the course's texts quote are the program's.
+ *
+ * Every count a lesson text or answer key quotes (exhibit pixels, operations
+ * per pixel, pixels tested and covered, steps) carries a marker right after
+ * it, <!--=key--> (see testlib.h). Here each key is recomputed from the
+ * lessons themselves, against the exact reference where it is a count of
+ * wrong pixels, so a change of code or scene that moves a number fails until
+ * the text is updated. The test also fails on a marker it does not know and
+ * on a known number that no text quotes any more.
+ *
+ * Speeds are the bench's alone: a text may quote a speed (Mpix/s, Mtri/s,
+ * ms, a factor "x faster") only if BENCH.md, which `make bench` writes, has
+ * that very figure.
+ */
+#include <criterion/criterion.h>
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testlib.h"
+#include "trace/replay.h"
+
+extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05;
+
+/* The texts whose numbers are checked. */
+static const char *const texts[] = {
+    "README.md",
+    "lessons/README.md",
+    "lessons/01-scanline/README.md",
+    "lessons/01-scanline/ANSWERS.md",
+    "lessons/02-barycentric/README.md",
+    "lessons/02-barycentric/ANSWERS.md",
+    "lessons/03-edge-stepping/README.md",
+    "lessons/03-edge-stepping/ANSWERS.md",
+    "lessons/04-simd-perspective/README.md",
+    "lessons/04-simd-perspective/ANSWERS.md",
+    "lessons/05-block-classification/README.md",
+    "lessons/05-block-classification/ANSWERS.md",
+};
+
+static bool exists(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f)
+        fclose(f);
+    return f != NULL;
+}
+
+/* --- running lessons ------------------------------------------------------------- */
+
+static struct scene load(const char *name)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, name, err, sizeof err), "%s", err);
+    return s;
+}
+
+struct counting { int w; uint8_t *count; };
+
+static void cover(void *ctx, int x, int y)
+{
+    struct counting *c = ctx;
+    c->count[(size_t)y * (size_t)c->w + (size_t)x]++;
+}
+
+/* Coverage counts of a whole scene by the exact reference (shares no code
+ * with any lesson). */
+static uint8_t *reference_scene(const struct scene *s)
+{
+    uint8_t *ref = calloc((size_t)s->w * (size_t)s->h, 1);
+    cr_assert_not_null(ref);
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        reference_coverage(&t, cover, &(struct counting){ s->w, ref });
+    }
+    return ref;
+}
+
+/* How a variant's coverage of a scene differs from the reference, per pixel. */
+struct tally {
+    long covered;       /* the reference's coverage, summed */
+    long wrong;         /* pixels whose count differs */
+    long extra_px;      /* pixels with more than the reference (the explorer's magenta) */
+    long missing_px;    /* pixels with less (cyan) */
+    long extra_writes;  /* coverage beyond the reference, summed */
+    long missing_writes;
+    long outside;       /* pixels the reference leaves empty, drawn */
+    long holes;         /* pixels the reference covers, drawn fewer times */
+    long doubled;       /* pixels the reference covers, drawn more times */
+    long twice;         /* pixels drawn twice or more */
+};
+
+static struct tally compare(const char *scene, const struct lesson *l, const char *variant,
+                            int block_size)
+{
+    struct scene s = load(scene);
+    const struct lesson_variant *v = variant ? lesson_variant(l, variant) : &l->variants[0];
+    cr_assert_not_null(v, "%s has no variant %s", l->id, variant);
+    struct raster_params p = default_params();
+    p.block_size = block_size;
+    struct target fb;
+    cr_assert(render_scene(&s, v, &p, &fb));
+    uint8_t *ref = reference_scene(&s);
+    struct tally c = { 0 };
+    for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++) {
+        int want = ref[i], got = fb.count[i];
+        c.covered += want;
+        c.wrong += got != want;
+        c.extra_px += got > want;
+        c.missing_px += got < want;
+        c.extra_writes += got > want ? got - want : 0;
+        c.missing_writes += got < want ? want - got : 0;
+        c.outside += want == 0 && got > 0;
+        c.holes += want > 0 && got < want;
+        c.doubled += want > 0 && got > want;
+        c.twice += got >= 2;
+    }
+    free(ref);
+    target_free(&fb);
+    scene_free(&s);
+    return c;
+}
+
+/* The narration of one whole scene, every event kept. */
+struct events {
+    struct trace_event *ev;
+    size_t n, cap;
+};
+
+static void collect(void *ctx, const struct trace_event *ev)
+{
+    struct events *e = ctx;
+    if (e->n == e->cap) {
+        e->cap = e->cap ? 2 * e->cap : 4096;
+        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
+        cr_assert_not_null(e->ev);
+    }
+    e->ev[e->n++] = *ev;
+}
+
+/* Counters of a whole scene run with narration, and its events. */
+static struct trace_counters narrate(const char *scene, const struct lesson *l, int block_size,
+                                     struct events *out)
+{
+    struct scene s = load(scene);
+    struct raster_params p = default_params();
+    p.block_size = block_size;
+    struct target fb;
+    cr_assert(target_init(&fb, s.w, s.h, scene_background(&s)));
+    struct trace_counters sum = { 0 };
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s.tris[i].v, s.w, s.h);
+        struct trace tr = { .sink = out ? collect : NULL, .ctx = out };
+        trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+        l->variants[0].rasterize(&t, &p, &fb, &tr);
+        sum.tested += tr.c.tested;
+        sum.covered += tr.c.covered;
+        sum.written += tr.c.written;
+        sum.rows += tr.c.rows;
+        sum.spans += tr.c.spans;
+        sum.mul += tr.c.mul;
+        sum.add += tr.c.add;
+        for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
+            sum.blocks[k] += tr.c.blocks[k];
+    }
+    target_free(&fb);
+    scene_free(&s);
+    return sum;
+}
+
+/* --- costs per pixel, per row, per triangle, read from the narration ---------------
+ *
+ * The counters a lesson declares (COUNT_OPS) ride on every event. Between two
+ * pixel tests of a row the difference is the cost of one tested pixel, plus
+ * that of a covered one when the first was covered; between two rows it is
+ * the row's pixels plus the cost of a row. What is left of the triangle's
+ * total is the cost of the triangle. Each cost is the value most events
+ * agree on (a row that changes edge in lesson 01 pays a setup more). */
+
+struct costs {
+    long mul_test, add_test;        /* per pixel tested (lesson 01: per pixel written) */
+    long mul_cov, add_cov;          /* more per pixel covered */
+    long mul_row, add_row;          /* per row */
+    long mul_tri, add_tri;          /* per triangle */
+};
+
+#define MODE_MAX 64
+struct mode { long v[MODE_MAX]; int n[MODE_MAX]; int k; };
+
+static void mode_add(struct mode *m, long v)
+{
+    for (int i = 0; i < m->k; i++)
+        if (m->v[i] == v) {
+            m->n[i]++;
+            return;
+        }
+    if (m->k < MODE_MAX) {
+        m->v[m->k] = v;
+        m->n[m->k++] = 1;
+    }
+}
+
+static long mode_of(const struct mode *m)
+{
+    int best = 0;
+    for (int i = 1; i < m->k; i++)
+        if (m->n[i] > m->n[best])
+            best = i;
+    cr_assert_gt(m->k, 0, "no sample to take a cost from");
+    return m->v[best];
+}
+
+static struct costs costs_of(const struct lesson *l, const char *scene)
+{
+    struct events e = { 0 };
+    struct trace_counters total = narrate(scene, l, 0, &e);
+    /* pixel events: tests, or writes when the lesson tests nothing (01) */
+    int px_kind = total.tested ? TRACE_PIXEL_TEST : TRACE_PIXEL_WRITE;
+    struct mode mt = { 0 }, at = { 0 }, mc = { 0 }, ac = { 0 }, mr = { 0 }, ar = { 0 };
+    struct costs c = { 0 };
+    /* per pixel */
+    const struct trace_event *prev = NULL;
+    for (size_t i = 0; i < e.n; i++) {
+        const struct trace_event *ev = &e.ev[i];
+        if (ev->kind == TRACE_ROW || ev->kind == TRACE_SETUP || ev->kind == TRACE_SPAN)
+            prev = NULL;
+        if (ev->kind != px_kind)
+            continue;
+        if (prev && prev->tri == ev->tri && !(prev->flags & TRACE_INSIDE))
+            mode_add(&mt, (long)(ev->mul - prev->mul)), mode_add(&at, (long)(ev->add - prev->add));
+        prev = ev;
+    }
+    c.mul_test = mode_of(&mt);
+    c.add_test = mode_of(&at);
+    if (px_kind == TRACE_PIXEL_WRITE) {
+        /* lesson 01 writes without testing: every pixel is a covered one */
+        mc.k = ac.k = 1;
+        mc.v[0] = ac.v[0] = 0;
+        mc.n[0] = ac.n[0] = 1;
+    }
+    prev = NULL;
+    for (size_t i = 0; i < e.n && px_kind == TRACE_PIXEL_TEST; i++) {
+        const struct trace_event *ev = &e.ev[i];
+        if (ev->kind == TRACE_ROW || ev->kind == TRACE_SETUP)
+            prev = NULL;
+        if (ev->kind != TRACE_PIXEL_TEST)
+            continue;
+        if (prev && prev->tri == ev->tri && (prev->flags & TRACE_INSIDE)) {
+            mode_add(&mc, (long)(ev->mul - prev->mul) - c.mul_test);
+            mode_add(&ac, (long)(ev->add - prev->add) - c.add_test);
+        }
+        prev = ev;
+    }
+    c.mul_cov = mode_of(&mc);
+    c.add_cov = mode_of(&ac);
+    /* per row: from one row event to the next, less the row's pixels */
+    const struct trace_event *row = NULL;
+    long pixels = 0, covered = 0;
+    for (size_t i = 0; i < e.n; i++) {
+        const struct trace_event *ev = &e.ev[i];
+        if (ev->kind == TRACE_SETUP)
+            row = NULL;
+        if (ev->kind == TRACE_ROW) {
+            if (row && row->tri == ev->tri) {
+                long px_mul = pixels * c.mul_test + covered * c.mul_cov;
+                long px_add = pixels * c.add_test + covered * c.add_cov;
+                mode_add(&mr, (long)(ev->mul - row->mul) - px_mul);
+                mode_add(&ar, (long)(ev->add - row->add) - px_add);
+            }
+            row = ev;
+            pixels = covered = 0;
+        }
+        if (ev->kind == px_kind) {
+            pixels++;
+            covered += px_kind == TRACE_PIXEL_TEST && (ev->flags & TRACE_INSIDE);
+        }
+    }
+    c.mul_row = mode_of(&mr);
+    c.add_row = mode_of(&ar);
+    long npx = (long)(px_kind == TRACE_PIXEL_TEST ? total.tested : total.written);
+    struct scene s = load(scene);
+    c.mul_tri = ((long)total.mul - npx * c.mul_test - (long)total.covered * c.mul_cov
+                 - (long)total.rows * c.mul_row) / s.ntris;
+    c.add_tri = ((long)total.add - npx * c.add_test - (long)total.covered * c.add_cov
+                 - (long)total.rows * c.add_row) / s.ntris;
+    scene_free(&s);
+    free(e.ev);
+    return c;
+}
+
+/* --- the keys ------------------------------------------------------------------------ */
+
+static double strip_triangles(void)
+{
+    struct scene s = load("offgrid-strip");
+    int n = s.ntris;
+    scene_free(&s);
+    return n;
+}
+
+static double l01_strip_covered(void) { return compare("offgrid-strip", &lesson_01, NULL, 0).covered; }
+static double l01_float_differ(void) { return compare("offgrid-strip", &lesson_01, "source-float", 0).wrong; }
+static double l01_float_outside(void) { return compare("offgrid-strip", &lesson_01, "source-float", 0).outside; }
+static double l01_float_holes(void) { return compare("offgrid-strip", &lesson_01, "source-float", 0).holes; }
+static double l01_float_doubled(void) { return compare("offgrid-strip", &lesson_01, "source-float", 0).doubled; }
+static double l01_float_extra(void) { return compare("offgrid-strip", &lesson_01, "source-float", 0).extra_px; }
+static double l01_add_pixel(void) { return costs_of(&lesson_01, "cases-a-b").add_test; }
+static double l01_mul_row(void) { return costs_of(&lesson_01, "cases-a-b").mul_row; }
+static double l01_add_row(void) { return costs_of(&lesson_01, "cases-a-b").add_row; }
+
+static double l02_square(void) { return compare("shared-edge", &lesson_02, NULL, 0).covered; }
+static double l02_incl_wrong(void) { return compare("shared-edge", &lesson_02, "inclusive", 0).wrong; }
+static double l02_incl_writes(void) { return compare("shared-edge", &lesson_02, "inclusive", 0).extra_writes; }
+static double l02_incl_doubled(void) { return compare("shared-edge", &lesson_02, "inclusive", 0).twice; }
+static double l02_strict_missing(void) { return compare("shared-edge", &lesson_02, "strict", 0).missing_writes; }
+
+/* Strict: the crack on the diagonal x == y, pixels no triangle draws. */
+static double l02_strict_diagonal(void)
+{
+    struct scene s = load("shared-edge");
+    struct raster_params p = default_params();
+    struct target fb;
+    cr_assert(render_scene(&s, lesson_variant(&lesson_02, "strict"), &p, &fb));
+    uint8_t *ref = reference_scene(&s);
+    long n = 0;
+    for (int i = 0; i < s.w && i < s.h; i++) {
+        size_t k = (size_t)i * (size_t)s.w + (size_t)i;
+        n += ref[k] > fb.count[k];
+    }
+    free(ref);
+    target_free(&fb);
+    scene_free(&s);
+    return n;
+}
+
+static double l02_mul_test(void) { return costs_of(&lesson_02, "triangle").mul_test; }
+static double l02_add_test(void) { return costs_of(&lesson_02, "triangle").add_test; }
+static double l02_mul_cov(void) { return costs_of(&lesson_02, "triangle").mul_cov; }
+static double l02_add_cov(void) { return costs_of(&lesson_02, "triangle").add_cov; }
+
+static double l03_mul_test(void) { return costs_of(&lesson_03, "edge-steps").mul_test; }
+static double l03_add_test(void) { return costs_of(&lesson_03, "edge-steps").add_test; }
+static double l03_mul_cov(void) { return costs_of(&lesson_03, "edge-steps").mul_cov; }
+static double l03_add_cov(void) { return costs_of(&lesson_03, "edge-steps").add_cov; }
+static double l03_mul_row(void) { return costs_of(&lesson_03, "edge-steps").mul_row; }
+static double l03_add_row(void) { return costs_of(&lesson_03, "edge-steps").add_row; }
+static double l03_mul_tri(void) { return costs_of(&lesson_03, "edge-steps").mul_tri; }
+static double l03_add_tri(void) { return costs_of(&lesson_03, "edge-steps").add_tri; }
+
+static double l03_steps_tested(void) { return (double)narrate("edge-steps", &lesson_03, 0, NULL).tested; }
+static double l03_steps_covered(void) { return (double)narrate("edge-steps", &lesson_03, 0, NULL).covered; }
+static double l03_steps_rows(void) { return (double)narrate("edge-steps", &lesson_03, 0, NULL).rows; }
+static double l03_steps_l02_mul(void) { return (double)narrate("edge-steps", &lesson_02, 0, NULL).mul; }
+static double l03_steps_l02_add(void) { return (double)narrate("edge-steps", &lesson_02, 0, NULL).add; }
+static double l03_steps_l03_mul(void) { return (double)narrate("edge-steps", &lesson_03, 0, NULL).mul; }
+static double l03_steps_l03_add(void) { return (double)narrate("edge-steps", &lesson_03, 0, NULL).add; }
+static double l03_drift_l02_mul(void) { return (double)narrate("float-drift", &lesson_02, 0, NULL).mul; }
+static double l03_drift_l03_mul(void) { return (double)narrate("float-drift", &lesson_03, 0, NULL).mul; }
+
+/* The float exhibit, one triangle at a time against the reference: wrong
+ * decisions of triangle `which` (-1: all), and the centres exactly on its
+ * right and bottom edges (where the -1 bias is what rounds away). */
+struct float_tally { long wrong, extra, on_dropped; };
+
+static struct float_tally float_exhibit(int which)
+{
+    struct scene s = load("float-drift");
+    const struct lesson_variant *fl = lesson_variant(&lesson_03, "float");
+    cr_assert_not_null(fl);
+    struct raster_params p = default_params();
+    struct float_tally c = { 0 };
+    for (int i = 0; i < s.ntris; i++) {
+        if (which >= 0 && i != which)
+            continue;
+        struct tri_setup t;
+        tri_setup(&t, s.tris[i].v, s.w, s.h);
+        struct target fb;
+        cr_assert(target_init(&fb, s.w, s.h, 0));
+        fl->rasterize(&t, &p, &fb, NULL);
+        uint8_t *ref = calloc((size_t)s.w * (size_t)s.h, 1);
+        reference_coverage(&t, cover, &(struct counting){ s.w, ref });
+        for (int y = t.miny; y <= t.maxy; y++)
+            for (int x = t.minx; x <= t.maxx; x++) {
+                size_t k = (size_t)y * (size_t)s.w + (size_t)x;
+                c.wrong += fb.count[k] != ref[k];
+                c.extra += fb.count[k] > ref[k];
+                bool dropped = false;
+                for (int e = 0; e < 3; e++)
+                    dropped |= edge_value(&t, e, x, y) == 0 && t.bias[e] == -1;
+                c.on_dropped += dropped;
+            }
+        free(ref);
+        target_free(&fb);
+    }
+    scene_free(&s);
+    return c;
+}
+
+static double l03_float_wrong(void) { return float_exhibit(-1).wrong; }
+static double l03_float_first(void) { return float_exhibit(0).extra; }
+static double l03_float_first_edges(void) { return float_exhibit(0).on_dropped; }
+static double l03_float_second(void) { return float_exhibit(1).extra; }
+static double l03_float_pixels(void) { return compare("float-drift", &lesson_03, "float", 0).wrong; }
+static double l03_float_extra_px(void) { return compare("float-drift", &lesson_03, "float", 0).extra_px; }
+static double l03_float_twice(void) { return compare("float-drift", &lesson_03, "float", 0).twice; }
+
+static double l05_corners_missing(void)
+{
+    return compare("blocks-exhibits", &lesson_05, "corners-outside", 0).missing_px;
+}
+static double l05_or_extra(void) { return compare("blocks-exhibits", &lesson_05, "or-inside", 0).extra_px; }
+
+static double blocks_of(int q, int klass)
+{
+    return (double)narrate("blocks", &lesson_05, q, NULL).blocks[klass];
+}
+static double l05_q4_empty(void) { return blocks_of(4, BLOCK_EMPTY); }
+static double l05_q4_full(void) { return blocks_of(4, BLOCK_FULL); }
+static double l05_q4_partial(void) { return blocks_of(4, BLOCK_PARTIAL); }
+static double l05_q8_empty(void) { return blocks_of(8, BLOCK_EMPTY); }
+static double l05_q8_full(void) { return blocks_of(8, BLOCK_FULL); }
+static double l05_q8_partial(void) { return blocks_of(8, BLOCK_PARTIAL); }
+static double l05_q16_empty(void) { return blocks_of(16, BLOCK_EMPTY); }
+static double l05_q16_full(void) { return blocks_of(16, BLOCK_FULL); }
+static double l05_q16_partial(void) { return blocks_of(16, BLOCK_PARTIAL); }
+static double l05_q4_tested(void) { return (double)narrate("blocks", &lesson_05, 4, NULL).tested; }
+static double l05_q8_tested(void) { return (double)narrate("blocks", &lesson_05, 8, NULL).tested; }
+static double l05_q16_tested(void) { return (double)narrate("blocks", &lesson_05, 16, NULL).tested; }
+static double l05_blocks_covered(void) { return (double)narrate("blocks", &lesson_05, 8, NULL).covered; }
+static double l05_l02_tested(void) { return (double)narrate("blocks", &lesson_02, 0, NULL).tested; }
+
+struct key {
+    const char *key;
+    double (*compute)(void);    /* NULL: checked by the test file named in `where` */
+    const char *where;
+};
+
+static const struct key keys[] = {
+    { "l01.strip.triangles", strip_triangles, NULL },
+    { "l01.strip.covered", l01_strip_covered, NULL },
+    { "l01.float.differ", l01_float_differ, NULL },
+    { "l01.float.outside", l01_float_outside, NULL },
+    { "l01.float.holes", l01_float_holes, NULL },
+    { "l01.float.doubled", l01_float_doubled, NULL },
+    { "l01.float.extra", l01_float_extra, NULL },
+    { "l01.add-per-pixel", l01_add_pixel, NULL },
+    { "l01.mul-per-row", l01_mul_row, NULL },
+    { "l01.add-per-row", l01_add_row, NULL },
+
+    { "l02.square.covered", l02_square, NULL },
+    { "l02.inclusive.wrong", l02_incl_wrong, NULL },
+    { "l02.inclusive.writes", l02_incl_writes, NULL },
+    { "l02.inclusive.doubled", l02_incl_doubled, NULL },
+    { "l02.strict.missing", l02_strict_missing, NULL },
+    { "l02.strict.diagonal", l02_strict_diagonal, NULL },
+    { "l02.mul-per-test", l02_mul_test, NULL },
+    { "l02.add-per-test", l02_add_test, NULL },
+    { "l02.mul-per-covered", l02_mul_cov, NULL },
+    { "l02.add-per-covered", l02_add_cov, NULL },
+
+    { "l03.mul-per-test", l03_mul_test, NULL },
+    { "l03.add-per-test", l03_add_test, NULL },
+    { "l03.mul-per-covered", l03_mul_cov, NULL },
+    { "l03.add-per-covered", l03_add_cov, NULL },
+    { "l03.mul-per-row", l03_mul_row, NULL },
+    { "l03.add-per-row", l03_add_row, NULL },
+    { "l03.mul-per-triangle", l03_mul_tri, NULL },
+    { "l03.add-per-triangle", l03_add_tri, NULL },
+    { "l03.steps.tested", l03_steps_tested, NULL },
+    { "l03.steps.covered", l03_steps_covered, NULL },
+    { "l03.steps.rows", l03_steps_rows, NULL },
+    { "l03.steps.l02-mul", l03_steps_l02_mul, NULL },
+    { "l03.steps.l02-add", l03_steps_l02_add, NULL },
+    { "l03.steps.l03-mul", l03_steps_l03_mul, NULL },
+    { "l03.steps.l03-add", l03_steps_l03_add, NULL },
+    { "l03.drift.l02-mul", l03_drift_l02_mul, NULL },
+    { "l03.drift.l03-mul", l03_drift_l03_mul, NULL },
+    { "l03.float.wrong", l03_float_wrong, NULL },
+    { "l03.float.first", l03_float_first, NULL },
+    { "l03.float.first-edges", l03_float_first_edges, NULL },
+    { "l03.float.second", l03_float_second, NULL },
+    { "l03.float.pixels", l03_float_pixels, NULL },
+    { "l03.float.extra-px", l03_float_extra_px, NULL },
+    { "l03.float.twice", l03_float_twice, NULL },
+    { "l03.large.extra", NULL, "tests/test_lesson03.c" },
+    { "l03.large.missing", NULL, "tests/test_lesson03.c" },
+
+    { "l04.affine.worst", NULL, "tests/test_lesson04.c" },
+    { "l04.perspective.worst", NULL, "tests/test_lesson04.c" },
+
+    { "l05.corners-outside.missing", l05_corners_missing, NULL },
+    { "l05.or-inside.extra", l05_or_extra, NULL },
+    { "l05.q4.empty", l05_q4_empty, NULL },
+    { "l05.q4.full", l05_q4_full, NULL },
+    { "l05.q4.partial", l05_q4_partial, NULL },
+    { "l05.q8.empty", l05_q8_empty, NULL },
+    { "l05.q8.full", l05_q8_full, NULL },
+    { "l05.q8.partial", l05_q8_partial, NULL },
+    { "l05.q16.empty", l05_q16_empty, NULL },
+    { "l05.q16.full", l05_q16_full, NULL },
+    { "l05.q16.partial", l05_q16_partial, NULL },
+    { "l05.q4.tested", l05_q4_tested, NULL },
+    { "l05.q8.tested", l05_q8_tested, NULL },
+    { "l05.q16.tested", l05_q16_tested, NULL },
+    { "l05.blocks.covered", l05_blocks_covered, NULL },
+    { "l05.l02.tested", l05_l02_tested, NULL },
+};
+
+#define NKEYS (sizeof keys / sizeof keys[0])
+
+static const struct key *find_key(const char *name, size_t len)
+{
+    for (size_t i = 0; i < NKEYS; i++)
+        if (strlen(keys[i].key) == len && strncmp(keys[i].key, name, len) == 0)
+            return &keys[i];
+    return NULL;
+}
+
+/* Every marked number of every text equals the program's value (to the
+ * precision it is quoted with); every marker names a known key. */
+Test(texts, every_quoted_count_is_what_the_program_computes, .timeout = 120)
+{
+    static double value[NKEYS];
+    static bool computed[NKEYS];
+    int checked = 0;
+    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; t++) {
+        if (!exists(texts[t]))
+            continue;
+        /* copy: text_number() reads the file again into the same buffer */
+        const char *orig = test_read_text(texts[t]);
+        char *text = malloc(strlen(orig) + 1);
+        cr_assert_not_null(text);
+        strcpy(text, orig);
+        for (char *m = strstr(text, "<!--="); m; m = strstr(m + 1, "<!--=")) {
+            char *name = m + 5, *end = strstr(name, "-->");
+            cr_assert_not_null(end, "%s: unclosed marker", texts[t]);
+            const struct key *k = find_key(name, (size_t)(end - name));
+            cr_expect_not_null(k, "%s: unknown marker <!--=%.*s--> (add it to tests/test_texts.c)",
+                               texts[t], (int)(end - name), name);
+            if (!k || !k->compute)
+                continue;
+            size_t i = (size_t)(k - keys);
+            if (!computed[i]) {
+                value[i] = k->compute();
+                computed[i] = true;
+            }
+            char key[128];
+            snprintf(key, sizeof key, "%.*s", (int)(end - name), name);
+            double tol;
+            double quoted = number_before(text, m, &tol);
+            cr_expect(!isnan(quoted), "%s: no number before <!--=%s-->", texts[t], key);
+            cr_expect(fabs(quoted - value[i]) <= tol,
+                      "%s quotes %g for %s, the program computes %.17g", texts[t], quoted, key,
+                      value[i]);
+            checked++;
+        }
+        free(text);
+    }
+    cr_expect_gt(checked, 40, "only %d quoted numbers found", checked);
+}
+
+/* A number worth quoting stays quoted: every key is in some text.
+ * TRISTEP_PRINT_NUMBERS=1 prints every computable key's value (for writing
+ * a text). */
+Test(texts, every_known_number_is_quoted_somewhere, .timeout = 120)
+{
+    bool print = getenv("TRISTEP_PRINT_NUMBERS") != NULL;
+    for (size_t i = 0; i < NKEYS; i++) {
+        if (print && keys[i].compute)
+            fprintf(stderr, "%-32s %.17g\n", keys[i].key, keys[i].compute());
+        char marker[128];
+        snprintf(marker, sizeof marker, "<!--=%s-->", keys[i].key);
+        bool found = false;
+        for (size_t t = 0; t < sizeof texts / sizeof texts[0] && !found; t++)
+            found = exists(texts[t]) && strstr(test_read_text(texts[t]), marker) != NULL;
+        cr_expect(found, "no text quotes %s any more: drop it from tests/test_texts.c", marker);
+    }
+}
