@@ -434,6 +434,44 @@ static double l05_q16_tested(void) { return (double)narrate("blocks", &lesson_05
 static double l05_blocks_covered(void) { return (double)narrate("blocks", &lesson_05, 8, NULL).covered; }
 static double l05_l02_tested(void) { return (double)narrate("blocks", &lesson_02, 0, NULL).tested; }
 
+static double l01_mul_tri(void) { return costs_of(&lesson_01, "cases-a-b").mul_tri; }
+static double l01_add_tri(void) { return costs_of(&lesson_01, "cases-a-b").add_tri; }
+
+static double l03_drift_tested(void) { return (double)narrate("float-drift", &lesson_03, 0, NULL).tested; }
+static double l03_drift_covered(void) { return (double)narrate("float-drift", &lesson_03, 0, NULL).covered; }
+/* additions saved by stepping the attributes only over covered pixels:
+ * the attribute steps (all but the three edge steps) of every pixel not covered */
+static double l03_drift_saved(void)
+{
+    struct trace_counters c = narrate("float-drift", &lesson_03, 0, NULL);
+    return (double)((c.tested - c.covered) * (uint64_t)(costs_of(&lesson_03, "edge-steps").add_test - 3));
+}
+
+/* Lesson 04's floor: pixels in the bounding boxes (the source's layout
+ * computes four lanes for each), lanes of the row4 layout (groups of four
+ * from minX, the last one past maxX masked), pixels covered. */
+struct floor_lanes { long box, row4_lanes, covered; };
+
+static struct floor_lanes floor_lanes(void)
+{
+    struct scene s = load("floor");
+    struct floor_lanes f = { 0 };
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s.tris[i].v, s.w, s.h);
+        long w = t.maxx - t.minx + 1, h = t.maxy - t.miny + 1;
+        f.box += w * h;
+        f.row4_lanes += 4 * ((w + 3) / 4) * h;
+    }
+    scene_free(&s);
+    f.covered = (long)narrate("floor", &lesson_04, 0, NULL).covered;
+    return f;
+}
+static double l04_floor_box(void) { return floor_lanes().box; }
+static double l04_floor_box_lanes(void) { return 4.0 * floor_lanes().box; }
+static double l04_floor_row4(void) { return floor_lanes().row4_lanes; }
+static double l04_floor_covered(void) { return floor_lanes().covered; }
+
 struct key {
     const char *key;
     double (*compute)(void);    /* NULL: checked by the test file named in `where` */
@@ -451,6 +489,8 @@ static const struct key keys[] = {
     { "l01.add-per-pixel", l01_add_pixel, NULL },
     { "l01.mul-per-row", l01_mul_row, NULL },
     { "l01.add-per-row", l01_add_row, NULL },
+    { "l01.mul-per-triangle", l01_mul_tri, NULL },
+    { "l01.add-per-triangle", l01_add_tri, NULL },
 
     { "l02.square.covered", l02_square, NULL },
     { "l02.inclusive.wrong", l02_incl_wrong, NULL },
@@ -487,10 +527,17 @@ static const struct key keys[] = {
     { "l03.float.pixels", l03_float_pixels, NULL },
     { "l03.float.extra-px", l03_float_extra_px, NULL },
     { "l03.float.twice", l03_float_twice, NULL },
+    { "l03.drift.tested", l03_drift_tested, NULL },
+    { "l03.drift.covered", l03_drift_covered, NULL },
+    { "l03.drift.saved-adds", l03_drift_saved, NULL },
     { "l03.large.extra", NULL, "tests/test_lesson03.c" },
     { "l03.large.missing", NULL, "tests/test_lesson03.c" },
 
     { "l04.affine.worst", NULL, "tests/test_lesson04.c" },
+    { "l04.floor.box", l04_floor_box, NULL },
+    { "l04.floor.box-lanes", l04_floor_box_lanes, NULL },
+    { "l04.floor.row4-lanes", l04_floor_row4, NULL },
+    { "l04.floor.covered", l04_floor_covered, NULL },
     { "l04.perspective.worst", NULL, "tests/test_lesson04.c" },
 
     { "l05.corners-outside.missing", l05_corners_missing, NULL },
@@ -580,4 +627,137 @@ Test(texts, every_known_number_is_quoted_somewhere, .timeout = 120)
             found = exists(texts[t]) && strstr(test_read_text(texts[t]), marker) != NULL;
         cr_expect(found, "no text quotes %s any more: drop it from tests/test_texts.c", marker);
     }
+}
+
+/* --- one template for every lesson text ---------------------------------------------- */
+
+/* The level-2 headings of a text, in order, each without its "## ". */
+static int headings(const char *text, char out[][96], int max)
+{
+    int n = 0;
+    bool code = false;
+    for (const char *line = text; *line && n < max;) {
+        const char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) : strlen(line);
+        if (len >= 3 && strncmp(line, "```", 3) == 0)
+            code = !code;
+        if (!code && len > 3 && strncmp(line, "## ", 3) == 0)
+            snprintf(out[n++], 96, "%.*s", (int)(len - 3), line + 3);
+        line += len + (end != NULL);
+    }
+    return n;
+}
+
+/* Goals, Run it, numbered sections 1, 2, ... , Exhibits, Exercises
+ * (the "write it yourself" part may have a heading of its own), References. */
+Test(texts, every_lesson_text_follows_the_template)
+{
+    int lessons = 0;
+    for (int i = 0; all_lessons[i]; i++) {
+        char path[256], answers[256];
+        snprintf(path, sizeof path, "lessons/%s/README.md", all_lessons[i]->id);
+        snprintf(answers, sizeof answers, "lessons/%s/ANSWERS.md", all_lessons[i]->id);
+        static char h[64][96];
+        int n = headings(test_read_text(path), h, 64), k = 0;
+        cr_assert_geq(n, 6, "%s has %d sections", path, n);
+        cr_expect_str_eq(h[k], "Goals", "%s: the first section is \"%s\", not Goals", path, h[k]);
+        k++;
+        cr_expect_str_eq(h[k], "Run it", "%s: the second section is \"%s\", not Run it", path, h[k]);
+        k++;
+        int number = 1;
+        for (; k < n && isdigit((unsigned char)h[k][0]); k++, number++)
+            cr_expect_eq(atoi(h[k]), number, "%s: section \"%s\" should be numbered %d", path,
+                         h[k], number);
+        cr_expect_gt(number, 2, "%s has fewer than two numbered sections", path);
+        const char *rest[] = { "Exhibits", "Exercises", "References" };
+        for (int r = 0; r < 3; r++) {
+            if (r == 2 && k < n && strcmp(h[k], "Write it yourself") == 0)
+                k++;
+            cr_expect(k < n && strcmp(h[k], rest[r]) == 0, "%s: expected section %s, found \"%s\"",
+                      path, rest[r], k < n ? h[k] : "(end)");
+            k++;
+        }
+        cr_expect_eq(k, n, "%s: References must be the last section", path);
+        /* the answer key sits beside it and the text links it */
+        cr_expect(exists(answers), "%s has no answer key %s", all_lessons[i]->id, answers);
+        cr_expect(strstr(test_read_text(path), "(ANSWERS.md)") != NULL, "%s does not link its "
+                  "answer key", path);
+        lessons++;
+    }
+    cr_expect_gt(lessons, 0);
+}
+
+/* The top README leads to the course page and to every answer key. */
+Test(texts, the_top_readme_links_the_course_page_and_the_answer_keys)
+{
+    const char *readme = test_read_text("README.md");
+    cr_expect(strstr(readme, "(lessons/README.md)") != NULL, "README.md does not link the course page");
+    char *copy = malloc(strlen(readme) + 1);
+    cr_assert_not_null(copy);
+    strcpy(copy, readme);
+    for (int i = 0; all_lessons[i]; i++) {
+        char link[256];
+        snprintf(link, sizeof link, "(lessons/%s/ANSWERS.md)", all_lessons[i]->id);
+        cr_expect(strstr(copy, link) != NULL, "README.md does not link %s", link);
+    }
+    free(copy);
+}
+
+/* --- speeds come from the bench alone ------------------------------------------------ */
+
+/* Units a speed is quoted in (as a lesson text would write them). */
+static const char *const speed_units[] = {
+    "Mpix/s", "Mpixels/s", "Mtri/s", "Mtriangles/s", "GB/s", "Gpix/s", "ms", "ns",
+    "x faster", "x slower", "times faster", "times slower", "x llvmpipe", "x lesson",
+    "fps", "frames per second",
+};
+
+/* Every number quoted with a unit of speed in a text appears in BENCH.md,
+ * which only `make bench` writes. */
+Test(texts, every_speed_a_text_quotes_is_the_benchs)
+{
+    cr_assert(exists("BENCH.md"), "BENCH.md is missing: run make bench");
+    const char *orig = test_read_text("BENCH.md");
+    char *bench = malloc(strlen(orig) + 1);
+    cr_assert_not_null(bench);
+    strcpy(bench, orig);
+    cr_expect(strstr(bench, "written by `make bench`") != NULL, "BENCH.md was not written by the bench");
+    cr_expect(strstr(bench, "quick mode") == NULL, "BENCH.md is a quick run, not a measurement");
+    int quoted = 0;
+    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; t++) {
+        if (!exists(texts[t]))
+            continue;
+        const char *text = test_read_text(texts[t]);
+        for (size_t u = 0; u < sizeof speed_units / sizeof speed_units[0]; u++) {
+            const char *unit = speed_units[u];
+            size_t ul = strlen(unit);
+            for (const char *p = strstr(text, unit); p; p = strstr(p + 1, unit)) {
+                /* a unit on its own: not inside a word ("items", "msg") */
+                if (isalnum((unsigned char)p[ul]) || (p > text && isalpha((unsigned char)p[-1])
+                                                      && !(unit[0] == 'x' && isdigit((unsigned char)p[-1]))))
+                    continue;
+                const char *e = p;
+                while (e > text && e[-1] == ' ')
+                    e--;
+                const char *b = e;
+                while (b > text && strchr("0123456789.,", b[-1]))
+                    b--;
+                if (b == e)
+                    continue;       /* no number before the unit: a column name, a word */
+                char num[32];
+                snprintf(num, sizeof num, "%.*s", (int)(e - b), b);
+                /* a whole cell or word of BENCH.md, not a part of a longer number */
+                bool found = false;
+                size_t nl = strlen(num);
+                for (const char *q = strstr(bench, num); q && !found; q = strstr(q + 1, num))
+                    found = (q == bench || !strchr("0123456789.", q[-1]))
+                            && !strchr("0123456789", q[nl]) && !(q[nl] == '.' && isdigit((unsigned char)q[nl + 1]));
+                cr_expect(found, "%s quotes the speed \"%s %s\", which BENCH.md does not have",
+                          texts[t], num, unit);
+                quoted++;
+            }
+        }
+    }
+    free(bench);
+    cr_log_info("%d speeds quoted, all from BENCH.md", quoted);
 }
