@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 #define README04 "lessons/04-simd-perspective/README.md"
 
