@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05;
 
