@@ -21,7 +21,8 @@ static void overlay_arrow(const struct lesson_canvas *c, double x, double y, dou
     if (!(d > 0))
         return;
     dx /= d, dy /= d;
-    set_rgb(cr, rgb);
+    const struct overlay_painter *o = c->painter;
+    set_rgb(cr, ink(o->p->pal, rgb));
     cairo_set_line_width(cr, 2.5 * c->unit);
     cairo_move_to(cr, x, y);
     cairo_line_to(cr, ex - dx * h * 0.8, ey - dy * h * 0.8);
@@ -46,7 +47,7 @@ static void overlay_label(const struct lesson_canvas *c, double x, double y, con
     set_rgba(p->cr, p->pal->shadow, 0.7);
     cairo_rectangle(p->cr, sx - 2 * p->s, sy, tw + 4 * p->s, th);
     cairo_fill(p->cr);
-    draw_text(p, sx, sy, 0, str, size, rgb, false);
+    draw_text(p, sx, sy, 0, str, size, ink(p->pal, rgb), false);
     cairo_restore(p->cr);
 }
 
