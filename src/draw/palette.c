@@ -19,6 +19,8 @@ const struct palette palette_dark = {
     .partial_inside = 0xf0c674, .partial_outside = 0x8a6d2c,
     .span = 0x4fb3bf, .row = 0x39404e,
     .extra = 0xff4fd8, .missing = 0x00e5ff, .exhibit = 0xe0565b, .on_exhibit = 0xffffff,
+    .mark = 0xffffff, .probe = 0xff5080, .upper = 0x9e73ff, .lower = 0xff9933,
+    .brighter = 0xffff8c, .deeper = 0x8cffbf,
 };
 
 /* For paper: dark ink on white, every cell light enough for black numbers
@@ -41,20 +43,14 @@ const struct palette palette_light = {
     .partial_inside = 0xf8dd93, .partial_outside = 0xd0ab52,
     .span = 0x86cdd6, .row = 0xe3e7ee,
     .extra = 0xe020b8, .missing = 0x00a8c6, .exhibit = 0xc0303a, .on_exhibit = 0xffffff,
+    .mark = 0x111318, .probe = 0xd6246e, .upper = 0x7a4fe0, .lower = 0xe07000,
+    .brighter = 0x8a6d00, .deeper = 0x0f8a5f,
     .paper = true,
 };
 
 const struct palette *palette_of(enum theme t)
 {
     return t == THEME_LIGHT ? &palette_light : &palette_dark;
-}
-
-uint32_t ink(const struct palette *pal, uint32_t rgb)
-{
-    double l = luma(rgb);
-    if (!pal->paper || l <= 0.45)
-        return rgb;
-    return mix(rgb, 0x000000, 1 - 0.45 / l);
 }
 
 uint32_t mix(uint32_t a, uint32_t b, double t)
