@@ -84,7 +84,8 @@ Test(print, light_canvas_figures_of_every_lesson_view_and_format, .timeout = 240
 {
     char dir[] = "/tmp/tristep-print-XXXXXX";
     cr_assert(mkdtemp(dir));
-    explorer_fonts();
+    char why[256];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
     int files = 0;
     for (int i = 0; all_lessons[i]; i++) {
         const struct lesson *l = all_lessons[i];
@@ -92,8 +93,9 @@ Test(print, light_canvas_figures_of_every_lesson_view_and_format, .timeout = 240
         char err[256];
         cr_assert(scene_builtin(&s, l->builtin_scene, err, sizeof err), "%s", err);
         struct explorer ex;
+        struct raster_params prm = default_params();
         struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = l->builtin_scene,
-                                   .params = { .subpixel_bits = SUBPIXEL_BITS },
+                                   .params = &prm,
                                    .step_end = true, .theme = THEME_LIGHT, .part = PART_CANVAS };
         cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s: %s", l->id, err);
         /* half-way, so that the current step, its cells and the lesson's
