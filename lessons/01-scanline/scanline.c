@@ -615,4 +615,5 @@ const struct lesson lesson_01 = {
     .aux_names = aux_names,
     .overlay = overlay,
     .constants = constants,
+    .exercise = { .write_line = L_FILL },
 };

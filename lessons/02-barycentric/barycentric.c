@@ -140,4 +140,5 @@ const struct lesson lesson_02 = {
     .exhibit_scene = "shared-edge",
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
+    .exercise = { .write_line = L_DRAW },
 };

@@ -385,4 +385,5 @@ const struct lesson lesson_03 = {
     .compare = compare,
     .overlay = overlay,
     .constants = constants,
+    .exercise = { .write_line = L_RENDER, .no_pixel_mul = true },
 };

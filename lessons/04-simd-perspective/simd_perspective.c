@@ -595,4 +595,5 @@ const struct lesson lesson_04 = {
     .views = views,
     .overlay = overlay,
     .nviews = sizeof views / sizeof views[0],
+    .exercise = { .write_line = L_WRITE },
 };

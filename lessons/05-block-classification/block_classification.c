@@ -747,4 +747,5 @@ const struct lesson lesson_05 = {
     .params = LESSON_PARAM_BLOCK,
     .compare = compare,
     .overlay = overlay,
+    .exercise = { .write_line = L_PIXEL, .full_blocks = true },
 };
