@@ -955,7 +955,7 @@ static void progress(const struct check_options *o, int n, int i, const char *na
 {
     if (!o->progress)
         return;
-    fprintf(o->out, "\r  %d/%d %-28s %3d%%", i + 1, n, name, total ? 100 * done / total : 0);
+    fprintf(o->out, "\r  %d/%d %-31s %3d%%", i + 1, n, name, total ? 100 * done / total : 0);
     fflush(o->out);
 }
 
@@ -1007,7 +1007,7 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
 static bool run_check(struct checker *C, int i, int n, const struct check *ck, struct check_result *r)
 {
     FILE *out = C->o->out;
-    fprintf(out, "  %d/%d %-28s ", i + 1, n, ck->name);
+    fprintf(out, "  %d/%d %-31s ", i + 1, n, ck->name);
     fflush(out);
     C->kind = ck->kind;
     uint64_t tris0 = C->triangles;
@@ -1025,7 +1025,7 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         struct verdict v;
         if (!evaluate(C, &s, &v)) {
             if (C->o->progress)
-                fprintf(out, "\r  %d/%d %-28s ", i + 1, n, ck->name);
+                fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
             report_failure(C, ck->name, &s, what, r);
             scene_free(&s);
             return false;
@@ -1033,7 +1033,7 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         scene_free(&s);
     }
     if (C->o->progress)
-        fprintf(out, "\r  %d/%d %-28s ", i + 1, n, ck->name);
+        fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
     fprintf(out, "ok (%d scene%s, %llu triangles)\n", total, total == 1 ? "" : "s",
             (unsigned long long)(C->triangles - tris0));
     return true;
