@@ -27,8 +27,8 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "cli/cli.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
+#include "util/file.h"
 
 /* Colour: 2 of 255 levels per channel. The lessons step colour in float or
  * double and round to 8 bits; a correct answer lands within one level of
@@ -642,17 +642,6 @@ static bool still_fails(struct shrinker *S, const struct scene *s)
     S->budget--;
     struct verdict v;
     return !evaluate(S->C, s, &v);
-}
-
-static bool scene_copy(struct scene *dst, const struct scene *src)
-{
-    *dst = *src;
-    dst->cap = src->ntris > 0 ? src->ntris : 1;
-    dst->tris = malloc(sizeof *dst->tris * (size_t)dst->cap);
-    if (!dst->tris)
-        return false;
-    memcpy(dst->tris, src->tris, sizeof *dst->tris * (size_t)src->ntris);
-    return true;
 }
 
 /* Keep candidate c in place of s when it still fails. */

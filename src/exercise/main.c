@@ -10,6 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli/cli.h"
 #include "exercise/exercise.h"
 
 extern const struct lesson LESSON;
