@@ -854,53 +854,104 @@ static void say_verdict(const struct checker *C, FILE *out, const struct verdict
     }
 }
 
-/* The step at which the explorer shows the first wrong pixel: the code's
- * first event on it (a write, or the block or span that holds it), or the
- * end of the triangle when the code never touched it (a missing pixel). */
-struct find {
+/* What the code's own narration says about the first wrong pixel: its
+ * first write there, its last test of it, and the block or span that holds
+ * it. From these, the step at which the explorer shows it: the write (or
+ * the block or span), or the end of the triangle when the code never wrote
+ * the pixel (a missing one). */
+struct trail {
     int x, y;
-    bool found;
-    uint32_t index;
+    bool written, tested, held;
+    struct trace_event write, test, hold;
 };
 
-static void find_event(void *ctx, const struct trace_event *ev)
+static void follow(void *ctx, const struct trace_event *ev)
 {
-    struct find *f = ctx;
-    if (f->found)
-        return;
-    bool here = false;
-    if (ev->kind == TRACE_PIXEL_WRITE)
-        here = ev->x == f->x && ev->y == f->y;
-    else if (ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN)
-        here = f->x >= ev->x && f->x <= ev->x1 && f->y >= ev->y && f->y <= ev->y1;
-    if (here) {
-        f->found = true;
-        f->index = ev->index;
-    }
+    struct trail *f = ctx;
+    bool here = ev->x == f->x && ev->y == f->y;
+    if (ev->kind == TRACE_PIXEL_WRITE && here && !f->written)
+        f->written = true, f->write = *ev;
+    else if (ev->kind == TRACE_PIXEL_TEST && here)
+        f->tested = true, f->test = *ev;
+    else if ((ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN) && !f->held && f->x >= ev->x
+             && f->x <= ev->x1 && f->y >= ev->y && f->y <= ev->y1)
+        f->held = true, f->hold = *ev;
 }
 
-static uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v)
+static uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v,
+                        struct trail *f)
 {
+    *f = (struct trail){ .x = v->x, .y = v->y };
     struct replay r;
     if (!replay_init(&r, s, &exercise_variant, &C->p))
         return 0;
     uint64_t step = r.start[v->tri + 1];
-    if (v->what != WRONG_COUNT || v->got_n > v->want_n || v->what == WRONG_COLOUR) {
-        struct target fb;
-        if (target_init(&fb, s->w, s->h, scene_background(s))) {
-            struct tri_setup t;
-            replay_setup(&r, v->tri, &t);
-            struct find f = { .x = v->x, .y = v->y };
-            struct trace tr = { .sink = find_event, .ctx = &f };
-            trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
-            exercise_variant.rasterize(&t, &C->p, &fb, &tr);
-            if (f.found)
-                step = r.start[v->tri] + f.index + 1;
-            target_free(&fb);
-        }
+    struct target fb;
+    if (target_init(&fb, s->w, s->h, scene_background(s))) {
+        struct tri_setup t;
+        replay_setup(&r, v->tri, &t);
+        struct trace tr = { .sink = follow, .ctx = f };
+        trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
+        exercise_variant.rasterize(&t, &C->p, &fb, &tr);
+        bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
+        if (!missing && f->written)
+            step = r.start[v->tri] + f->write.index + 1;
+        else if (!missing && f->held)
+            step = r.start[v->tri] + f->hold.index + 1;
+        target_free(&fb);
     }
     replay_free(&r);
     return step;
+}
+
+static const char *line_text(const struct lesson *l, int line)
+{
+    for (int i = 0; l->pseudocode && l->pseudocode[i]; i++)
+        if (i == line)
+            return l->pseudocode[i];
+    return "?";
+}
+
+static const char *const edge_names[3] = { "AB", "BC", "CA" };
+
+/* Why the exact rule decides the pixel as it does, when its centre lies
+ * exactly on an edge; and what the code's narration said about it. */
+static void explain(const struct checker *C, FILE *out, const struct verdict *v,
+                    const struct scene *s, const struct trail *f)
+{
+    if (v->what == WRONG_COUNT || v->what == WRONG_COLOUR || v->what == WRONG_DEPTH) {
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[v->tri].v, s->w, s->h, C->p.subpixel_bits);
+        for (int k = 0; k < 3 && t.area2 > 0; k++) {
+            if (edge_value(&t, k, v->x, v->y) != 0)
+                continue;
+            bool top = t.I[k] == 0 && t.J[k] > 0, left = t.I[k] > 0;
+            fprintf(out, "      its centre lies exactly on edge %s (F = 0), a %s edge: the top-left rule %s\n",
+                    edge_names[k], top ? "top" : left ? "left" : t.I[k] == 0 ? "bottom" : "right",
+                    top || left ? "covers it" : "leaves it to the triangle on the other side");
+        }
+    }
+    const struct lesson *l = C->l;
+    if (f->held) {
+        static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };
+        if (f->hold.kind == TRACE_BLOCK)
+            fprintf(out, "      your code put it in block (%d, %d)-(%d, %d), classified %s (masks %x %x %x)\n",
+                    f->hold.x, f->hold.y, f->hold.x1, f->hold.y1,
+                    f->hold.klass < 3 ? klass[f->hold.klass] : "?", f->hold.mask[0], f->hold.mask[1],
+                    f->hold.mask[2]);
+        else
+            fprintf(out, "      your code put it in the span %d..%d of row %d\n", f->hold.x, f->hold.x1,
+                    f->hold.y);
+    }
+    if (f->tested)
+        fprintf(out, "      your code tested it and said %s, edge values F_ab, F_bc, F_ca = %lld, %lld, %lld\n",
+                f->test.flags & TRACE_INSIDE ? "inside" : "outside", (long long)f->test.e[0],
+                (long long)f->test.e[1], (long long)f->test.e[2]);
+    if (f->written)
+        fprintf(out, "      your code wrote it (\"%s\"): colour #%06x, depth %.6g\n",
+                line_text(l, f->write.line), f->write.rgba & 0xffffffu, f->write.z);
+    else if (v->what == WRONG_COUNT)
+        fprintf(out, "      your code never wrote it\n");
 }
 
 struct scene_out {
@@ -963,7 +1014,8 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     evaluate(C, s, &v);
     r->x = v.x, r->y = v.y;
     r->ntris = s->ntris;
-    r->step = step_of(C, s, &v);
+    struct trail f;
+    r->step = step_of(C, s, &v, &f);
     snprintf(r->failed, sizeof r->failed, "%s", name);
 
     char slug[64];
@@ -987,6 +1039,7 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     fprintf(out, "\n  smallest counterexample: %d triangle%s, written to %s\n", s->ntris,
             s->ntris == 1 ? "" : "s", r->counterexample);
     say_verdict(C, out, &v, s);
+    explain(C, out, &v, s, &f);
     fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s SCENE=%s STEP=%llu\n",
             (unsigned long long)r->step, o->open_cmd, r->counterexample, (unsigned long long)r->step);
     return true;
