@@ -9,8 +9,8 @@
  *   coverage   how many times each pixel was written (target.count): a
  *              pixel written twice by one triangle is as wrong as one
  *              written by a triangle that does not cover it;
- *   colour     colour within COLOUR_LEVELS of 255 per channel, depth within
- *              DEPTH_RELATIVE, on every pixel the exact rule covers;
+ *   colour     colour and depth pixel_close() to the exact ones (raster.h),
+ *              on every pixel the exact rule covers;
  *   property   what the lesson is about: no multiplication between two
  *              pixels of a row (lesson 03), every block narrated full
  *              really full and every full block found (lesson 05).
@@ -30,14 +30,6 @@
 #include "explore/replay.h"
 #include "util/file.h"
 
-/* Colour: 2 of 255 levels per channel. The lessons step colour in float or
- * double and round to 8 bits; a correct answer lands within one level of
- * the exact value, a wrong formula misses by far more. */
-#define COLOUR_LEVELS 2
-/* Depth: 0.1 percent of z. Lesson 04's float lanes keep 1/z to about 1e-5
- * over a row of a few hundred pixels; affine z on a receding triangle is
- * off by tens of percent. */
-#define DEPTH_RELATIVE 1e-3
 /* Shrinking tries at most this many candidate scenes. */
 #define SHRINK_BUDGET 4000
 
@@ -544,16 +536,6 @@ static void watch(void *ctx, const struct trace_event *ev)
     }
 }
 
-static bool colour_close(uint32_t a, uint32_t b)
-{
-    for (int sh = 0; sh < 24; sh += 8) {
-        int d = (int)((a >> sh) & 255) - (int)((b >> sh) & 255);
-        if (d > COLOUR_LEVELS || d < -COLOUR_LEVELS)
-            return false;
-    }
-    return true;
-}
-
 /* The first pixel, in reading order, where the pictures differ. */
 static bool compare(const struct checker *C, int tri, struct verdict *v)
 {
@@ -564,11 +546,8 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
         enum wrong what = WRONG_NONE;
         if (W->count[i] != G->count[i])
             what = WRONG_COUNT;
-        else if (colour && W->count[i] && !colour_close(W->color[i], G->color[i]))
-            what = WRONG_COLOUR;
-        else if (colour && W->count[i]
-                 && !(fabsf(G->depth[i] - W->depth[i]) <= DEPTH_RELATIVE * W->depth[i]))
-            what = WRONG_DEPTH;
+        else if (colour && W->count[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
+            what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
         if (what != WRONG_NONE) {
             *v = (struct verdict){
                 .what = what, .tri = tri, .x = (int)(i % (size_t)W->w), .y = (int)(i / (size_t)W->w),
@@ -825,12 +804,13 @@ static void say_verdict(const struct checker *C, FILE *out, const struct verdict
         neighbourhood(C, out, v->x, v->y);
         break;
     case WRONG_COLOUR:
-        fprintf(out, "      pixel (%d, %d): expected colour #%06x, got #%06x (more than %d of 255 off)\n",
-                v->x, v->y, v->want_c & 0xffffffu, v->got_c & 0xffffffu, COLOUR_LEVELS);
+        fprintf(out, "      pixel (%d, %d): expected colour #%06x, got #%06x (more than %d of 255 off in a channel);\n"
+                "      depth expected %.6g, got %.6g\n", v->x, v->y, v->want_c & 0xffffffu,
+                v->got_c & 0xffffffu, PIXEL_COLOUR_LEVELS, v->want_z, v->got_z);
         break;
     case WRONG_DEPTH:
         fprintf(out, "      pixel (%d, %d): expected depth %.6g, got %.6g (more than %g%% off)\n",
-                v->x, v->y, v->want_z, v->got_z, 100 * DEPTH_RELATIVE);
+                v->x, v->y, v->want_z, v->got_z, 100 * PIXEL_DEPTH_RELATIVE);
         break;
     case WRONG_OUTSIDE:
         fprintf(out, "      wrote pixel (%d, %d), outside the %d x %d target (the write was skipped)\n",
@@ -943,10 +923,25 @@ static void explain(const struct checker *C, FILE *out, const struct verdict *v,
             fprintf(out, "      your code put it in the span %d..%d of row %d\n", f->hold.x, f->hold.x1,
                     f->hold.y);
     }
-    if (f->tested)
+    if (f->tested) {
         fprintf(out, "      your code tested it and said %s, edge values F_ab, F_bc, F_ca = %lld, %lld, %lld\n",
                 f->test.flags & TRACE_INSIDE ? "inside" : "outside", (long long)f->test.e[0],
                 (long long)f->test.e[1], (long long)f->test.e[2]);
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[v->tri].v, s->w, s->h, C->p.subpixel_bits);
+        int64_t e[3] = { edge_value(&t, 0, v->x, v->y), edge_value(&t, 1, v->x, v->y),
+                         edge_value(&t, 2, v->x, v->y) };
+        if (e[0] != f->test.e[0] || e[1] != f->test.e[1] || e[2] != f->test.e[2])
+            fprintf(out, "      the exact edge values at its centre (%g, %g) are %lld, %lld, %lld\n",
+                    v->x + 0.5, v->y + 0.5, (long long)e[0], (long long)e[1], (long long)e[2]);
+        double w[3];
+        barycentric(&t, e, w);
+        bool said = f->test.bary[0] != 0 || f->test.bary[1] != 0 || f->test.bary[2] != 0;
+        if (v->what != WRONG_COUNT && said)
+            fprintf(out, "      your weights of A, B, C there: %.4f, %.4f, %.4f; exact: %.4f, %.4f, %.4f\n"
+                    "      (A, B, C in setup's order%s)\n", f->test.bary[0], f->test.bary[1],
+                    f->test.bary[2], w[0], w[1], w[2], t.swapped ? ": the file's second and third vertex exchanged" : "");
+    }
     if (f->written)
         fprintf(out, "      your code wrote it (\"%s\"): colour #%06x, depth %.6g\n",
                 line_text(l, f->write.line), f->write.rgba & 0xffffffu, f->write.z);
@@ -1022,7 +1017,11 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     size_t k = 0;
     for (const char *p = name; *p && k + 1 < sizeof slug; p++)
         slug[k++] = (*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') ? *p : '-';
+    while (k > 0 && slug[k - 1] == '-')
+        k--;
     slug[k] = '\0';
+    for (char *p = slug; (p = strstr(p, "--"));)
+        memmove(p, p + 1, strlen(p));
     char nn[3] = { C->l->id[0], C->l->id[1], '\0' };
     if (!make_dirs(o->out_dir)) {
         fprintf(out, "  cannot create %s: %s\n", o->out_dir, strerror(errno));

@@ -133,7 +133,7 @@ static bool advance_exact(struct explorer *ex, int upto)
  * what variants[0] gives for the same triangles. */
 static bool compare_exhibit(struct explorer *ex)
 {
-    ex->extra = ex->missing = 0;
+    ex->extra = ex->missing = ex->wrong_colour = 0;
     ex->diff_done = 0;
     if (!ex->lesson->variants[ex->variant].exhibit)
         return true;
@@ -141,22 +141,27 @@ static bool compare_exhibit(struct explorer *ex)
     if (!ex->diff && !(ex->diff = malloc(n)))
         return false;
     int done = 0;
-    const uint8_t *count = ex->replay.base.count;   /* triangles [0, cur) */
+    const struct target *have_fb = &ex->replay.base;  /* triangles [0, cur) */
     if (ex->cur >= 0) {
         done = ex->cur;
         if (ex->local + 1 == tri_events(ex, ex->cur)) {
             done = ex->cur + 1;                     /* the current one is finished */
-            count = ex->fb.count;
+            have_fb = &ex->fb;
         }
     }
+    const uint8_t *count = have_fb->count;
     if (!advance_exact(ex, done))
         return false;
     ex->diff_done = done;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
-        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING : 0;
+        bool colour = have == want && want > 0
+            && !pixel_close(ex->exact.color[i], ex->exact.depth[i], have_fb->color[i], have_fb->depth[i]);
+        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING
+                    : colour ? EXHIBIT_COLOUR : 0;
         ex->extra += have > want;
         ex->missing += have < want;
+        ex->wrong_colour += colour;
     }
     return true;
 }
