@@ -325,3 +325,50 @@ Test(exercise, a_counterexample_opens_at_the_step_it_names)
             run_free(&run);
         }
 }
+
+/* --- code that crashes --------------------------------------------------------- */
+
+/* Right until the third pixel of a row, then a write through a null pointer. */
+static void crash_on_wide_rows(const struct tri_setup *t, const struct raster_params *p,
+                               struct target *fb, struct trace *tr)
+{
+    (void)p, (void)tr;
+    if (t->empty)
+        return;
+    for (int y = t->miny; y <= t->maxy; y++)
+        for (int x = t->minx; x <= t->maxx; x++) {
+            if (x - t->minx > 2 && t->maxx - t->minx > 12)
+                *(volatile uint32_t *)(uintptr_t)(fb->w > 0 ? 0 : 1) = 1;
+            target_write(fb, x, y, 1, 0xffffffffu);
+        }
+}
+
+Test(exercise, a_crash_is_reported_with_the_scene_that_crashes, .timeout = 60)
+{
+    const struct lesson *l02 = lesson_nn("02");
+    char dir[] = "/tmp/tristep-crash-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    FILE *out = tmpfile();
+    cr_assert_not_null(out);
+    struct check_options o = { .file = "crash.c", .out_dir = dir, .open_cmd = "make exercise",
+                               .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = out,
+                               .program = "build/exercise-02" };
+    exercise_use(l02, crash_on_wide_rows);
+    struct check_result r;
+    cr_expect_not(exercise_check_guarded(l02, &o, &r));
+    char report[8192] = "";
+    rewind(out);
+    size_t n = fread(report, 1, sizeof report - 1, out);
+    report[n] = '\0';
+    fclose(out);
+    cr_expect_not_null(strstr(report, "CRASHED"), "%s", report);
+    cr_expect_not_null(strstr(report, "gdb -ex run --args build/exercise-02"), "%s", report);
+    cr_expect_str_eq(r.failed, "single triangle");
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, r.counterexample, err, sizeof err), "%s", err);
+    cr_expect_eq(s.ntris, 1);
+    scene_free(&s);
+    remove(r.counterexample);
+    rmdir(dir);
+}

@@ -16,7 +16,7 @@
  *              really full and every full block found (lesson 05).
  *
  * A write outside the target fails any check. */
-#define _POSIX_C_SOURCE 200809L   /* mkdir */
+#define _DEFAULT_SOURCE           /* mkdir, fork, MAP_ANONYMOUS, strsignal */
 
 #include "exercise.h"
 
@@ -24,14 +24,31 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "explore/replay.h"
 #include "util/file.h"
 
 /* Shrinking tries at most this many candidate scenes. */
 #define SHRINK_BUDGET 4000
+/* A scene that takes longer than this is an endless loop: no scene of the
+ * checks needs a hundredth of it. */
+#define SCENE_SECONDS 10
+/* Shrinking a crash runs each candidate in a process of its own. */
+#define CRASH_BUDGET 600
+
+/* Where a guarded check is (exercise_check_guarded): shared with the
+ * process that runs it, so a crash still says which scene did it. */
+struct guard {
+    int check, scene, tri;
+    struct check_result result;
+};
+static struct guard *guard;
 
 enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 
@@ -589,6 +606,8 @@ static bool evaluate(struct checker *C, const struct scene *s, struct verdict *v
         C->in_row = false;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
+        if (guard)
+            guard->tri = i;
         exercise_variant.rasterize(&t, &C->p, &C->got, &tr);
         C->triangles++;
         const struct exercise_fault *f = exercise_fault();
@@ -1063,8 +1082,16 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         if (k % 64 == 0)
             progress(C->o, n, i, ck->name, k, total);
         ck->gen(k, &s, what, sizeof what);
+        if (guard) {
+            guard->check = i;
+            guard->scene = k;
+            alarm(SCENE_SECONDS);
+        }
         struct verdict v;
-        if (!evaluate(C, &s, &v)) {
+        bool passed = evaluate(C, &s, &v);
+        if (guard)
+            alarm(0);
+        if (!passed) {
             if (C->o->progress)
                 fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
             report_failure(C, ck->name, &s, what, r);
@@ -1094,52 +1121,79 @@ static bool gen_user(int i, struct scene *s, char *what, size_t n)
     return true;
 }
 
+/* The checks of lesson l, in order; false when a SCENE= file does not load. */
+struct plan {
+    struct check checks[8];
+    int n;
+};
+
+static void plan_free(void)
+{
+    for (int i = 0; i < user_count; i++)
+        scene_free(&user_loaded[i]);
+    free(user_loaded);
+    user_loaded = NULL;
+    user_count = 0;
+}
+
+static bool plan_checks(const struct lesson *l, const struct check_options *o, struct plan *P)
+{
+    P->n = 0;
+    user_scenes = o->scenes;
+    user_count = 0;
+    int wanted = 0;
+    while (o->scenes && o->scenes[wanted])
+        wanted++;
+    user_loaded = calloc((size_t)wanted + 1, sizeof *user_loaded);
+    if (!user_loaded)
+        return false;
+    for (; user_count < wanted; user_count++) {
+        char err[512];
+        if (!scene_load(&user_loaded[user_count], o->scenes[user_count], err, sizeof err)) {
+            fprintf(o->out, "%s\n", err);
+            plan_free();
+            return false;
+        }
+    }
+    struct check *c = P->checks;
+    if (user_count)
+        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user };
+    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single };
+    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties };
+    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes };
+    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random };
+    c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
+                                CK_COLOUR, gen_colour };
+    if (l->exercise.no_pixel_mul)
+        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property };
+    if (l->exercise.full_blocks)
+        c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property };
+    return true;
+}
+
+static struct raster_params check_params(const struct check_options *o)
+{
+    struct raster_params p = o->params;
+    if (p.subpixel_bits == 0 && p.block_size == 0 && !p.affine)
+        p.subpixel_bits = SUBPIXEL_BITS;
+    return p;
+}
+
 bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r)
 {
     memset(r, 0, sizeof *r);
     FILE *out = o->out;
-    struct checker C = { .l = l, .o = o, .p = o->params };
-    if (C.p.subpixel_bits == 0 && C.p.block_size == 0 && !C.p.affine)
-        C.p.subpixel_bits = SUBPIXEL_BITS;
-
-    struct check checks[8];
-    int n = 0;
-    user_scenes = o->scenes;
-    user_count = 0;
-    while (o->scenes && o->scenes[user_count])
-        user_count++;
-    user_loaded = calloc((size_t)user_count + 1, sizeof *user_loaded);
-    if (!user_loaded)
+    struct checker C = { .l = l, .o = o, .p = check_params(o) };
+    struct plan P;
+    if (!plan_checks(l, o, &P))
         return false;
-    for (int i = 0; i < user_count; i++) {
-        char err[512];
-        if (!scene_load(&user_loaded[i], o->scenes[i], err, sizeof err)) {
-            fprintf(out, "%s\n", err);
-            for (int k = 0; k < i; k++)
-                scene_free(&user_loaded[k]);
-            free(user_loaded);
-            return false;
-        }
-    }
-    if (user_count)
-        checks[n++] = (struct check){ "your scene", CK_ALL, gen_user };
-    checks[n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single };
-    checks[n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties };
-    checks[n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes };
-    checks[n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random };
-    checks[n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
-                                  CK_COLOUR, gen_colour };
-    if (l->exercise.no_pixel_mul)
-        checks[n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property };
-    if (l->exercise.full_blocks)
-        checks[n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property };
-
+    int n = P.n;
     fprintf(out, "make check, lesson %s: %s\n", l->id, o->file);
     clock_t t0 = clock();
     r->nchecks = n;
     bool ok = true;
     for (int i = 0; i < n && ok; i++) {
-        ok = run_check(&C, i, n, &checks[i], r);
+        ok = run_check(&C, i, n, &P.checks[i], r);
         r->passed += ok;
     }
     if (ok)
@@ -1149,12 +1203,155 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     else
         fprintf(out, "\n%d of %d checks passed; fix the first failure and run make check again\n",
                 r->passed, n);
-    for (int i = 0; i < user_count; i++)
-        scene_free(&user_loaded[i]);
-    free(user_loaded);
-    user_loaded = NULL;
+    plan_free();
     target_free(&C.want);
     target_free(&C.got);
     free(C.mask);
+    return ok;
+}
+
+/* --- a crash or an endless loop ------------------------------------------------ */
+
+/* Does drawing s crash? In a process of its own. */
+static bool crashes(struct checker *C, const struct scene *s)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return false;
+    if (pid == 0) {
+        alarm(2);
+        struct verdict v;
+        evaluate(C, s, &v);
+        _exit(0);
+    }
+    int status;
+    if (waitpid(pid, &status, 0) != pid)
+        return false;
+    return !(WIFEXITED(status) && WEXITSTATUS(status) == 0) && !(WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM);
+}
+
+static void report_crash(const struct lesson *l, const struct check_options *o, const struct guard *g,
+                         int status, struct check_result *r)
+{
+    FILE *out = o->out;
+    struct plan P;
+    memset(r, 0, sizeof *r);
+    if (!plan_checks(l, o, &P))
+        return;
+    r->nchecks = P.n;
+    r->passed = g->check;
+    bool endless = WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM;
+    const struct check *ck = &P.checks[g->check < P.n ? g->check : P.n - 1];
+    snprintf(r->failed, sizeof r->failed, "%s", ck->name);
+    struct scene s;
+    char what[200];
+    if (!ck->gen(g->scene, &s, what, sizeof what)) {
+        plan_free();
+        return;
+    }
+    if (endless)
+        fprintf(out, "DID NOT FINISH\n      your code drew triangle %d of %s for %d s: an endless loop?\n",
+                g->tri + 1, what, SCENE_SECONDS);
+    else if (WIFSIGNALED(status))
+        fprintf(out, "CRASHED\n      your code crashed (%s) drawing triangle %d of %s\n",
+                strsignal(WTERMSIG(status)), g->tri + 1, what);
+    else
+        fprintf(out, "CRASHED\n      your code stopped the check (exit status %d) drawing triangle %d of %s\n",
+                WEXITSTATUS(status), g->tri + 1, what);
+
+    struct checker C = { .l = l, .o = o, .p = check_params(o), .kind = ck->kind };
+    if (!endless) {
+        /* fewest triangles, then each coordinate rounded, while it still crashes */
+        int budget = CRASH_BUDGET;
+        for (int i = s.ntris - 1; i >= 0 && s.ntris > 1 && budget > 0; i--, budget--) {
+            struct scene c;
+            if (!scene_copy(&c, &s))
+                break;
+            memmove(&c.tris[i], &c.tris[i + 1], sizeof c.tris[0] * (size_t)(c.ntris - i - 1));
+            c.ntris--;
+            if (crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
+        for (int k = 0; k < 6 * s.ntris && budget > 0; k++, budget--) {
+            struct scene c;
+            if (!scene_copy(&c, &s))
+                break;
+            *coord(&c, k) = round(*coord(&c, k));
+            if (*coord(&c, k) != *coord(&s, k) && crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
+    }
+    if (make_dirs(o->out_dir)) {
+        char nn[3] = { l->id[0], l->id[1], '\0' };
+        snprintf(r->counterexample, sizeof r->counterexample, "%s/%s-%s.scene", o->out_dir, nn,
+                 endless ? "endless" : "crash");
+        struct verdict v = { .tri = 0 };
+        struct scene_out so = { &s, endless ? "did not finish" : "crashed", l->id, o->file, &v };
+        char err[600];
+        if (write_file_atomic(r->counterexample, write_scene, &so, err, sizeof err)) {
+            r->ntris = s.ntris;
+            fprintf(out, "\n  %s: %d triangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
+                    s.ntris, s.ntris == 1 ? "" : "s", r->counterexample);
+            for (int i = 0; i < s.ntris; i++) {
+                const struct vertex *tv = s.tris[i].v;
+                fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", i + 1, tv[0].x, tv[0].y,
+                        tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+            }
+            fprintf(out, "\n  the explorer runs your code too, and stops where it does; to see where, run it\n"
+                    "  under the debugger:\n      gdb -ex run --args %s --file %s --scene %s --dump-coverage /tmp/coverage.pgm\n",
+                    o->program ? o->program : "build/exercise-NN", o->file, r->counterexample);
+        } else {
+            fprintf(out, "  %s\n", err);
+            r->counterexample[0] = '\0';
+        }
+    }
+    fprintf(out, "\n%d of %d checks passed; fix the first failure and run make check again\n",
+            r->passed, P.n);
+    scene_free(&s);
+    plan_free();
+}
+
+bool exercise_check_guarded(const struct lesson *l, const struct check_options *o,
+                            struct check_result *r)
+{
+    struct guard *g = mmap(NULL, sizeof *g, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (g == MAP_FAILED)
+        return exercise_check(l, o, r);
+    memset(g, 0, sizeof *g);
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        munmap(g, sizeof *g);
+        return exercise_check(l, o, r);
+    }
+    if (pid == 0) {
+        guard = g;
+        bool ok = exercise_check(l, o, &g->result);
+        fflush(NULL);
+        _exit(ok ? 10 : 11);
+    }
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) {
+            status = 0;
+            break;
+        }
+    bool ok = false;
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == 10 || WEXITSTATUS(status) == 11)) {
+        *r = g->result;
+        ok = WEXITSTATUS(status) == 10;
+    } else {
+        report_crash(l, o, g, status, r);
+    }
+    munmap(g, sizeof *g);
     return ok;
 }

@@ -54,6 +54,7 @@ struct check_options {
     struct raster_params params;    /* subpixel_bits, block_size, affine (the exhibit) */
     FILE *out;                      /* the report (stdout) */
     bool progress;                  /* show progress on long checks (a terminal) */
+    const char *program;            /* the exercise program, for the debugger command */
 };
 
 struct check_result {
@@ -69,6 +70,11 @@ struct check_result {
  * stopping at the first failure. Returns true when all pass. False also for
  * an unreadable SCENE file or an unwritable counterexample (said on o->out). */
 bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r);
+/* The same in a process of its own: code that crashes, or loops for
+ * SCENE_SECONDS on one scene, fails with the scene it was drawing (shrunk
+ * when it crashes) and the command that shows where under a debugger. */
+bool exercise_check_guarded(const struct lesson *l, const struct check_options *o,
+                            struct check_result *r);
 
 /* The skeletons and answers compiled into the tests (generated
  * build/exercises.c), each under its own name. */

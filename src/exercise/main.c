@@ -58,10 +58,10 @@ int main(int argc, char **argv)
         struct check_options o = {
             .file = file, .scenes = scenes, .out_dir = out_dir, .open_cmd = open_cmd,
             .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = stdout,
-            .progress = isatty(STDOUT_FILENO),
+            .progress = isatty(STDOUT_FILENO), .program = argv[0],
         };
         struct check_result r;
-        status = exercise_check(&LESSON, &o, &r) ? 0 : 1;
+        status = exercise_check_guarded(&LESSON, &o, &r) ? 0 : 1;
     } else {
         /* the lesson program, on the exercise variant unless told otherwise */
         struct lesson l;
