@@ -23,6 +23,7 @@
 
 #include "exercise/exercise.h"
 #include "explore/explorer.h"
+#include "shade/shade.h"
 #include "testlib.h"
 
 /* A whole check must finish in 30 s on the slowest machine of the course
@@ -246,7 +247,7 @@ static void blocks_tested(const struct tri_setup *t, const struct raster_params 
                         continue;
                     double z, rgb[3], st[2];
                     reference_shade(t, x, y, true, &z, rgb, st);
-                    PLOT(fb, tr, 0, x, y, (float)z, shade_pixel(p, rgb[0], rgb[1], rgb[2], st[0], st[1]));
+                    PLOT(fb, tr, 0, x, y, (float)z, shade_pixel(p, tr, rgb[0], rgb[1], rgb[2], st[0], st[1]));
                 }
         }
 }

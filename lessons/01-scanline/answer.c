@@ -28,6 +28,7 @@
  * and g->dc[] is Dc of formula (1): the change of each attribute per pixel
  * to the right. */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 /* Lines of lesson 01's pseudo-code, which the explorer lights (scanline.c). */
 enum { L_SORT, L_CASE, L_GRAD, L_EDGES, L_ROWS, L_ROW, L_PRESTEP, L_FILL, L_STEP };
@@ -65,10 +66,10 @@ struct gradient {
  *     shifted by up to a pixel's worth of colour.
  *   - Then, pixel by pixel: write it and add g->dc[i] to every attribute:
  *         target_write(fb, x, y, (float)c[ATTR_Z],
- *                      shade_pixel(p, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
+ *                      shade_pixel(p, tr, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
  */
 static void span(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
-                 int y, const struct edge *left, const struct edge *right, const struct gradient *g)
+                 struct trace *tr, int y, const struct edge *left, const struct edge *right, const struct gradient *g)
 {
     int64_t x0 = left->x > t->minx ? left->x : t->minx;
     int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;
@@ -78,7 +79,7 @@ static void span(const struct tri_setup *t, const struct raster_params *p, struc
         c[i] = left->c[i] + g->dc[i] * across;
     for (int64_t x = x0; x <= x1; x++) {
         target_write(fb, (int)x, y, (float)c[ATTR_Z],
-                     shade_pixel(p, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
+                     shade_pixel(p, tr, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
         for (int i = 0; i < ATTR_COUNT; i++)
             c[i] += g->dc[i];
     }
@@ -192,7 +193,7 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
                     .aux = { (float)((double)left->x + 0.5 - (double)left->err / (double)left->den),
                              (float)((double)right->x + 0.5 - (double)right->err / (double)right->den),
                              (float)((double)left->err / (double)left->den) });
-            span(t, p, fb, (int)row, left, right, &g);
+            span(t, p, fb, tr, (int)row, left, right, &g);
             edge_step(left);
             edge_step(right);
         }

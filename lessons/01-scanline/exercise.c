@@ -24,6 +24,7 @@
  * and g->dc[] is Dc of formula (1): the change of each attribute per pixel
  * to the right. */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 /* Lines of lesson 01's pseudo-code, which the explorer lights (scanline.c). */
 enum { L_SORT, L_CASE, L_GRAD, L_EDGES, L_ROWS, L_ROW, L_PRESTEP, L_FILL, L_STEP };
@@ -61,12 +62,12 @@ struct gradient {
  *     shifted by up to a pixel's worth of colour.
  *   - Then, pixel by pixel: write it and add g->dc[i] to every attribute:
  *         target_write(fb, x, y, (float)c[ATTR_Z],
- *                      shade_pixel(p, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
+ *                      shade_pixel(p, tr, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]));
  */
 static void span(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
-                 int y, const struct edge *left, const struct edge *right, const struct gradient *g)
+                 struct trace *tr, int y, const struct edge *left, const struct edge *right, const struct gradient *g)
 {
-    (void)t, (void)p, (void)fb, (void)y, (void)left, (void)right, (void)g;
+    (void)t, (void)p, (void)fb, (void)tr, (void)y, (void)left, (void)right, (void)g;
 }
 
 /* --- the walk, as scanline.c writes it ------------------------------------------ */
@@ -177,7 +178,7 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
                     .aux = { (float)((double)left->x + 0.5 - (double)left->err / (double)left->den),
                              (float)((double)right->x + 0.5 - (double)right->err / (double)right->den),
                              (float)((double)left->err / (double)left->den) });
-            span(t, p, fb, (int)row, left, right, &g);
+            span(t, p, fb, tr, (int)row, left, right, &g);
             edge_step(left);
             edge_step(right);
         }

@@ -33,6 +33,7 @@
  * raster.h's edge_value(), edge_inside() and barycentric() are the
  * lesson's own answers, so use them only to compare. */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 /* Lines of lesson 02's pseudo-code, which the explorer lights (barycentric.c). */
 enum { L_SETUP, L_BOX, L_LOOP, L_EDGES, L_TEST, L_BARY, L_COLOR, L_DRAW };
@@ -89,16 +90,15 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
             bool in = inside(t, F);
             double alpha, beta, gamma;
             weights(t, F, &alpha, &beta, &gamma);
-            /* the watch panel shows what you computed */
+            /* the watch panel shows your edge values, and the weights they give */
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { F[0], F[1], F[2] },
-                    .bary = { (float)alpha, (float)beta, (float)gamma },
                     .flags = in ? TRACE_INSIDE : 0);
             if (!in)
                 continue;
             /* README formula 6 */
             double z = alpha * a->z + beta * b->z + gamma * c->z;
-            uint32_t colour = shade_pixel(p, alpha * a->r + beta * b->r + gamma * c->r,
+            uint32_t colour = shade_pixel(p, tr, alpha * a->r + beta * b->r + gamma * c->r,
                                           alpha * a->g + beta * b->g + gamma * c->g,
                                           alpha * a->b + beta * b->b + gamma * c->b,
                                           alpha * a->s + beta * b->s + gamma * c->s,

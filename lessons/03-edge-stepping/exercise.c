@@ -15,11 +15,11 @@
  *                                    multiplication between two pixels of a
  *                                    row
  *
- * The last check reads the counters: every COUNT_OPS your code declares,
- * and every call of raster.h's edge_value() or pixel_centre(), which
- * multiply. Evaluating the edge functions at each pixel gives the right
+ * The last check reads the counters: every COUNT your code declares, and
+ * every call of raster.h's edge_value() or pixel_centre(), which multiply. Evaluating the edge functions at each pixel gives the right
  * picture, and fails it. */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_scaled: the colour of pre-scaled values */
 
 /* Lines of lesson 03's pseudo-code, which the explorer lights (edge_stepping.c). */
 enum { L_SETUP, L_BIAS, L_FIRST, L_CY, L_LOOP_Y, L_ROW, L_LOOP_X, L_TEST, L_RENDER,
@@ -46,7 +46,7 @@ static void first_centre(const struct tri_setup *t, const struct edges *e, int64
 
 /* TODO 2, formula (9): one pixel to the right. The next centre is 256
  * units further on, so F0k grows by 256 * I0k, not by I0k. Declare what you
- * do: COUNT_OPS(tr, 0, 3) for three additions. */
+ * do: COUNT(tr, 3, EDGE_STEP_COST) for three steps of one addition. */
 static void step_right(const struct edges *e, int64_t F[3], struct trace *tr)
 {
     (void)e, (void)F, (void)tr;
@@ -77,9 +77,13 @@ static struct attrs step(struct attrs P, struct attrs d)
     return (struct attrs){ P.z + d.z, P.r + d.r, P.g + d.g, P.b + d.b, P.s + d.s, P.t + d.t };
 }
 
-static struct attrs attrs_of(const struct vertex *v)
+/* A vertex's attributes pre-scaled for shade_scaled(): colour times 255,
+ * texture coordinates times the checker's N, so no pixel multiplies. */
+static struct attrs attrs_of(const struct vertex *v, const struct raster_params *p)
 {
-    return (struct attrs){ v->z, v->r, v->g, v->b, v->s, v->t };
+    double n = shade_scale_st(p);
+    return (struct attrs){ v->z, v->r * SHADE_SCALE_RGB, v->g * SHADE_SCALE_RGB, v->b * SHADE_SCALE_RGB,
+                           v->s * n, v->t * n };
 }
 
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
@@ -97,12 +101,14 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
         e.K[k] = t->K[k] + t->bias[k];      /* F + bias >= 0 is the whole test */
     }
     /* colour and depth: exact at the start of each row, + dPdx per pixel */
-    struct attrs A = attrs_of(&t->v[0]), B = attrs_of(&t->v[1]), C = attrs_of(&t->v[2]);
+    struct attrs A = attrs_of(&t->v[0], p), B = attrs_of(&t->v[1], p), C = attrs_of(&t->v[2], p);
     double inv_area2 = 1.0 / (double)t->area2;
     struct attrs dPdx = mix((double)(t->I[1] * SUBPIXEL_ONE) * inv_area2, A,
                             (double)(t->I[2] * SUBPIXEL_ONE) * inv_area2, B,
                             (double)(t->I[0] * SUBPIXEL_ONE) * inv_area2, C);
-    COUNT_OPS(tr, 1 + 3 * 2 + 18, 12);
+    COUNT(tr, 1, RECIPROCAL_COST);
+    COUNT(tr, 3, EDGE_INCREMENTS_COST);
+    COUNT(tr, 6, INTERPOLATE_COST);
 
     int64_t Cy[3];
     first_centre(t, &e, Cy);
@@ -114,7 +120,8 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
         struct attrs P = mix((double)(Cx[1] - e.bias[1]) * inv_area2, A,
                              (double)(Cx[2] - e.bias[2]) * inv_area2, B,
                              (double)(Cx[0] - e.bias[0]) * inv_area2, C);
-        COUNT_OPS(tr, 3 + 18, 12);
+        COUNT(tr, 1, BARYCENTRIC_COST);
+        COUNT(tr, 6, INTERPOLATE_COST);
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { Cx[0] - e.bias[0], Cx[1] - e.bias[1], Cx[2] - e.bias[2] });
         for (int x = t->minx; x <= t->maxx; x++) {
@@ -123,10 +130,10 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
                     .e = { Cx[0] - e.bias[0], Cx[1] - e.bias[1], Cx[2] - e.bias[2] },
                     .flags = inside ? TRACE_INSIDE : 0);
             if (inside)
-                target_write(fb, x, y, (float)P.z, shade_pixel(p, P.r, P.g, P.b, P.s, P.t));
+                target_write(fb, x, y, (float)P.z, shade_scaled(p, tr, P.r, P.g, P.b, P.s, P.t));
             step_right(&e, Cx, tr);
             P = step(P, dPdx);
-            COUNT_OPS(tr, 0, 6);
+            COUNT(tr, 6, PLANE_STEP_COST);
         }
         step_down(&e, Cy, tr);
     }

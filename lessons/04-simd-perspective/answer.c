@@ -24,6 +24,7 @@
  * or two intrinsics (_mm_add_ps, _mm_div_ss): write the scalar version
  * first, it is what the check reads either way. */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 /* Lines of lesson 04's pseudo-code, which the explorer lights. */
 enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ZTEST, L_ATTR,
@@ -117,7 +118,6 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
             bool in = e[0] >= 0 && e[1] >= 0 && e[2] >= 0;
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { e[0] - t->bias[0], e[1] - t->bias[1], e[2] - t->bias[2] },
-                    .bary = { Cx[LANE_U], Cx[LANE_V], Cx[LANE_W] },
                     .aux = { Cx[0], Cx[1], Cx[2], Cx[3] }, .flags = in ? TRACE_INSIDE : 0);
             if (in) {
                 float depth = depth_of(Cx);
@@ -125,7 +125,7 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
                 for (int k = 0; k < ATTR_COUNT; k++)
                     P[k] = attribute(Cx, depth, Q[0][k], Q[1][k], Q[2][k]);
                 target_write(fb, x, y, depth,
-                             shade_pixel(p, P[ATTR_R], P[ATTR_G], P[ATTR_B], P[ATTR_S], P[ATTR_T]));
+                             shade_pixel(p, tr, P[ATTR_R], P[ATTR_G], P[ATTR_B], P[ATTR_S], P[ATTR_T]));
             }
             vector_step(Cx, I);
             for (int k = 0; k < 3; k++)

@@ -20,6 +20,7 @@
  *                                    covered in full is called full
  */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 /* Lines of lesson 05's pseudo-code, which the explorer lights. */
 enum { L_SETUP, L_BOX, L_LOOP, L_MASKS, L_EMPTY, L_FULL, L_PARTIAL, L_STEP, L_PIXEL };
@@ -74,7 +75,7 @@ static enum block_class classify(const unsigned mask[3])
 /* Perspective-correct colour and depth at pixel (x, y) from its exact edge
  * values (lesson 04, formula 23), and the write. */
 static void shade(const struct tri_setup *t, const struct raster_params *p, const struct edges *e,
-                  struct target *fb, int x, int y)
+                  struct target *fb, struct trace *tr, int x, int y)
 {
     double inv = 1.0 / (double)t->area2, w[3];
     for (int k = 0; k < 3; k++)     /* weights of A, B, C: F02, F03, F01 over Area2 */
@@ -89,7 +90,7 @@ static void shade(const struct tri_setup *t, const struct raster_params *p, cons
         for (int k = 0; k < 5; k++)
             P[k] += q[i] * a[k] * z;
     }
-    target_write(fb, x, y, (float)z, shade_pixel(p, P[0], P[1], P[2], P[3], P[4]));
+    target_write(fb, x, y, (float)z, shade_pixel(p, tr, P[0], P[1], P[2], P[3], P[4]));
 }
 
 static void block(const struct tri_setup *t, const struct raster_params *p, const struct edges *e,
@@ -114,7 +115,7 @@ static void block(const struct tri_setup *t, const struct raster_params *p, cons
                 if (!in)
                     continue;
             }
-            shade(t, p, e, fb, x, y);
+            shade(t, p, e, fb, tr, x, y);
         }
 }
 

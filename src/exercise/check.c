@@ -955,11 +955,9 @@ static void explain(const struct checker *C, FILE *out, const struct verdict *v,
                     v->x + 0.5, v->y + 0.5, (long long)e[0], (long long)e[1], (long long)e[2]);
         double w[3];
         barycentric(&t, e, w);
-        bool said = f->test.bary[0] != 0 || f->test.bary[1] != 0 || f->test.bary[2] != 0;
-        if (v->what != WRONG_COUNT && said)
-            fprintf(out, "      your weights of A, B, C there: %.4f, %.4f, %.4f; exact: %.4f, %.4f, %.4f\n"
-                    "      (A, B, C in setup's order%s)\n", f->test.bary[0], f->test.bary[1],
-                    f->test.bary[2], w[0], w[1], w[2], t.swapped ? ": the file's second and third vertex exchanged" : "");
+        if (v->what != WRONG_COUNT)
+            fprintf(out, "      the exact weights of A, B, C there: %.4f, %.4f, %.4f (A, B, C in setup's order%s)\n",
+                    w[0], w[1], w[2], t.swapped ? ": the file's second and third vertex exchanged" : "");
     }
     if (f->written)
         fprintf(out, "      your code wrote it (\"%s\"): colour #%06x, depth %.6g\n",

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "exercise/student.h"
+#include "shade/shade.h"
 
 /* The code run by the exercise variant, its lesson, and the trace of the
  * triangle being run (the student's helpers may not pass it along). */
@@ -84,22 +85,17 @@ void exercise_fill(struct target *fb, struct trace *tr, int x, int y, float z, u
 }
 
 /* Direct evaluations are multiplications: I * x + J * y + K is two of them
- * after the two of the pixel centres. */
+ * (EDGE_VALUE_COST), a pixel's centre p * 256 + 128 one. */
+#define PIXEL_CENTRE_COST { .mul = 1, .add = 1 }
 int64_t exercise_edge_value(const struct tri_setup *t, int k, int px, int py)
 {
-    if (current_tr && !current_tr->frozen) {
-        current_tr->c.mul += 4;
-        current_tr->c.add += 4;
-    }
+    COUNT(current_tr, 1, EDGE_VALUE_COST);
     return edge_value(t, k < 0 ? 0 : k > 2 ? 2 : k, px, py);
 }
 
 int64_t exercise_pixel_centre(int p)
 {
-    if (current_tr && !current_tr->frozen) {
-        current_tr->c.mul += 1;
-        current_tr->c.add += 1;
-    }
+    COUNT(current_tr, 1, PIXEL_CENTRE_COST);
     return pixel_centre(p);
 }
 
@@ -119,7 +115,7 @@ static void exact_pixel(void *ctx, int x, int y)
     struct exact_run *r = ctx;
     double z, rgb[3], st[2];
     reference_shade(r->t, x, y, r->perspective, &z, rgb, st);
-    uint32_t c = shade_pixel(r->p, rgb[0], rgb[1], rgb[2], st[0], st[1]);
+    uint32_t c = shade_pixel(r->p, r->tr, rgb[0], rgb[1], rgb[2], st[0], st[1]);
     if (r->tr)
         trace_plot(r->tr, r->fb, r->line, x, y, (float)z, c);
     else
