@@ -59,6 +59,9 @@ static double legend(struct painter *p, double x, double y, double w)
     if (ex->lesson->variants[ex->variant].exhibit) {
         y += swatch(p, x, y, p->pal->extra, "extra: more than the exact rule") + s;
         y += swatch(p, x, y, p->pal->missing, "missing: a crack") + s;
+        if (ex->wrong_colour)
+            y += swatch(p, x, y, p->pal->wrong_colour, "wrong colour or depth: not within "
+                        "2 levels, 0.1%") + s;
     }
     y += swatch(p, x, y, p->pal->accent, "the current step") + s;
     return y - y0;
@@ -260,11 +263,13 @@ static double counters(struct painter *p, double x, double y, double w)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
     if (ex->lesson->variants[ex->variant].exhibit) {
         char e[256];
-        snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
-                 ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
-                 (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        int at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
+                          ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
+                          (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)
+            snprintf(e + at, sizeof e - (size_t)at, "\nwrong colour %llu", (unsigned long long)ex->wrong_colour);
         h += 4 * p->s;
-        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing ? p->pal->extra : p->pal->covered, false);
+        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing + ex->wrong_colour ? p->pal->extra : p->pal->covered, false);
     }
     return h;
 }
