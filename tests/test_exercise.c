@@ -373,3 +373,49 @@ Test(exercise, a_crash_is_reported_with_the_scene_that_crashes, .timeout = 60)
     remove(r.counterexample);
     rmdir(dir);
 }
+
+/* --- a scene of the student's own (SCENE=) ------------------------------------- */
+
+static bool write_builtin(FILE *out, void *ctx)
+{
+    struct scene s;
+    char err[256];
+    if (!scene_builtin(&s, ctx, err, sizeof err))
+        return false;
+    bool ok = scene_write(&s, out);
+    scene_free(&s);
+    return ok;
+}
+
+Test(exercise, a_scene_of_ones_own_is_checked_first)
+{
+    char dir[] = "/tmp/tristep-own-XXXXXX", path[64];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/mine.scene", dir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    cr_assert(write_builtin(f, "shared-edge"));
+    fclose(f);
+    const struct lesson *l02 = lesson_nn("02");
+    const char *scenes[] = { path, NULL };
+    struct check_result r;
+    for (int pass = 0; pass < 2; pass++) {
+        char *report = NULL;
+        size_t len = 0;
+        FILE *out = open_memstream(&report, &len);
+        struct check_options o = { .file = "t.c", .scenes = scenes, .out_dir = dir, .open_cmd = "make exercise",
+                                   .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = out };
+        exercise_use(l02, pass == 0 ? lesson_variant(l02, "strict")->rasterize : l02->variants[0].rasterize);
+        bool ok = exercise_check(l02, &o, &r);
+        fclose(out);
+        cr_expect_eq(ok, pass == 1, "%s", report);
+        cr_expect_not_null(strstr(report, "1/6 your scene"), "%s", report);
+        if (pass == 0) {
+            cr_expect_str_eq(r.failed, "your scene", "%s", report);
+            remove(r.counterexample);
+        }
+        free(report);
+    }
+    remove(path);
+    rmdir(dir);
+}

@@ -368,7 +368,8 @@ void paint_help(struct painter *p)
         "+ / -                play faster / slower\n"
         "V / Shift+V          next / previous view\n"
         "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
-        "N                    numbers in cells: auto, always, off\n");
+        "N                    numbers in cells: auto, always, off\n"
+        "S                    save the scene as it is now to a new file\n");
     bool exhibits = false, twins = false;
     for (int i = 1; i < ex->lesson->nvariants; i++)
         exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;
