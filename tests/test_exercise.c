@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "exercise/exercise.h"
@@ -418,4 +419,67 @@ Test(exercise, a_scene_of_ones_own_is_checked_first)
     }
     remove(path);
     rmdir(dir);
+}
+
+/* --- make check from a clean clone ----------------------------------------------- */
+
+/* Run a shell command line; its output into `log` (read back); exit status. */
+static int shell(const char *cmd, char **log)
+{
+    char line[2048], path[] = "/tmp/tristep-log-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert_geq(fd, 0);
+    close(fd);
+    /* not the test run's own make: no jobserver, no inherited flags */
+    snprintf(line, sizeof line, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL sh -c '%s' > %s 2>&1", cmd, path);
+    int st = system(line);
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f);
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    remove(path);
+    *log = buf;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+/* What a student does after cloning: make check on the answer (passes,
+ * short report), on the untouched skeleton (fails within 30 s, with a
+ * counterexample and the command to open it), and the program that command
+ * runs opens the counterexample at its step (headless here: --figure). The
+ * clone is of the last commit. */
+Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
+{
+    char *log;
+    cr_assert_eq(shell("git rev-parse --show-toplevel", &log), 0, "not a git checkout: %s", log);
+    char top[1024];
+    snprintf(top, sizeof top, "%s", log);
+    top[strcspn(top, "\n")] = '\0';
+    char dir[] = "/tmp/tristep-clone-XXXXXX", cmd[1536];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(cmd, sizeof cmd, "git clone -q %s %s/t", top, dir);
+    cr_assert_eq(shell(cmd, &log), 0, "%s", log);
+
+    snprintf(cmd, sizeof cmd, "cd %s/t && make -j2 check LESSON=02 FILE=lessons/02-barycentric/answer.c", dir);
+    int st = shell(cmd, &log);
+    cr_expect_eq(st, 0, "make check on the answer:\n%s", log);
+    cr_expect_not_null(strstr(log, "all 5 checks pass"), "%s", log);
+
+    snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=02", dir);
+    time_t t0 = time(NULL);
+    st = shell(cmd, &log);
+    cr_expect_neq(st, 0, "make check passes the untouched skeleton:\n%s", log);
+    cr_expect_leq(time(NULL) - t0, 30, "make check on a wrong answer took %lld s", (long long)(time(NULL) - t0));
+    const char *open = strstr(log, "make exercise LESSON=02 SCENE=");
+    cr_assert_not_null(open, "%s", log);
+    char scene[256];
+    unsigned long long step;
+    cr_assert_eq(sscanf(open, "make exercise LESSON=02 SCENE=%255s STEP=%llu", scene, &step), 2, "%s", open);
+    snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --scene %s --step %llu --figure f.png && test -s f.png",
+             dir, scene, step);
+    cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    shell(cmd, &log);
 }
