@@ -483,3 +483,81 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     shell(cmd, &log);
 }
+
+/* --- the common mistakes the lesson texts name ("Write it yourself") ---------------- */
+
+void exercise_write(struct target *fb, int x, int y, float z, uint32_t rgba);
+
+/* Lesson 02's loop with one mistake at a time, as a student makes it. */
+enum mistake { M_NONE, M_CORNER, M_STRICT, M_INCLUSIVE, M_BOTTOM_RIGHT, M_WEIGHTS, M_UNCLIPPED };
+static enum mistake mistake;
+
+static void bary_with_mistake(const struct tri_setup *t, const struct raster_params *p,
+                              struct target *fb, struct trace *tr)
+{
+    if (t->area2 <= 0)
+        return;
+    int x0 = t->minx, x1 = t->maxx, y0 = t->miny, y1 = t->maxy;
+    if (mistake == M_UNCLIPPED) {       /* the box of the vertices, not clamped to the target */
+        x0 = y0 = INT32_MAX, x1 = y1 = INT32_MIN;
+        for (int i = 0; i < 3; i++) {
+            int vx = (int)floor((double)t->x[i] / SUBPIXEL_ONE), vy = (int)floor((double)t->y[i] / SUBPIXEL_ONE);
+            x0 = vx < x0 ? vx : x0, x1 = vx > x1 ? vx : x1, y0 = vy < y0 ? vy : y0, y1 = vy > y1 ? vy : y1;
+        }
+    }
+    int64_t half = mistake == M_CORNER ? 0 : SUBPIXEL_HALF;
+    for (int y = y0; y <= y1; y++)
+        for (int x = x0; x <= x1; x++) {
+            int64_t F[3];
+            bool in = true;
+            for (int k = 0; k < 3; k++) {
+                F[k] = t->I[k] * ((int64_t)x * SUBPIXEL_ONE + half) + t->J[k] * ((int64_t)y * SUBPIXEL_ONE + half) + t->K[k];
+                bool top = t->I[k] == 0 && t->J[k] > 0, left = t->I[k] > 0;
+                if (mistake == M_BOTTOM_RIGHT)
+                    top = t->I[k] == 0 && t->J[k] < 0, left = t->I[k] < 0;
+                in = in && (mistake == M_STRICT ? F[k] > 0 : mistake == M_INCLUSIVE ? F[k] >= 0
+                                                 : F[k] > 0 || (F[k] == 0 && (top || left)));
+            }
+            if (x >= 0 && y >= 0 && x < fb->w && y < fb->h)
+                NARRATE(tr, .kind = TRACE_PIXEL_TEST, .x = x, .y = y, .e = { F[0], F[1], F[2] },
+                        .flags = in ? TRACE_INSIDE : 0);
+            if (!in)
+                continue;
+            double a = (double)F[1] / (double)t->area2, b = (double)F[2] / (double)t->area2,
+                   c = (double)F[0] / (double)t->area2;
+            if (mistake == M_WEIGHTS) {     /* alpha = F_ab / area2: the edge AT A, not opposite */
+                double tmp = a;
+                a = c, c = b, b = tmp;
+            }
+            const struct vertex *A = &t->v[0], *B = &t->v[1], *C = &t->v[2];
+            /* as a student's target_write becomes (exercise/student.h) */
+            exercise_write(fb, x, y, (float)(a * A->z + b * B->z + c * C->z),
+                         shade_pixel(p, tr, a * A->r + b * B->r + c * C->r, a * A->g + b * B->g + c * C->g,
+                                     a * A->b + b * B->b + c * C->b, 0, 0));
+        }
+}
+
+Test(exercise, the_common_mistakes_fail_as_the_texts_say)
+{
+    static const struct {
+        enum mistake m;
+        const char *lesson, *check, *says;
+    } cases[] = {
+        { M_NONE, "02", "", "all 5 checks pass" },
+        { M_CORNER, "02", "single triangle", "the exact edge values at its centre" },
+        { M_STRICT, "02", "fill-rule ties", "the top-left rule covers it" },
+        { M_INCLUSIVE, "02", "fill-rule ties", "leaves it to the triangle on the other side" },
+        { M_BOTTOM_RIGHT, "02", "fill-rule ties", "a missing pixel" },
+        { M_WEIGHTS, "02", "colour and depth (linear)", "the exact weights of A, B, C" },
+        { M_UNCLIPPED, "01", "watertight meshes", "outside the" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        mistake = cases[i].m;
+        struct run run;
+        check(&run, lesson_nn(cases[i].lesson), bary_with_mistake, NULL);
+        cr_expect_str_eq(run.r.failed, cases[i].check, "mistake %d:\n%s", (int)cases[i].m, run.report);
+        cr_expect_not_null(strstr(run.report, cases[i].says), "mistake %d: no \"%s\" in\n%s",
+                           (int)cases[i].m, cases[i].says, run.report);
+        run_free(&run);
+    }
+}

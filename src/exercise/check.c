@@ -931,6 +931,9 @@ static void explain(const struct checker *C, FILE *out, const struct verdict *v,
         }
     }
     const struct lesson *l = C->l;
+    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_NOT_FULL || v->what == WRONG_BLOCK_MISSED
+        || v->what == WRONG_OUTSIDE)
+        return;     /* the verdict said it all */
     if (f->held) {
         static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };
         if (f->hold.kind == TRACE_BLOCK)
