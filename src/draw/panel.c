@@ -296,11 +296,13 @@ void paint_panel(struct painter *p)
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
     char buf[512];
     if (v->exhibit) {
-        double bw = text_width(p, "EXHIBIT", 11) + 10 * s;
+        /* the exercise (make exercise) is shown against the exact rule like an exhibit */
+        const char *badge = strcmp(v->name, "exercise") == 0 ? "YOUR CODE" : "EXHIBIT";
+        double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
         cairo_fill(cr);
-        draw_text(p, x + 5 * s, y + 2 * s, 0, "EXHIBIT", 11, p->pal->on_exhibit, false);
+        draw_text(p, x + 5 * s, y + 2 * s, 0, badge, 11, p->pal->on_exhibit, false);
         snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
         y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
     } else {

@@ -2,6 +2,7 @@
  * a step, counted direct evaluations; the exact rule as a variant. */
 #include "exercise.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include "exercise/student.h"
@@ -159,10 +160,12 @@ const struct lesson_variant *exercise_exact(bool perspective)
 void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], const struct lesson *l,
                      const char *file)
 {
-    (void)file;
+    static char what[300];
+    snprintf(what, sizeof what, "%s, against the exact rule", file);
     *out = *l;
     variants[0] = *exercise_exact(l->perspective);
     variants[1] = exercise_variant;
+    variants[1].what = what;
     out->variants = variants;
     out->nvariants = 2;
     out->exhibit_scene = NULL;      /* X toggles on the student's scene */
