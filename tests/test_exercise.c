@@ -444,6 +444,36 @@ static int shell(const char *cmd, char **log)
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
 }
 
+/* Mistakes the "Write it yourself" sections of the lesson texts name, each
+ * made in the lesson's worked answer (find -> replace), the check that must
+ * fail first and a phrase of its report. */
+struct mutant {
+    const char *lesson, *what, *find, *replace, *check, *says;
+};
+static const struct mutant mutants[] = {
+    { "01-scanline", "span to X_right", "int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
+      "int64_t x1 = right->x < t->maxx ? right->x : t->maxx;", "single triangle", "an extra pixel" },
+    { "01-scanline", "no prestep across", "c[i] = left->c[i] + g->dc[i] * across;",
+      "c[i] = left->c[i] + 0 * across;", "colour and depth (linear)", "expected colour" },
+    { "01-scanline", "no clipping", "int64_t x0 = left->x > t->minx ? left->x : t->minx;\n"
+      "    int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
+      "int64_t x0 = left->x;\n    int64_t x1 = right->x - 1;", "watertight meshes", "outside the" },
+    { "03-edge-stepping", "step by I", "F[k] += e->I[k] * SUBPIXEL_ONE;", "F[k] += e->I[k];",
+      "single triangle", "the exact edge values at its centre" },
+    { "03-edge-stepping", "no step down", "F[k] += e->J[k] * SUBPIXEL_ONE;", "(void)F;",
+      "single triangle", "an extra pixel" },
+    { "04-simd-perspective", "affine", "C[LANE_W] * QC) * depth;", "C[LANE_W] * QC) * 1.0f;",
+      "colour and depth (perspective)", "expected colour" },
+    { "04-simd-perspective", "depth not a reciprocal", "return 1.0f / C[LANE_INV_Z];",
+      "return C[LANE_INV_Z];", "colour and depth (perspective)", "expected colour" },
+    { "05-block-classification", "corner of the next block", "edge_at(e, k, x1, y0) >= 0",
+      "edge_at(e, k, x1 + 1, y0) >= 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
+    { "05-block-classification", "corners tested with > 0", "edge_at(e, k, x0, y0) >= 0",
+      "edge_at(e, k, x0, y0) > 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
+    { "05-block-classification", "|| for full", "mask[0] == 0xF && mask[1] == 0xF && mask[2] == 0xF",
+      "(mask[0] == 0xF || mask[1] == 0xF || mask[2] == 0xF)", "single triangle", "classified FULL" },
+};
+
 /* What a student does after cloning: make check on the answer (passes,
  * short report), on the untouched skeleton (fails within 30 s, with a
  * counterexample and the command to open it), and the program that command
@@ -479,6 +509,35 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --scene %s --step %llu --figure f.png && test -s f.png",
              dir, scene, step);
     cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+
+    /* the mistakes the lesson texts name, made in the worked answers */
+    for (size_t i = 0; i < sizeof mutants / sizeof mutants[0]; i++) {
+        const struct mutant *m = &mutants[i];
+        char path[512], *src;
+        snprintf(path, sizeof path, "%s/t/lessons/%s/answer.c", dir, m->lesson);
+        FILE *f = fopen(path, "rb");
+        cr_assert_not_null(f, "%s", path);
+        static char text[1 << 16];
+        size_t n = fread(text, 1, sizeof text - 1, f);
+        text[n] = '\0';
+        fclose(f);
+        cr_assert_not_null(src = strstr(text, m->find), "%s: no \"%s\" in answer.c", m->lesson, m->find);
+        snprintf(path, sizeof path, "%s/t/mistake.c", dir);
+        f = fopen(path, "wb");
+        cr_assert_not_null(f);
+        fwrite(text, 1, (size_t)(src - text), f);
+        fputs(m->replace, f);
+        fputs(src + strlen(m->find), f);
+        fclose(f);
+        snprintf(cmd, sizeof cmd, "cd %s/t && make -s check LESSON=%.2s FILE=mistake.c", dir, m->lesson);
+        st = shell(cmd, &log);
+        char want[96];
+        snprintf(want, sizeof want, " %s ", m->check);
+        const char *at = strstr(log, want);
+        cr_expect(st != 0 && at && (strstr(at, "FAILED") == at + strlen(want) + strspn(at + strlen(want), " ")),
+                  "%s, %s: expected the check \"%s\" to fail first:\n%s", m->lesson, m->what, m->check, log);
+        cr_expect_not_null(strstr(log, m->says), "%s, %s: no \"%s\" in\n%s", m->lesson, m->what, m->says, log);
+    }
 
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     shell(cmd, &log);
