@@ -279,6 +279,56 @@ Test(window, dummy_driver_keys_step_switch_views_export_quit, .fini = cleanup, .
     }
 }
 
+/* S saves the scene as it is now, dragged vertex included, to a new file
+ * each time; the file is what --scene and make check's SCENE= read. */
+Test(window, s_saves_the_scene_with_its_dragged_vertex, .fini = cleanup, .timeout = 60)
+{
+    make_dir();
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
+    const struct lesson *l = NULL;
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
+            l = all_lessons[i];
+    cr_assert(l);
+    struct explorer ex;
+    struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle" };
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    struct explorer_layout L;
+    explorer_layout(&ex, WIN_W, WIN_H, &L);
+    int hx = (int)lrint(L.ox + L.zoom * ex.tri.x[0] / SUBPIXEL_ONE);
+    int hy = (int)lrint(L.oy + L.zoom * ex.tri.y[0] / SUBPIXEL_ONE);
+    cr_assert_eq(explorer_hit_vertex(&ex, &L, hx, hy), 0);
+    char keys[128];
+    snprintf(keys, sizeof keys, "drag %d %d %d %d\ns\ns\nq\n", hx, hy, hx + 40, hy + 30);
+    write_text(in_dir("keys"), keys);
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--keys", "keys", "--size", size, NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    char *out = read_all(in_dir("out"), NULL);
+    cr_assert_eq(st, 0, "exit status %d", st);
+    const char *first = "tristep-" PROGRAM "-1.scene", *second = "tristep-" PROGRAM "-2.scene";
+    cr_assert(out && strstr(out, first) && strstr(out, second) && strstr(out, "SCENE="),
+              "the messages name two new files and how to check them:\n%s", out ? out : "");
+    free(out);
+    struct scene saved;
+    cr_assert(scene_load(&saved, in_dir(first), err, sizeof err), "%s", err);
+    cr_assert_eq(saved.ntris, s.ntris);
+    /* A dropped where the mouse let go, snapped to 1/256; B and C stayed */
+    struct vertex a = s.tris[0].v[0], got = saved.tris[0].v[0];
+    cr_expect_eq(got.x, lrint((hx + 40 - L.ox) / L.zoom * 256) / 256.0, "x %g, was %g", got.x, a.x);
+    cr_expect_eq(got.y, lrint((hy + 30 - L.oy) / L.zoom * 256) / 256.0, "y %g, was %g", got.y, a.y);
+    for (int k = 1; k < 3; k++) {
+        cr_expect_eq(saved.tris[0].v[k].x, s.tris[0].v[k].x);
+        cr_expect_eq(saved.tris[0].v[k].y, s.tris[0].v[k].y);
+    }
+    scene_free(&saved);
+    explorer_free(&ex);
+    scene_free(&s);
+}
+
 /* Figures for print in the window too: L switches to the light theme, C to
  * the pixel grid alone, and E exports exactly what --figure draws with
  * --theme light --figure-part canvas. */

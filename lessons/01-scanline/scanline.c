@@ -450,4 +450,5 @@ const struct lesson lesson_01 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, PACK_SCALED_COST), COST_TERM(ATTR_COUNT, PLANE_STEP_COST), { 0 } },
+    .exercise = { .write_line = L_FILL },
 };

@@ -147,4 +147,5 @@ const struct lesson lesson_02 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, BARYCENTRIC_COST), COST_TERM(6, INTERPOLATE_COST),
         COST_TERM(1, PACK_RGB_COST), { 0 } },
+    .exercise = { .write_line = L_DRAW },
 };

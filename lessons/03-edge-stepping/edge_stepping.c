@@ -335,4 +335,5 @@ const struct lesson lesson_03 = {
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){ COST_TERM(1, PACK_SCALED_COST), { 0 } },
+    .exercise = { .write_line = L_RENDER, .no_pixel_mul = true },
 };

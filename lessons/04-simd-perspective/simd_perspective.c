@@ -474,4 +474,5 @@ const struct lesson lesson_04 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, RECIPROCAL_COST), COST_TERM(5, PERSPECTIVE_COST), COST_TERM(1, PACK_RGB_COST),
         { 0 } },
+    .exercise = { .write_line = L_WRITE },
 };

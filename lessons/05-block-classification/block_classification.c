@@ -480,4 +480,5 @@ const struct lesson lesson_05 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, QUAD_DEPTH_COST), COST_TERM(1, QUAD_COLOUR_COST), { 0 } },
     .compare = compare,
+    .exercise = { .write_line = L_PIXEL, .full_blocks = true },
 };

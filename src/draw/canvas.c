@@ -121,8 +121,9 @@ static void paint_exhibit(struct painter *p, int x0, int y0, int x1, int y1)
     cairo_t *cr = p->cr;
     const struct explorer_layout *L = &p->L;
     double lw = fmax(2 * p->s, L->zoom * 0.12);
-    for (int kind = EXHIBIT_EXTRA; kind <= EXHIBIT_MISSING; kind++) {
-        set_rgb(cr, kind == EXHIBIT_EXTRA ? p->pal->extra : p->pal->missing);
+    for (int kind = EXHIBIT_EXTRA; kind <= EXHIBIT_COLOUR; kind++) {
+        set_rgb(cr, kind == EXHIBIT_EXTRA ? p->pal->extra : kind == EXHIBIT_MISSING ? p->pal->missing
+                                                                     : p->pal->wrong_colour);
         bool any = false;
         for (int y = y0; y < y1; y++)
             for (int x = x0; x < x1; x++) {

@@ -41,6 +41,7 @@ struct palette {
     uint32_t partial_inside, partial_outside;       /* tested pixels of a partial block */
     uint32_t span, row;
     uint32_t extra, missing, exhibit, on_exhibit;   /* an exhibit against the exact rule */
+    uint32_t wrong_colour;                          /* covered alike, coloured otherwise */
     /* what lessons draw with (enum ink in lesson_explorer.h), beside the
      * edges, vertices, text and shadow above */
     uint32_t mark;                                  /* a mark over any cell */

@@ -19,6 +19,7 @@ const struct palette palette_dark = {
     .partial_inside = 0xf0c674, .partial_outside = 0x8a6d2c,
     .span = 0x4fb3bf, .row = 0x39404e,
     .extra = 0xff4fd8, .missing = 0x00e5ff, .exhibit = 0xe0565b, .on_exhibit = 0xffffff,
+    .wrong_colour = 0xb5f23d,
     .mark = 0xffffff, .probe = 0xff5080, .upper = 0x9e73ff, .lower = 0xff9933,
     .brighter = 0xffff8c, .deeper = 0x8cffbf,
 };

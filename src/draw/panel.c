@@ -59,6 +59,9 @@ static double legend(struct painter *p, double x, double y, double w)
     if (ex->lesson->variants[ex->variant].exhibit) {
         y += swatch(p, x, y, p->pal->extra, "extra: more than the exact rule") + s;
         y += swatch(p, x, y, p->pal->missing, "missing: a crack") + s;
+        if (ex->wrong_colour)
+            y += swatch(p, x, y, p->pal->wrong_colour, "wrong colour or depth: not within "
+                        "2 levels, 0.1%") + s;
     }
     y += swatch(p, x, y, p->pal->accent, "the current step") + s;
     return y - y0;
@@ -253,11 +256,13 @@ static double counters(struct painter *p, double x, double y, double w)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
     if (ex->lesson->variants[ex->variant].exhibit) {
         char e[256];
-        snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
-                 ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
-                 (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        int at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
+                          ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
+                          (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)
+            snprintf(e + at, sizeof e - (size_t)at, "\nwrong colour %llu", (unsigned long long)ex->wrong_colour);
         h += 4 * p->s;
-        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing ? p->pal->extra : p->pal->covered, false);
+        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing + ex->wrong_colour ? p->pal->extra : p->pal->covered, false);
     }
     return h;
 }
@@ -284,11 +289,13 @@ void paint_panel(struct painter *p)
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
     char buf[512];
     if (v->exhibit) {
-        double bw = text_width(p, "EXHIBIT", 11) + 10 * s;
+        /* the exercise (make exercise) is shown against the exact rule like an exhibit */
+        const char *badge = strcmp(v->name, "exercise") == 0 ? "YOUR CODE" : "EXHIBIT";
+        double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
         cairo_fill(cr);
-        draw_text(p, x + 5 * s, y + 2 * s, 0, "EXHIBIT", 11, p->pal->on_exhibit, false);
+        draw_text(p, x + 5 * s, y + 2 * s, 0, badge, 11, p->pal->on_exhibit, false);
         snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
         y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
     } else {
@@ -359,7 +366,8 @@ void paint_help(struct painter *p)
         "+ / -                play faster / slower\n"
         "V / Shift+V          next / previous view\n"
         "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
-        "N                    numbers in cells: auto, always, off\n");
+        "N                    numbers in cells: auto, always, off\n"
+        "S                    save the scene as it is now to a new file\n");
     bool exhibits = false, twins = false;
     for (int i = 1; i < ex->lesson->nvariants; i++)
         exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;

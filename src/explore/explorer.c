@@ -152,7 +152,7 @@ static bool advance_exact(struct explorer *ex, int upto)
  * what variants[0] gives for the same triangles. */
 static bool compare_exhibit(struct explorer *ex)
 {
-    ex->extra = ex->missing = 0;
+    ex->extra = ex->missing = ex->wrong_colour = 0;
     ex->diff_done = 0;
     if (!ex->lesson->variants[ex->variant].exhibit)
         return true;
@@ -161,15 +161,20 @@ static bool compare_exhibit(struct explorer *ex)
         return false;
     int done = explorer_finished(ex);
     /* the picture of exactly the finished triangles */
-    const uint8_t *count = ex->cur >= 0 && done > ex->cur ? ex->fb.count : ex->replay.base.count;
+    const struct target *have_fb = ex->cur >= 0 && done > ex->cur ? &ex->fb : &ex->replay.base;
+    const uint8_t *count = have_fb->count;
     if (!advance_exact(ex, done))
         return false;
     ex->diff_done = done;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
-        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING : 0;
+        bool colour = have == want && want > 0
+            && !pixel_close(ex->exact.color[i], ex->exact.depth[i], have_fb->color[i], have_fb->depth[i]);
+        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING
+                    : colour ? EXHIBIT_COLOUR : 0;
         ex->extra += have > want;
         ex->missing += have < want;
+        ex->wrong_colour += colour;
     }
     return true;
 }

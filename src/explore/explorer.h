@@ -123,12 +123,12 @@ struct explorer {
     size_t nmarks, marks_cap;
     struct target scratch;
 
-    /* an exhibit shown against variants[0]: per pixel 0, EXHIBIT_EXTRA or EXHIBIT_MISSING */
+    /* an exhibit shown against variants[0]: per pixel 0 or EXHIBIT_* */
     struct target exact;
     int exact_upto;
     uint8_t *diff;
     int diff_done;                  /* triangles compared (finished at this step) */
-    uint64_t extra, missing;
+    uint64_t extra, missing, wrong_colour;
 
     /* earlier lessons on the same scene (lesson->compare), for the counters */
     int ncompare;
@@ -153,7 +153,10 @@ struct explorer {
     char message[512];
 };
 
-enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2 };
+/* The diff against the exact rule, per pixel of the finished triangles:
+ * covered more often, less often, or as often but in a colour or at a depth
+ * not pixel_close() to the exact one. */
+enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2, EXHIBIT_COLOUR = 3 };
 
 /* Start from a description. On failure (out of memory) nothing is left
  * allocated and err says what could not be done. */

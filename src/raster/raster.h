@@ -201,6 +201,27 @@ static inline void target_write(struct target *fb, int x, int y, float z, uint32
     }
 }
 
+/* Is a written pixel (colour, depth) close enough to the exact one? What
+ * make check and the explorer's diff hold a student's code (or an exhibit)
+ * to: colour within PIXEL_COLOUR_LEVELS of 255 per channel (the lessons
+ * interpolate in float or double and round to 8 bits: a right formula lands
+ * within one level, a wrong one misses by far more), depth within
+ * PIXEL_DEPTH_RELATIVE of z (lesson 04's float lanes keep 1/z to about 1e-5
+ * over a row; affine z on a receding triangle is off by tens of percent). */
+#define PIXEL_COLOUR_LEVELS 2
+#define PIXEL_DEPTH_RELATIVE 1e-3
+
+static inline bool pixel_close(uint32_t want_rgba, float want_z, uint32_t got_rgba, float got_z)
+{
+    for (int shift = 0; shift < 24; shift += 8) {
+        int d = (int)((want_rgba >> shift) & 255) - (int)((got_rgba >> shift) & 255);
+        if (d > PIXEL_COLOUR_LEVELS || d < -PIXEL_COLOUR_LEVELS)
+            return false;
+    }
+    float dz = got_z - want_z;
+    return dz == 0 || (dz <= PIXEL_DEPTH_RELATIVE * want_z && -dz <= PIXEL_DEPTH_RELATIVE * want_z);
+}
+
 /* --- the reference ---------------------------------------------------------- */
 
 /* The oracle of every test: bounding box, every pixel centre evaluated
