@@ -78,15 +78,7 @@ static struct point point_of(const struct tri_setup *t, int i)
     return (struct point){ t->x[i], t->y[i], { v->z, v->r, v->g, v->b, v->s, v->t } };
 }
 
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    return a / b - (a % b < 0);
-}
-
-static int64_t ceil_div(int64_t a, int64_t b)
-{
-    return -floor_div(-a, b);
-}
+/* floor_div, ceil_div: src/raster/raster.h */
 
 /* The first row whose centre is at or below y (1/256 px). */
 static int64_t row_at(int64_t y)
