@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "testlib.h"
+#include "explore/explorer.h"
 #include "explore/replay.h"
 
 extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05;
@@ -472,6 +473,24 @@ static double l04_floor_box_lanes(void) { return 4.0 * floor_lanes().box; }
 static double l04_floor_row4(void) { return floor_lanes().row4_lanes; }
 static double l04_floor_covered(void) { return floor_lanes().covered; }
 
+/* The explorer's own count of an exhibit's pixels covered as the exact rule
+ * says but with a colour or depth off (what its panel and figure show). */
+static double l01_float_colour(void)
+{
+    struct scene s = load("offgrid-strip");
+    struct raster_params prm = default_params();
+    struct explorer ex;
+    char err[256];
+    struct explorer_desc d = { .lesson = &lesson_01, .scene = &s, .scene_name = "offgrid-strip",
+                               .variant = lesson_variant(&lesson_01, "source-float"),
+                               .params = &prm, .step_end = true };
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    double n = (double)ex.wrong_colour;
+    explorer_free(&ex);
+    scene_free(&s);
+    return n;
+}
+
 struct key {
     const char *key;
     double (*compute)(void);    /* NULL: checked by the test file named in `where` */
@@ -486,6 +505,7 @@ static const struct key keys[] = {
     { "l01.float.holes", l01_float_holes, NULL },
     { "l01.float.doubled", l01_float_doubled, NULL },
     { "l01.float.extra", l01_float_extra, NULL },
+    { "l01.float.colour", l01_float_colour, NULL },
     { "l01.add-per-pixel", l01_add_pixel, NULL },
     { "l01.mul-per-row", l01_mul_row, NULL },
     { "l01.add-per-row", l01_add_row, NULL },
