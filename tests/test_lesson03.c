@@ -30,28 +30,12 @@ static const char *readme(void)
 
 /* --- events of one run ------------------------------------------------------------ */
 
-struct events {
-    struct trace_event *ev;
-    size_t n, cap;
-};
-
-static void collect(void *ctx, const struct trace_event *ev)
-{
-    struct events *e = ctx;
-    if (e->n == e->cap) {
-        e->cap = e->cap ? 2 * e->cap : 1024;
-        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
-        cr_assert_not_null(e->ev);
-    }
-    e->ev[e->n++] = *ev;
-}
-
 /* Run one triangle through a variant with narration, keeping every event. */
 static void run_traced(const struct lesson_variant *v, const struct tri_setup *t,
-                       struct target *fb, struct events *out)
+                       struct target *fb, struct test_events *out)
 {
     struct raster_params p = default_params();
-    struct trace tr = { .sink = collect, .ctx = out };
+    struct trace tr = { .sink = test_collect, .ctx = out };
     trace_begin(&tr, 0, TRACE_UNLIMITED);
     v->rasterize(t, &p, fb, &tr);
 }
@@ -81,7 +65,7 @@ Test(lesson03, zero_multiplications_per_pixel_inside_the_loop)
         tri_setup(&t, v, 48, 32);
         struct target fb;
         cr_assert(target_init(&fb, 48, 32, 0));
-        struct events e03 = { 0 }, e02 = { 0 };
+        struct test_events e03 = { 0 }, e02 = { 0 };
         run_traced(&lesson_03.variants[0], &t, &fb, &e03);
         run_traced(&lesson_02.variants[0], &t, &fb, &e02);
 
@@ -296,7 +280,7 @@ static void check_against_lesson02(const struct tri_setup *t, int n)
     int w = t->target_w, h = t->target_h;
     struct target fb;
     cr_assert(target_init(&fb, w, h, 0));
-    struct events e03 = { 0 }, e02 = { 0 };
+    struct test_events e03 = { 0 }, e02 = { 0 };
     run_traced(&lesson_03.variants[0], t, &fb, &e03);
     run_traced(&lesson_02.variants[0], t, &fb, &e02);
     struct written *by02 = calloc((size_t)w * (size_t)h, sizeof *by02);

@@ -126,26 +126,9 @@ static struct tally compare(const char *scene, const struct lesson *l, const cha
     return c;
 }
 
-/* The narration of one whole scene, every event kept. */
-struct events {
-    struct trace_event *ev;
-    size_t n, cap;
-};
-
-static void collect(void *ctx, const struct trace_event *ev)
-{
-    struct events *e = ctx;
-    if (e->n == e->cap) {
-        e->cap = e->cap ? 2 * e->cap : 4096;
-        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
-        cr_assert_not_null(e->ev);
-    }
-    e->ev[e->n++] = *ev;
-}
-
 /* Counters of a whole scene run with narration, and its events. */
 static struct trace_counters narrate(const char *scene, const struct lesson *l, int block_size,
-                                     struct events *out)
+                                     struct test_events *out)
 {
     struct scene s = load(scene);
     struct raster_params p = default_params();
@@ -156,7 +139,7 @@ static struct trace_counters narrate(const char *scene, const struct lesson *l, 
     for (int i = 0; i < s.ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s.tris[i].v, s.w, s.h);
-        struct trace tr = { .sink = out ? collect : NULL, .ctx = out };
+        struct trace tr = { .sink = out ? test_collect : NULL, .ctx = out };
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         l->variants[0].rasterize(&t, &p, &fb, &tr);
         sum.tested += tr.c.tested;
@@ -218,7 +201,7 @@ static long mode_of(const struct mode *m)
 
 static struct costs costs_of(const struct lesson *l, const char *scene)
 {
-    struct events e = { 0 };
+    struct test_events e = { 0 };
     struct trace_counters total = narrate(scene, l, 0, &e);
     /* pixel events: tests, or writes when the lesson tests nothing (01) */
     int px_kind = total.tested ? TRACE_PIXEL_TEST : TRACE_PIXEL_WRITE;

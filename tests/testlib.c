@@ -413,3 +413,19 @@ double text_number(const char *path, const char *key, double *tol)
     }
     return v;
 }
+
+/* --- narration ----------------------------------------------------------------- */
+
+void test_collect(void *ctx, const struct trace_event *ev)
+{
+    struct test_events *e = ctx;
+    if (e->n == e->cap) {
+        e->cap = e->cap ? 2 * e->cap : 4096;
+        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
+        if (!e->ev) {
+            fprintf(stderr, "out of memory collecting events\n");
+            abort();
+        }
+    }
+    e->ev[e->n++] = *ev;
+}

@@ -113,6 +113,16 @@ bool coverage_equal(const uint8_t *expected, const uint8_t *actual, int w, int h
 /* Print the case alone (for failures that are not a picture). */
 void print_case(const struct case_info *info);
 
+/* --- narration ------------------------------------------------------------------ */
+
+/* Every event of a run, kept: a trace sink (`.sink = test_collect,
+ * .ctx = &events`); free(events.ev) after. */
+struct test_events {
+    struct trace_event *ev;
+    size_t n, cap;
+};
+void test_collect(void *ctx, const struct trace_event *ev);
+
 /* --- numbers the texts quote ---------------------------------------------------
  *
  * A count a lesson text quotes carries a marker right after it, invisible

@@ -479,6 +479,15 @@ void explorer_free(struct explorer *ex)
 static const char *const theme_names[THEME_COUNT] = { "dark", "light" };
 static const char *const part_names[PART_COUNT] = { "all", "canvas" };
 
+/* The index of `name` in names[0..n), or -1. */
+static int name_index(const char *const *names, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
+}
+
 const char *theme_name(enum theme t)
 {
     return t >= 0 && t < THEME_COUNT ? theme_names[t] : "?";
@@ -486,12 +495,10 @@ const char *theme_name(enum theme t)
 
 bool theme_from_name(const char *name, enum theme *out)
 {
-    for (int i = 0; i < THEME_COUNT; i++)
-        if (strcmp(name, theme_names[i]) == 0) {
-            *out = (enum theme)i;
-            return true;
-        }
-    return false;
+    int i = name_index(theme_names, THEME_COUNT, name);
+    if (i >= 0)
+        *out = (enum theme)i;
+    return i >= 0;
 }
 
 const char *figure_part_name(enum figure_part f)
@@ -501,12 +508,10 @@ const char *figure_part_name(enum figure_part f)
 
 bool figure_part_from_name(const char *name, enum figure_part *out)
 {
-    for (int i = 0; i < PART_COUNT; i++)
-        if (strcmp(name, part_names[i]) == 0) {
-            *out = (enum figure_part)i;
-            return true;
-        }
-    return false;
+    int i = name_index(part_names, PART_COUNT, name);
+    if (i >= 0)
+        *out = (enum figure_part)i;
+    return i >= 0;
 }
 
 void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L)

@@ -305,9 +305,31 @@ static void print_diff(char *buf, size_t len, int64_t d)
         snprintf(buf, len, "%lld", (long long)d);
 }
 
-static void print_table(const struct bench_scene *sc, double limit)
+/* The measured cells of one row of the table on scene i, formatted once for
+ * the terminal and the markdown table alike. */
+struct cells {
+    char median[24], spread[16], mtri[16], mpix[16], ratio[16], mem[16], dref[24], dpeer[24];
+};
+
+static void row_cells(const struct bench_scene *sc, int i, const struct row *r, double limit,
+                      struct cells *c)
 {
     const struct row *base = find_row("02-", NULL);
+    const struct bench_timing *t = &r->t[i];
+    snprintf(c->median, sizeof c->median, "%.2f", t->median * 1e3);
+    snprintf(c->spread, sizeof c->spread, "%.1f%%", 100 * (t->hi - t->lo) / t->median);
+    snprintf(c->mtri, sizeof c->mtri, "%.3g", mtri(&sc[i], t));
+    snprintf(c->mpix, sizeof c->mpix, "%.1f", mpix(&sc[i], t));
+    snprintf(c->ratio, sizeof c->ratio, "-");
+    if (base)
+        snprintf(c->ratio, sizeof c->ratio, "%.2f", base->t[i].median / t->median);
+    snprintf(c->mem, sizeof c->mem, "%.1f%%", limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0);
+    print_diff(c->dref, sizeof c->dref, t->diff_ref);
+    print_diff(c->dpeer, sizeof c->dpeer, t->diff_peer);
+}
+
+static void print_table(const struct bench_scene *sc, double limit)
+{
     for (int i = 0; i < NSCENES; i++) {
         const struct scene *s = &sc[i].s;
         printf("\nscene %s: %d x %d, %d triangles, %llu covered pixels (%.1f x the screen); %s\n",
@@ -317,16 +339,11 @@ static void print_table(const struct bench_scene *sc, double limit)
                "median ms", "spread", "Mtri/s", "Mpix/s", "x L02", "% mem", "diff ref", "diff llvm");
         for (int k = 0; k < nrows; k++) {
             const struct row *r = &rows[k];
-            const struct bench_timing *t = &r->t[i];
-            char ratio[16] = "-", dref[24], dpeer[24];
-            if (base)
-                snprintf(ratio, sizeof ratio, "%.2f", base->t[i].median / t->median);
-            print_diff(dref, sizeof dref, t->diff_ref);
-            print_diff(dpeer, sizeof dpeer, t->diff_peer);
-            printf("  %-26s %-15s %10.2f %6.1f%% %9.3g %9.1f %7s %5.1f%% %9s %9s%s\n", r->program,
-                   r->variant, t->median * 1e3, 100 * (t->hi - t->lo) / t->median, mtri(&sc[i], t),
-                   mpix(&sc[i], t), ratio, limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, dref,
-                   dpeer, r->exhibit ? "  (exhibit)" : "");
+            struct cells c;
+            row_cells(sc, i, r, limit, &c);
+            printf("  %-26s %-15s %10s %7s %9s %9s %7s %6s %9s %9s%s\n", r->program, r->variant,
+                   c.median, c.spread, c.mtri, c.mpix, c.ratio, c.mem, c.dref, c.dpeer,
+                   r->exhibit ? "  (exhibit)" : "");
         }
     }
     printf("\n(spread = (slowest - fastest) / median; Mpix/s counts covered pixels, overdraw "
@@ -383,7 +400,6 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
     FILE *f = fopen(tmp, "w");
     if (!f)
         return false;
-    const struct row *base = find_row("02-", NULL);
     fprintf(f, "# tristep bench%s\n\n", o->quick ? " (quick mode: tiny scenes, not a measurement)" : "");
     fprintf(f, "<!-- written by `make bench` (tests/bench/bench.c); do not edit by hand: "
                "run `make bench` again -->\n\n");
@@ -408,16 +424,11 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
         fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (int k = 0; k < nrows; k++) {
             const struct row *r = &rows[k];
-            const struct bench_timing *t = &r->t[i];
-            char ratio[16] = "-", dref[24], dpeer[24];
-            if (base)
-                snprintf(ratio, sizeof ratio, "%.2f", base->t[i].median / t->median);
-            print_diff(dref, sizeof dref, t->diff_ref);
-            print_diff(dpeer, sizeof dpeer, t->diff_peer);
-            fprintf(f, "| %s | %s%s | %.2f | %.1f%% | %.3g | %.1f | %s | %.1f%% | %s | %s |\n",
-                    r->program, r->variant, r->exhibit ? " (exhibit)" : "", t->median * 1e3,
-                    100 * (t->hi - t->lo) / t->median, mtri(&sc[i], t), mpix(&sc[i], t), ratio,
-                    limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, dref, dpeer);
+            struct cells c;
+            row_cells(sc, i, r, limit, &c);
+            fprintf(f, "| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r->program,
+                    r->variant, r->exhibit ? " (exhibit)" : "", c.median, c.spread, c.mtri, c.mpix,
+                    c.ratio, c.mem, c.dref, c.dpeer);
         }
     }
     fprintf(f, "\n## Limits and the explorer\n\n");
