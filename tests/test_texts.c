@@ -412,6 +412,13 @@ static double l05_q8_partial(void) { return blocks_of(8, BLOCK_PARTIAL); }
 static double l05_q16_empty(void) { return blocks_of(16, BLOCK_EMPTY); }
 static double l05_q16_full(void) { return blocks_of(16, BLOCK_FULL); }
 static double l05_q16_partial(void) { return blocks_of(16, BLOCK_PARTIAL); }
+static double blocks_all(int q)
+{
+    return blocks_of(q, BLOCK_EMPTY) + blocks_of(q, BLOCK_FULL) + blocks_of(q, BLOCK_PARTIAL);
+}
+static double l05_q4_blocks(void) { return blocks_all(4); }
+static double l05_q8_blocks(void) { return blocks_all(8); }
+static double l05_q16_blocks(void) { return blocks_all(16); }
 static double l05_q4_tested(void) { return (double)narrate("blocks", &lesson_05, 4, NULL).tested; }
 static double l05_q8_tested(void) { return (double)narrate("blocks", &lesson_05, 8, NULL).tested; }
 static double l05_q16_tested(void) { return (double)narrate("blocks", &lesson_05, 16, NULL).tested; }
@@ -554,6 +561,9 @@ static const struct key keys[] = {
     { "l05.q16.empty", l05_q16_empty, NULL },
     { "l05.q16.full", l05_q16_full, NULL },
     { "l05.q16.partial", l05_q16_partial, NULL },
+    { "l05.q4.blocks", l05_q4_blocks, NULL },
+    { "l05.q8.blocks", l05_q8_blocks, NULL },
+    { "l05.q16.blocks", l05_q16_blocks, NULL },
     { "l05.q4.tested", l05_q4_tested, NULL },
     { "l05.q8.tested", l05_q8_tested, NULL },
     { "l05.q16.tested", l05_q16_tested, NULL },
