@@ -359,8 +359,7 @@ struct block_options {
 static void rasterize_blocks(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr, struct block_options o)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_BOX);
     if (t->empty)
         return;
     int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;
