@@ -32,12 +32,13 @@ static void remove_build_dir(void)
 }
 
 /* The output of `make -n ARGS` (stdout and stderr), NUL-terminated,
- * malloc'ed; without what a calling make (make test) passes down to
- * sub-makes, such as its SANITIZE=1 or CFLAGS. */
+ * malloc'ed; without what a calling make (make test SANITIZE=1) passes
+ * down in MAKEFLAGS and in the environment, such as SANITIZE or CFLAGS. */
 static char *make(const char *args)
 {
     char cmd[1024];
-    snprintf(cmd, sizeof cmd, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -n --no-print-directory BUILD=%s %s 2>&1", build, args);
+    snprintf(cmd, sizeof cmd, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u SANITIZE -u CFLAGS -u LDFLAGS "
+             "-u LDLIBS -u FIGURES make -n --no-print-directory BUILD=%s %s 2>&1", build, args);
     FILE *p = popen(cmd, "r");
     cr_assert_not_null(p, "cannot run %s", cmd);
     size_t cap = 1 << 16, n = 0;
