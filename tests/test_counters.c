@@ -178,3 +178,46 @@ Test(counters, lesson03_readme_counts)
     cr_expect_eq(c02.mul, 1229874);
     cr_expect_eq(c03.mul, 6551);
 }
+
+/* Lesson 05 shades the pixels of a full block without testing them, four at
+ * a time: no narrated pixel to recount there. Over a whole triangle its
+ * multiplications are then the blocks' corner tests plus the declared cost
+ * of every covered pixel, full blocks included: what is left after taking
+ * the covered pixels off is the same amount for every block classified. */
+Test(counters, lesson05_full_blocks_shade_at_the_declared_cost)
+{
+    extern const struct lesson lesson_05;
+    unsigned covered = declared(lesson_05.cost_covered).mul;
+    cr_assert_gt(covered, 0);
+    struct rng r = rng_for(0xc05);
+    int64_t per_block = -1;
+    int full = 0;
+    for (int n = 0; n < 200; n++) {
+        struct vertex v[3];
+        random_tri(&r, n % 2 ? CAT_GENERIC : CAT_LARGE, 96, 64, v);
+        struct tri_setup t;
+        tri_setup(&t, v, 96, 64);
+        if (t.empty)
+            continue;
+        struct target fb;
+        cr_assert(target_init(&fb, 96, 64, 0));
+        struct trace tr = { 0 };
+        trace_begin(&tr, 0, TRACE_UNLIMITED);
+        struct raster_params p = default_params();
+        lesson_05.variants[0].rasterize(&t, &p, &fb, &tr);
+        uint64_t blocks = 0;
+        for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
+            blocks += tr.c.blocks[k];
+        full += tr.c.blocks[BLOCK_FULL] > 0;
+        int64_t rest = (int64_t)tr.c.mul - (int64_t)(tr.c.covered * covered);
+        cr_assert_gt(blocks, 0);
+        cr_assert_eq(rest % (int64_t)blocks, 0, "triangle %d: %lld multiplications besides the "
+                     "covered pixels for %llu blocks", n, (long long)rest, (unsigned long long)blocks);
+        if (per_block < 0)
+            per_block = rest / (int64_t)blocks;
+        cr_assert_eq(rest / (int64_t)blocks, per_block, "triangle %d: the same cost per block", n);
+        target_free(&fb);
+    }
+    cr_expect_gt(per_block, 0, "classifying a block multiplies");
+    cr_expect_gt(full, 20, "only %d triangles with a full block", full);
+}

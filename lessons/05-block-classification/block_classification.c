@@ -19,10 +19,10 @@
  * time with integer SSE compares. What stays: lesson 03's exact integer edge
  * values decide coverage (the corners use the very same values and the same
  * top-left bias as the pixel test, so "full" is really full), and lesson 04's
- * planes 1/z and a/z give perspective-correct depth and colour (formula 23).
- *
- * The four-pixel writes test depth before they shade: a quad hidden behind
- * what the target already holds costs its depth and one compare, no colour.
+ * planes 1/z and a/z give perspective-correct depth and colour (formula 23),
+ * four pixels at a time, from src/shade/quad.h: shared machinery, not this
+ * lesson's idea. This file reads: the edges, the corners of a block, its
+ * class, the three cases, the blocks.
  *
  * Two twins of the partial-block loop sit side by side: one pixel at a time
  * with exact 64-bit edge values, narrating every pixel (what the explorer
