@@ -290,7 +290,6 @@ static void open_at_step(const struct lesson *l, rasterize_fn fn, const struct r
     exercise_use(l, fn);
     struct explorer ex;
     cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
-                                                         .params = { .subpixel_bits = SUBPIXEL_BITS },
                                                          .step = run->r.step }, err, sizeof err), "%s", err);
     cr_expect_eq(ex.step, run->r.step);
     if (extra) {

@@ -93,17 +93,8 @@ static struct point point_of(const struct tri_setup *t, int i)
     return (struct point){ t->x[i], t->y[i], { v->z, v->r, v->g, v->b, v->s, v->t } };
 }
 
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    return a / b - (a % b < 0);
-}
-
-static int64_t ceil_div(int64_t a, int64_t b)
-{
-    return -floor_div(-a, b);
-}
-
-/* The first row whose centre is at or below y (1/256 px). */
+/* The first row whose centre is at or below y (1/256 px); ceil_div and
+ * floor_div are raster.h's, correct for negative numbers. */
 static int64_t row_at(int64_t y)
 {
     return ceil_div(y - SUBPIXEL_HALF, SUBPIXEL_ONE);
