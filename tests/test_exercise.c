@@ -298,6 +298,9 @@ static void open_at_step(const struct lesson *l, rasterize_fn fn, const struct r
         cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
         cr_expect_eq(ex.last.x, run->r.x);
         cr_expect_eq(ex.last.y, run->r.y);
+        /* marked extra at the very step that writes it, the triangle unfinished */
+        cr_assert_not_null(ex.diff);
+        cr_expect_eq(ex.diff[(size_t)run->r.y * (size_t)s.w + (size_t)run->r.x], EXHIBIT_EXTRA);
     } else {
         cr_assert_not_null(ex.diff);
         cr_expect_eq(ex.diff[(size_t)run->r.y * (size_t)s.w + (size_t)run->r.x], EXHIBIT_MISSING,
