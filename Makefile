@@ -87,7 +87,7 @@ $(B)/exercises.c: Makefile lessons | $(FIRST)
 	@printf '    { NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
-	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(lastword $(LESSONS)))"; exit 2; }
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
