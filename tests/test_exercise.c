@@ -625,3 +625,56 @@ Test(exercise, the_common_mistakes_fail_as_the_texts_say)
         run_free(&run);
     }
 }
+
+/* --- code that narrates nothing --------------------------------------------------- */
+
+/* Every covered pixel written with a bare target_write, as student.h turns
+ * it into exercise_write: no NARRATE anywhere. */
+static void silent(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
+                   struct trace *tr)
+{
+    (void)p, (void)tr;
+    for (int y = t->miny; y <= t->maxy && !t->empty; y++)
+        for (int x = t->minx; x <= t->maxx; x++) {
+            bool in = true;
+            for (int k = 0; k < 3; k++)
+                in = in && edge_inside(t, k, edge_value(t, k, x, y));
+            if (in)
+                exercise_write(fb, x, y, 1.0f, 0xffffffffu);
+        }
+}
+
+static void count_cover(void *ctx, int x, int y)
+{
+    (void)x, (void)y;
+    ++*(int *)ctx;
+}
+
+Test(exercise, code_that_narrates_nothing_still_shows_every_pixel_written)
+{
+    const struct lesson *l02 = lesson_nn("02");
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "triangle", err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l02, "silent.c");
+    exercise_use(l02, silent);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step = 1 }, err, sizeof err), "%s", err);
+    int covered = 0;
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s.tris[i].v, s.w, s.h);
+        reference_coverage(&t, count_cover, &covered);
+    }
+    cr_expect_eq(ex.replay.total, (uint64_t)covered, "one step per pixel written");
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
+    cr_expect_eq(ex.last.line, l02->exercise.write_line, "lit on the lesson's write line");
+    cr_assert(explorer_set_step(&ex, ex.replay.total));
+    cr_expect_eq(ex.extra + ex.missing, 0, "the diff finds nothing to say");
+    explorer_free(&ex);
+    scene_free(&s);
+}
