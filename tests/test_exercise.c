@@ -435,8 +435,8 @@ static int shell(const char *cmd, char **log)
     close(fd);
     /* not the test run's own make: no jobserver, no inherited flags, and
      * the plain build a student makes (make test SANITIZE=1 exports it) */
-    snprintf(line, sizeof line, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u SANITIZE -u BUILD -u CFLAGS -u LDFLAGS -u LDLIBS sh -c '%s' > %s 2>&1",
-             cmd, path);
+    snprintf(line, sizeof line, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u SANITIZE -u BUILD -u CFLAGS "
+             "-u LDFLAGS -u LDLIBS sh -c '%s' > %s 2>&1", cmd, path);
     int st = system(line);
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f);
