@@ -289,13 +289,25 @@ static double *coord(struct scene *s, int k)
     return k % 2 ? &v->y : &v->x;
 }
 
-/* Smallest coordinates: move the scene to the origin by whole pixels, make
- * the target no larger than it needs, then round each coordinate to the
- * coarsest grid (whole pixels, centres, halves, ...) that still fails. */
+/* Smallest coordinates: halve the scene while it fails, move it to the
+ * origin by whole pixels, make the target no larger than it needs, then
+ * round each coordinate to the coarsest grid (whole pixels, centres,
+ * halves, ...) that still fails. */
 static void round_coordinates(struct shrinker *S, struct scene *s)
 {
     for (int pass = 0; pass < 3; pass++) {
         bool progress = false;
+        /* half the size about the origin, on the 1/256 grid, while it fails */
+        for (int k = 0; k < 8; k++) {
+            struct scene c;
+            if (!scene_copy(&c, s))
+                return;
+            for (int j = 0; j < 6 * c.ntris; j++)
+                *coord(&c, j) = round(*coord(&c, j) * SUBPIXEL_HALF) / SUBPIXEL_ONE;
+            if (!try_candidate(S, s, &c))
+                break;
+            progress = true;
+        }
         /* to the origin, by whole pixels: every tie stays a tie */
         double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
         for (int k = 0; k < 6 * s->ntris; k++) {
