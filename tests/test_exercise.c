@@ -319,6 +319,7 @@ Test(exercise, a_counterexample_opens_at_the_step_it_names)
     check(&run, l02, inclusive->rasterize, NULL);
     cr_assert_not_null(strstr(run.report, "an extra pixel"), "%s", run.report);
     cr_expect_not_null(strstr(run.report, "leaves it to the triangle on the other side"), "%s", run.report);
+    cr_expect_eq(run.r.ntris, 1, "one triangle shows it: its own right edge");
     open_at_step(l02, inclusive->rasterize, &run, true);
     run_free(&run);
 
