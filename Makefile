@@ -78,20 +78,20 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 STUDENT   = -DTRISTEP_NARRATE -include exercise/student.h
 EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
 FILE     ?= $(EX_LESSON)/exercise.c
-$(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(B)/config.mk
+$(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(FIRST)
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) -c $< -o $@
-$(B)/exercises.c: Makefile lessons | $(B)/config.mk
+$(B)/exercises.c: Makefile lessons | $(FIRST)
 	@printf '#include "exercise/exercise.h"\n' > $@
 	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); done >> $@
 	@printf 'const struct exercise_code all_exercises[] = {\n' >> $@
 	@for d in $(sort $(dir $(EX_SRC))); do n=$$(basename $$d | cut -c1-2); printf '    { "%s", exercise_%s_exercise, exercise_%s_answer },\n' $$n $$n $$n; done >> $@
 	@printf '    { NULL, NULL, NULL },\n};\n' >> $@
-$(B)/obj/exercises.o: $(B)/exercises.c ; $(CC_ALL) -c $< -o $@
-$(B)/exercise/student-$(LESSON).o: FORCE | $(B)/config.mk
-	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(lastword $(LESSONS)))"; exit 2; }
+$(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+$(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -c $(FILE) -o $@
-$(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
+$(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP))

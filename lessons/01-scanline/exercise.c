@@ -78,9 +78,8 @@ static struct point point_of(const struct tri_setup *t, int i)
     return (struct point){ t->x[i], t->y[i], { v->z, v->r, v->g, v->b, v->s, v->t } };
 }
 
-/* floor_div, ceil_div: src/raster/raster.h */
-
-/* The first row whose centre is at or below y (1/256 px). */
+/* The first row whose centre is at or below y (1/256 px); ceil_div and
+ * floor_div are raster.h's, correct for negative numbers. */
 static int64_t row_at(int64_t y)
 {
     return ceil_div(y - SUBPIXEL_HALF, SUBPIXEL_ONE);

@@ -6,7 +6,19 @@
  * ("exercise"), shown in the explorer beside the exact rule and checked
  * against it: coverage by the reference rasterizer of src/raster,
  * colour and depth by reference_shade(), linear or perspective-correct as
- * the lesson interpolates. */
+ * the lesson interpolates.
+ *
+ * A lesson gets its exercise from its own data, nothing here names it:
+ *   - lessons/NN-name/exercise.c, the skeleton: the lesson's scaffolding
+ *     with the heart left as TODOs; it compiles, runs and fails the check;
+ *   - lessons/NN-name/answer.c beside it, the skeleton with its TODOs
+ *     written (the Makefile lists both for the tests, build/exercises.c);
+ *   - `.exercise` in the lesson's descriptor (struct lesson_exercise,
+ *     lesson.h): the pseudo-code line of a bare write, and the lesson's own
+ *     property among those the check knows (no_pixel_mul, full_blocks);
+ *   - the lesson's exhibits each name the check they fail in
+ *     tests/test_exercise.c (the test fails on an exhibit it does not know);
+ *   - the "Write it yourself" section that ends the lesson's README. */
 #ifndef TRISTEP_EXERCISE_H
 #define TRISTEP_EXERCISE_H
 

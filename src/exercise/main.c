@@ -61,7 +61,8 @@ int main(int argc, char **argv)
             .progress = isatty(STDOUT_FILENO), .program = argv[0],
         };
         struct check_result r;
-        status = exercise_check_guarded(&LESSON, &o, &r) ? 0 : 1;
+        bool ok = exercise_check_guarded(&LESSON, &o, &r);
+        status = ok ? 0 : r.nchecks == 0 ? 2 : 1;     /* 2: a SCENE= file that does not load */
     } else {
         /* the lesson program, on the exercise variant unless told otherwise */
         struct lesson l;

@@ -150,6 +150,38 @@ static bool advance_exact(struct explorer *ex, int upto)
 
 /* An exhibit: compare the coverage counts of the finished triangles with
  * what variants[0] gives for the same triangles. */
+struct exact_mask {
+    uint8_t *m;
+    int w;
+};
+
+static void mark_exact(void *ctx, int x, int y)
+{
+    struct exact_mask *e = ctx;
+    e->m[(size_t)y * (size_t)e->w + (size_t)x] = 1;
+}
+
+/* The triangle being drawn: a pixel it has written more often than the
+ * exact rule covers it is extra already, whatever comes after (writes only
+ * add), so it is marked at the step that writes it. */
+static bool extra_so_far(struct explorer *ex)
+{
+    size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
+    uint8_t *exact = calloc(n, 1);
+    if (!exact)
+        return false;
+    reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
+    for (size_t i = 0; i < n; i++) {
+        int now = ex->fb.count[i] - ex->replay.base.count[i];
+        if (now > exact[i] && ex->diff[i] == 0) {     /* an earlier verdict stands */
+            ex->diff[i] = EXHIBIT_EXTRA;
+            ex->extra++;
+        }
+    }
+    free(exact);
+    return true;
+}
+
 static bool compare_exhibit(struct explorer *ex)
 {
     ex->extra = ex->missing = ex->wrong_colour = 0;
@@ -176,7 +208,7 @@ static bool compare_exhibit(struct explorer *ex)
         ex->missing += have < want;
         ex->wrong_colour += colour;
     }
-    return true;
+    return ex->cur >= 0 && done == ex->cur ? extra_so_far(ex) : true;
 }
 
 bool explorer_set_step(struct explorer *ex, uint64_t step)
