@@ -25,21 +25,20 @@
 
 extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05;
 
-/* The texts whose numbers are checked. */
-static const char *const texts[] = {
-    "README.md",
-    "lessons/README.md",
-    "lessons/01-scanline/README.md",
-    "lessons/01-scanline/ANSWERS.md",
-    "lessons/02-barycentric/README.md",
-    "lessons/02-barycentric/ANSWERS.md",
-    "lessons/03-edge-stepping/README.md",
-    "lessons/03-edge-stepping/ANSWERS.md",
-    "lessons/04-simd-perspective/README.md",
-    "lessons/04-simd-perspective/ANSWERS.md",
-    "lessons/05-block-classification/README.md",
-    "lessons/05-block-classification/ANSWERS.md",
-};
+/* The texts whose numbers are checked: the top README, the course page, and
+ * every lesson's text and answer key (built from the lessons that exist). */
+#define MAX_TEXTS 64
+static int text_list(char out[][128])
+{
+    int n = 0;
+    snprintf(out[n++], 128, "README.md");
+    snprintf(out[n++], 128, "lessons/README.md");
+    for (int i = 0; all_lessons[i] && n + 2 <= MAX_TEXTS; i++) {
+        snprintf(out[n++], 128, "lessons/%s/README.md", all_lessons[i]->id);
+        snprintf(out[n++], 128, "lessons/%s/ANSWERS.md", all_lessons[i]->id);
+    }
+    return n;
+}
 
 static bool exists(const char *path)
 {
@@ -588,7 +587,9 @@ Test(texts, every_quoted_count_is_what_the_program_computes, .timeout = 120)
     static double value[NKEYS];
     static bool computed[NKEYS];
     int checked = 0;
-    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; t++) {
+    static char texts[MAX_TEXTS][128];
+    int ntexts = text_list(texts);
+    for (int t = 0; t < ntexts; t++) {
         if (!exists(texts[t]))
             continue;
         /* copy: text_number() reads the file again into the same buffer */
@@ -636,7 +637,9 @@ Test(texts, every_known_number_is_quoted_somewhere, .timeout = 120)
         char marker[128];
         snprintf(marker, sizeof marker, "<!--=%s-->", keys[i].key);
         bool found = false;
-        for (size_t t = 0; t < sizeof texts / sizeof texts[0] && !found; t++)
+        static char texts[MAX_TEXTS][128];
+        int ntexts = text_list(texts);
+        for (int t = 0; t < ntexts && !found; t++)
             found = exists(texts[t]) && strstr(test_read_text(texts[t]), marker) != NULL;
         cr_expect(found, "no text quotes %s any more: drop it from tests/test_texts.c", marker);
     }
@@ -700,6 +703,23 @@ Test(texts, every_lesson_text_follows_the_template)
     cr_expect_gt(lessons, 0);
 }
 
+/* The course page leads to every lesson and its answer key. */
+Test(texts, the_course_page_lists_every_lesson_and_its_answer_key)
+{
+    const char *page = test_read_text("lessons/README.md");
+    char *copy = malloc(strlen(page) + 1);
+    cr_assert_not_null(copy);
+    strcpy(copy, page);
+    for (int i = 0; all_lessons[i]; i++) {
+        char link[256];
+        snprintf(link, sizeof link, "(%s/README.md)", all_lessons[i]->id);
+        cr_expect(strstr(copy, link) != NULL, "lessons/README.md does not list %s", link);
+        snprintf(link, sizeof link, "(%s/ANSWERS.md)", all_lessons[i]->id);
+        cr_expect(strstr(copy, link) != NULL, "lessons/README.md does not link %s", link);
+    }
+    free(copy);
+}
+
 /* The top README leads to the course page and to every answer key. */
 Test(texts, the_top_readme_links_the_course_page_and_the_answer_keys)
 {
@@ -737,7 +757,9 @@ Test(texts, every_speed_a_text_quotes_is_the_benchs)
     cr_expect(strstr(bench, "written by `make bench`") != NULL, "BENCH.md was not written by the bench");
     cr_expect(strstr(bench, "quick mode") == NULL, "BENCH.md is a quick run, not a measurement");
     int quoted = 0;
-    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; t++) {
+    static char texts[MAX_TEXTS][128];
+    int ntexts = text_list(texts);
+    for (int t = 0; t < ntexts; t++) {
         if (!exists(texts[t]))
             continue;
         const char *text = test_read_text(texts[t]);
