@@ -240,7 +240,11 @@ static void paint_triangle(struct painter *p)
         double dx = vx[k] - gx, dy = vy[k] - gy, d = hypot(dx, dy);
         if (d > 0)
             dx /= d, dy /= d;
-        double lx = vx[k] + dx * 16 * p->s - 5 * p->s, ly = vy[k] + dy * 16 * p->s - 10 * p->s;
+        /* out of the vertex's own cell when cells are large enough to carry numbers */
+        double out = 16 * p->s + (L->zoom >= 24 ? 0.75 * L->zoom : 0);
+        double lx = vx[k] + dx * out - 5 * p->s, ly = vy[k] + dy * out - 10 * p->s;
+        lx = fmin(fmax(lx, L->cx + 2 * p->s), L->cx + L->cw - 16 * p->s);     /* on the canvas */
+        ly = fmin(fmax(ly, L->cy + 2 * p->s), L->cy + L->ch - 22 * p->s);
         set_rgba(cr, p->pal->shadow, 0.6);
         cairo_arc(cr, lx + 5 * p->s, ly + 10 * p->s, 10 * p->s, 0, 2 * G_PI);
         cairo_fill(cr);
