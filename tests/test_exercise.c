@@ -687,7 +687,7 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
     cr_expect(pixel_close(0xff102030u, 2.0f, 0xff122232u, 2.0f), "2 levels in every channel");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102033u, 2.0f), "3 levels in blue");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff0d2030u, 2.0f), "3 levels in red");
-    cr_expect(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0019f), "0.095 % of z");
-    cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0021f), "0.105 % of z");
-    cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 1.9979f), "0.105 % nearer");
+    cr_expect(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0019f), "0.095 %% of z");
+    cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0021f), "0.105 %% of z");
+    cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 1.9979f), "0.105 %% nearer");
 }
