@@ -83,10 +83,12 @@ static void constants(const struct tri_setup *t, const struct raster_params *p, 
         snprintf(buf + at, n - at,
                  " px/row\n"
                  "Dc r = %.4g, g = %.4g, b = %.4g, z = %.4g /px\n"
-                 "case = %s\n",
+                 "case = %s\n"
+                 "walk: 1 = %c (top), 2 = %c, 3 = %c\n",
                  dc[ATTR_R], dc[ATTR_G], dc[ATTR_B], dc[ATTR_Z],
                  t->y[v[1]] > t->y[v[2]] ? "[A] (3 is the middle vertex, on the left)"
-                                         : "[B] (2 is the middle vertex, on the right)");
+                                         : "[B] (2 is the middle vertex, on the right)",
+                 'A' + v[0], 'A' + v[1], 'A' + v[2]);
 }
 
 /* Where the centre line of row y crosses the triangle's left and right
