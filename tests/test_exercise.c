@@ -185,6 +185,11 @@ static const struct {
     { "04", NULL, true, "colour and depth (perspective)" },
     { "05", "corners-outside", false, "single triangle" },
     { "05", "or-inside", false, "single triangle" },
+    { "07", "wrong-corner", false, "single triangle" },
+    /* its mistake is the order of a threaded scene run, which one triangle
+     * through `rasterize` cannot show: its check must PASS (the scene run's
+     * pictures are tests/test_lesson07.c's) */
+    { "07", "unordered", false, NULL },
 };
 
 Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
@@ -199,6 +204,11 @@ Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
         struct run run;
         check(&run, l, v->rasterize, &p);
         const char *name = exhibits[i].variant ? exhibits[i].variant : "affine";
+        if (!exhibits[i].check) {
+            cr_expect(run.ok, "%s/%s fails its check:\n%s", l->id, name, run.report);
+            run_free(&run);
+            continue;
+        }
         cr_expect_not(run.ok, "%s/%s passes", l->id, name);
         cr_expect_str_eq(run.r.failed, exhibits[i].check, "%s/%s:\n%s", l->id, name, run.report);
         cr_expect_neq(run.r.counterexample[0], '\0');

@@ -220,7 +220,8 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     size_t at = 0, n = sizeof buf;
     if (done == 0) {
         /* nothing finished yet: compare the whole scene rather than show zeros */
-        done = ex->replay.ntris;
+        done = ex->scene.ntris;
+        mine = ex->replay.ntris;    /* the same, in this lesson's units */
         at = cat(buf, n, at, "whole scene, %d triangle%s:\n", done, done == 1 ? "" : "s");
     } else {
         at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
