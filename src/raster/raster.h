@@ -158,7 +158,39 @@ struct target {
     float *depth;
     uint8_t *count;
     uint32_t background;
+    struct target_samples *samples;     /* NULL: one sample per pixel (every lesson but 08) */
 };
+
+/* --- samples (lesson 08) --------------------------------------------------- */
+
+/* Sample positions inside pixel (px, py), in 1/256 pixel from its top-left
+ * corner: the standard patterns of Direct3D and Vulkan (CONVENTIONS.md,
+ * "Samples"). A sample is decided exactly like a pixel centre: the edge
+ * value at (256 px + x, 256 py + y), the top-left rule. */
+#define SAMPLES_MAX 8
+
+struct sample_pattern {
+    int n;
+    uint8_t x[SAMPLES_MAX], y[SAMPLES_MAX];
+};
+
+/* The standard pattern of n = 1, 4 or 8 samples (anything else: NULL). */
+const struct sample_pattern *sample_pattern(int n);
+
+/* Per-sample storage of a multisample target: n colours and n depths per
+ * pixel, sample s of pixel i at index i * n + s. target_write() never looks
+ * at it, so the one-sample lessons pay nothing for it; lesson 08 writes the
+ * samples and resolves each pixel it touches into color (the mean of its
+ * samples), depth (the nearest sample) and count (covered samples). */
+struct target_samples {
+    int n;
+    uint32_t *color;
+    float *depth;
+};
+
+/* Give fb per-sample storage of n samples (2..SAMPLES_MAX), cleared to the
+ * background; n = 1 drops it. False when memory runs out (fb unchanged). */
+bool target_multisample(struct target *fb, int n);
 
 bool target_init(struct target *fb, int w, int h, uint32_t background);
 void target_clear(struct target *fb);
@@ -200,6 +232,16 @@ static inline void target_write(struct target *fb, int x, int y, float z, uint32
 }
 
 /* --- the reference ---------------------------------------------------------- */
+
+/* Is the point (sx, sy), in 1/256 pixel units, covered by t? Edge values
+ * from the snapped vertices and the top-left rule, as for a pixel centre
+ * (lesson 08's samples; the explorer's drawing of them). */
+bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy);
+
+/* The exact area of pixel (px, py) that t covers, in square pixels (0..1):
+ * the snapped triangle clipped against the pixel's square, in double
+ * precision. What a pixel's samples estimate (lesson 08's "area" view). */
+double reference_pixel_area(const struct tri_setup *t, int px, int py);
 
 /* The oracle of every test: bounding box, every pixel centre evaluated
  * directly from the snapped vertices with the cross product of seed 001

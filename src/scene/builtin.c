@@ -155,6 +155,31 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  18.3 2.2 1  0.3 0.9 1   61.6 21.7 1  0.3 0.9 1   61.4 22.6 1  0.3 0.9 1\n"
         "tri  2.6 22.4 1  1 0.4 0.3   40.3 28.2 2  0.9 0.6 0.3   12.2 46.5 1.5  1 0.5 0.6\n"
     },
+    { "samples", "a sliver, a near-horizontal and a near-vertical edge, and a two-triangle quad (lesson 08)",
+        "# anti-aliasing with coverage samples: a thin sliver, a wide triangle\n"
+        "# whose top edge is nearly horizontal and whose right edge is nearly\n"
+        "# vertical, and two triangles sharing a diagonal (watertight per sample)\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  2.3 3.1 1  1 0.85 0.2   61.7 9.4 1  1 0.85 0.2   61.2 10.6 1  1 0.85 0.2\n"
+        "tri  3.4 16.2 1.5  0.2 0.6 1   40.6 18.9 1  0.3 0.9 1   39.1 45.3 2  0.2 0.4 0.9\n"
+        "tri  44.2 20.3 1  1 0.35 0.3   61.6 21.8 1  1 0.35 0.3   58.7 44.6 1  0.9 0.6 0.3\n"
+        "tri  44.2 20.3 1  0.4 0.9 0.4   58.7 44.6 1  0.4 0.9 0.4   43.1 43.7 1  0.4 0.9 0.4\n"
+    },
+    { "samples-exhibits", "lesson 08's exhibits: a sliver, near-horizontal and near-vertical edges, a fan",
+        "# what the sample pattern decides: a sliver thinner than a pixel,\n"
+        "# a near-horizontal and a near-vertical edge (a regular grid of samples\n"
+        "# gives them only N + 1 levels, the rotated pattern N * N), and a fan of\n"
+        "# triangles sharing edges through sample positions (the fill rule per sample)\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  1.5 1.5 1  1 0.85 0.2   62.5 5.25 1  1 0.85 0.2   62.5 6.0 1  1 0.85 0.2\n"
+        "tri  2.0 10.0 1  0.3 0.9 1   30.0 11.0 1  0.3 0.9 1   2.0 30.0 1  0.3 0.9 1\n"
+        "tri  33.0 10.0 1  1 0.4 0.3   34.0 38.0 1  1 0.4 0.3   62.0 38.0 1  1 0.4 0.3\n"
+        "tri  16.375 38.125 1  0.9 0.9 0.9   4.125 40.125 1  0.9 0.9 0.9   10.125 46.625 1  0.9 0.9 0.9\n"
+        "tri  16.375 38.125 1  0.5 0.5 0.9   10.125 46.625 1  0.5 0.5 0.9   22.375 46.625 1  0.5 0.5 0.9\n"
+        "tri  16.375 38.125 1  0.9 0.5 0.5   22.375 46.625 1  0.9 0.5 0.5   28.625 40.125 1  0.9 0.5 0.5\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);
