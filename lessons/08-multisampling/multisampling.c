@@ -199,12 +199,10 @@ struct fragment {
     float z[SAMPLES_MAX];
 };
 
-/* The colour at plane values v[] (1/z, 255 r/z, ...): z = 1 / (1/z), each
- * attribute (a/z) * z, then src/shade/'s checker and packing. */
-static uint32_t colour_of(const struct run *r, const double v[PL_COUNT])
+/* The colour at plane values v[] (1/z, 255 r/z, ...) and depth z = 1 / (1/z):
+ * each attribute (a/z) * z, then src/shade/'s checker and packing. */
+static uint32_t colour_of(const struct run *r, const double v[PL_COUNT], double z)
 {
-    double z = 1.0 / v[PL_INV_Z];
-    COUNT(r->tr, 1, RECIPROCAL_COST);
     COUNT(r->tr, r->nplanes - 1, ATTRIBUTE_COST);
     return shade_scaled(r->p, r->tr, v[PL_R] * z, v[PL_G] * z, v[PL_B] * z, v[PL_S] * z,
                         v[PL_T] * z);
@@ -221,7 +219,11 @@ static void shade(const struct run *r, int x, int y, unsigned mask, struct fragm
     for (int q = 0; q < r->nplanes; q++)
         v[q] = pl->p0[q] + pl->px[q] * (x - pl->x0) + pl->py[q] * (y - pl->y0);
     COUNT(r->tr, r->nplanes, PLANE_AT_COST);
-    uint32_t centre = r->per_sample ? 0 : colour_of(r, v);
+    uint32_t centre = 0;
+    if (!r->per_sample) {
+        centre = colour_of(r, v, 1.0 / v[PL_INV_Z]);
+        COUNT(r->tr, 1, RECIPROCAL_COST);
+    }
     f->mask = mask;
     for (int s = 0; s < r->pt.n; s++) {
         if (!(mask >> s & 1))
@@ -231,9 +233,10 @@ static void shade(const struct run *r, int x, int y, unsigned mask, struct fragm
         for (int q = 0; q < used; q++)
             vs[q] = v[q] + r->plane_off[s][q];
         COUNT(r->tr, used, PLANE_STEP_COST);
-        f->z[s] = (float)(1.0 / vs[PL_INV_Z]);
+        double z = 1.0 / vs[PL_INV_Z];
         COUNT(r->tr, 1, RECIPROCAL_COST);
-        f->color[s] = r->per_sample ? colour_of(r, vs) : centre;
+        f->z[s] = (float)z;
+        f->color[s] = r->per_sample ? colour_of(r, vs, z) : centre;
     }
 }
 
@@ -492,7 +495,7 @@ static const char *const compare[] = { "05-block-classification", NULL };
 
 const struct lesson lesson_08 = {
     .id = "08-multisampling",
-    .title = "anti-aliasing with several coverage samples per pixel",
+    .title = "Anti-aliasing with coverage samples, exact per sample",
     .pseudocode = pseudocode,
     .builtin_scene = "samples",
     .exhibit_scene = "samples-exhibits",
