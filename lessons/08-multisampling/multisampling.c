@@ -55,8 +55,9 @@ static const char *const pseudocode[] = {
 enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
 
 /* trace_event.aux[] of this lesson: samples per pixel, how many of them the
- * pixel test found covered. The mask itself is in mask[0] (bit s = sample s). */
-static const char *const aux_names[] = { "samples", "covered", NULL };
+ * pixel test found covered, the coverage mask (bit s = sample s; also in
+ * mask[0]), and 1 when the samples lie on the exhibit's regular grid. */
+static const char *const aux_names[] = { "samples", "covered", "mask", "grid", NULL };
 
 #define Q_DEFAULT 8
 
@@ -85,11 +86,6 @@ struct pattern {
     int dx[SAMPLES_MAX], dy[SAMPLES_MAX];
     int lo_x, hi_x, lo_y, hi_y;     /* smallest and largest dx, dy */
 };
-
-/* The exhibit's regular grid: 4 samples at the quarter points, 8 on a 4 x 2 grid. */
-static const struct sample_pattern grid4 = { 4, { 64, 192, 64, 192 }, { 64, 64, 192, 192 } };
-static const struct sample_pattern grid8 = {
-    8, { 32, 96, 160, 224, 32, 96, 160, 224 }, { 64, 64, 64, 64, 192, 192, 192, 192 } };
 
 static void pattern_setup(struct pattern *pt, const struct sample_pattern *sp)
 {
@@ -156,6 +152,7 @@ struct run {
     int nplanes;                        /* 1/z, r, g, b (and s, t with a checker) */
     double plane_off[SAMPLES_MAX][PL_COUNT];    /* a plane's offset at sample s */
     bool per_sample;                    /* SSAA: shade every covered sample */
+    float grid;                         /* 1: the exhibit's grid (narrated, for the explorer) */
     uint32_t *scolor;                   /* the samples: n per pixel, or the pixels */
     float *sdepth;                      /*   themselves when n = 1 */
 };
@@ -345,7 +342,7 @@ static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
             NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_MASK, .x = x, .y = y,
                     .e = { cx[0] - e->bias[0], cx[1] - e->bias[1], cx[2] - e->bias[2] },
                     .flags = mask ? TRACE_INSIDE : 0, .mask = { (uint16_t)mask },
-                    .aux = { (float)r->pt.n, (float)__builtin_popcount(mask) });
+                    .aux = { (float)r->pt.n, (float)__builtin_popcount(mask), (float)mask, r->grid });
             if (mask) {
                 struct fragment f;
                 struct outcome o;
@@ -354,7 +351,7 @@ static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
                 NARRATE(r->tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y,
                         .z = o.nearest, .rgba = o.rgba, .flags = o.passed ? TRACE_DEPTH_PASS : 0,
                         .mask = { (uint16_t)mask },
-                        .aux = { (float)r->pt.n, (float)__builtin_popcount(mask) });
+                        .aux = { (float)r->pt.n, (float)__builtin_popcount(mask), (float)mask, r->grid });
                 if (!frozen(r->tr))
                     store(r, x, y, mask, &o);
             }
@@ -392,7 +389,7 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
             .mask = { (uint16_t)m[0], (uint16_t)m[1], (uint16_t)m[2] },
             .e = { edge_at(e, 0, x0, y0) - e->bias[0], edge_at(e, 1, x0, y0) - e->bias[1],
                    edge_at(e, 2, x0, y0) - e->bias[2] },
-            .aux = { (float)r->pt.n });
+            .aux = { (float)r->pt.n, 0, 0, r->grid });
     if (klass == BLOCK_FULL && !frozen(r->tr))
         full_block(r, x0, y0, x1, y1);
     else if (klass == BLOCK_PARTIAL)
@@ -416,7 +413,7 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
     if (!sp)
         sp = sample_pattern(n = 1);
     if (o.grid)
-        sp = n == 4 ? &grid4 : n == 8 ? &grid8 : sp;
+        sp = sample_grid(n);    /* the exhibit's regular grid instead */
     /* The target's per-sample storage, made on the first triangle (any
      * driver's target works); without memory for it, the pixel centre alone. */
     if ((n > 1 && (!fb->samples || fb->samples->n != n) && !target_multisample(fb, n))
@@ -429,7 +426,7 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
     int box[4];
     bool any = sample_box(t, &r.pt, box);
     NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = box[0], .y = box[1], .x1 = box[2],
-            .y1 = box[3], .e = { t->area2, 0, 0 }, .aux = { (float)n });
+            .y1 = box[3], .e = { t->area2, 0, 0 }, .aux = { (float)n, 0, 0, o.grid && n > 1 });
     if (!any)
         return;
     r.t = t;
@@ -437,6 +434,7 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
     r.fb = fb;
     r.tr = tr;
     r.per_sample = o.per_sample;
+    r.grid = o.grid && n > 1;
     edges_setup(&r.e, t, &r.pt, o.fill_rule);
     planes_setup(&r.pl, t, p);
     r.nplanes = p->checker > 0 ? PL_COUNT : PL_S;

@@ -300,6 +300,8 @@ void paint_panel(struct painter *p)
             at = cat(buf, sizeof buf, at, "sub-pixel bits %d  ", ex->params.subpixel_bits);
         if (prm & LESSON_PARAM_BLOCK)
             at = cat(buf, sizeof buf, at, "block %d  ", ex->params.block_size ? ex->params.block_size : 8);
+        if (prm & LESSON_PARAM_SAMPLES)
+            at = cat(buf, sizeof buf, at, "samples %d  ", ex->params.samples > 1 ? ex->params.samples : 1);
         if (prm & LESSON_PARAM_AFFINE)
             at = cat(buf, sizeof buf, at, "%s", ex->params.affine ? "affine" : "perspective");
         y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
@@ -362,6 +364,8 @@ void paint_help(struct painter *p)
         at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
     if (ex->lesson->params & LESSON_PARAM_BLOCK)
         at = cat(keys, n, at, "B                    block size 4, 8, 16\n");
+    if (ex->lesson->params & LESSON_PARAM_SAMPLES)
+        at = cat(keys, n, at, "M                    samples per pixel 1, 4, 8\n");
     if (ex->lesson->params & LESSON_PARAM_AFFINE)
         at = cat(keys, n, at, "P                    affine / perspective-correct\n");
     at = cat(keys, n, at,

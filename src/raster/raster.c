@@ -205,6 +205,14 @@ const struct sample_pattern *sample_pattern(int n)
     return n == 1 ? &one : n == 4 ? &four : n == 8 ? &eight : NULL;
 }
 
+const struct sample_pattern *sample_grid(int n)
+{
+    static const struct sample_pattern four = { 4, { 64, 192, 64, 192 }, { 64, 64, 192, 192 } };
+    static const struct sample_pattern eight = {
+        8, { 32, 96, 160, 224, 32, 96, 160, 224 }, { 64, 64, 64, 64, 192, 192, 192, 192 } };
+    return n == 4 ? &four : n == 8 ? &eight : sample_pattern(n);
+}
+
 bool target_copy(struct target *dst, const struct target *src)
 {
     if (dst->w != src->w || dst->h != src->h || !dst->color) {

@@ -176,6 +176,9 @@ struct sample_pattern {
 
 /* The standard pattern of n = 1, 4 or 8 samples (anything else: NULL). */
 const struct sample_pattern *sample_pattern(int n);
+/* A regular grid of n = 1, 4 or 8 samples, lesson 08's exhibit: the centre,
+ * the quarter points (64 or 192, 64 or 192), a 4 x 2 grid. */
+const struct sample_pattern *sample_grid(int n);
 
 /* Per-sample storage of a multisample target: n colours and n depths per
  * pixel, sample s of pixel i at index i * n + s. target_write() never looks
