@@ -342,6 +342,17 @@ Test(lesson08, exhibit_fill_rule_on_the_exhibit_scene)
     cr_expect_eq(on, 16, "8 samples on the shared edge, seen from both triangles");
     free(ref);
     scene_free(&s);
+    /* the whole scene: the near-horizontal quad's diagonal (2, 10) - (30, 30)
+     * passes through 8 more samples */
+    long all_with = scene_samples("samples-exhibits", "msaa", 4, 0, 9, &a);
+    long all_without = scene_samples("samples-exhibits", "no-fill-rule", 4, 0, 9, &b);
+    int pixels = 0;
+    for (int i = 0; i < a.w * a.h; i++)
+        pixels += b.count[i] > a.count[i];
+    cr_expect_eq(all_without - all_with, 16);
+    cr_expect_eq(pixels, 16);
+    target_free(&a);
+    target_free(&b);
 }
 
 /* --- jaggies and the exact area ------------------------------------------------- */
