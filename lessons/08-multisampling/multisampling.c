@@ -414,10 +414,12 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
         sp = sample_pattern(n = 1);
     if (o.grid)
         sp = sample_grid(n);    /* the exhibit's regular grid instead */
-    /* The target's per-sample storage, made on the first triangle (any
-     * driver's target works); without memory for it, the pixel centre alone. */
-    if ((n > 1 && (!fb->samples || fb->samples->n != n) && !target_multisample(fb, n))
-        || (n == 1 && fb->samples && !target_multisample(fb, 1)))
+    /* The target's per-sample storage: made by the driver (render_scene,
+     * replay), or here for a target that has none; without memory for it,
+     * the pixel centre alone. One sample needs none: it is the pixel. */
+    if (n == 1)
+        target_multisample(fb, 1);
+    else if ((!fb->samples || fb->samples->n != n) && !target_multisample(fb, n))
         sp = sample_pattern(n = 1);
     pattern_setup(&r.pt, sp);
     r.scolor = n > 1 ? fb->samples->color : fb->color;

@@ -192,7 +192,9 @@ struct target_samples {
 };
 
 /* Give fb per-sample storage of n samples (2..SAMPLES_MAX), cleared to the
- * background; n = 1 drops it. False when memory runs out (fb unchanged). */
+ * background; n <= 1 drops it. False when memory runs out (fb unchanged).
+ * The drivers (render_scene, replay) call it with the run's params.samples;
+ * lesson 08 also makes it on a target that has none. */
 bool target_multisample(struct target *fb, int n);
 
 bool target_init(struct target *fb, int w, int h, uint32_t background);
