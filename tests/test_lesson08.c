@@ -14,8 +14,23 @@
 #include <string.h>
 
 #include "testlib.h"
+#include "lesson_explorer.h"
 
 extern const struct lesson lesson_08, lesson_08_fast;
+
+/* The lesson's text and answer key: the numbers they quote, marked
+ * <!--=l08.KEY--> (testlib.h), are the ones recomputed here. */
+#define README "lessons/08-multisampling/README.md"
+#define ANSWERS "lessons/08-multisampling/ANSWERS.md"
+
+/* The count `got` is the number the text quotes before marker `key`. */
+static void expect_quoted(const char *path, const char *key, double got)
+{
+    double tol;
+    double quoted = text_number(path, key, &tol);
+    cr_expect(fabs(quoted - got) <= tol, "%s quotes %g for %s, the lesson computes %.17g", path,
+              quoted, key, got);
+}
 
 /* CONVENTIONS.md, "Samples": positions in 1/256 pixel from the top-left
  * corner, typed in again here (not taken from the code under test). */
@@ -317,6 +332,7 @@ Test(lesson08, exhibit_fill_rule_on_the_exhibit_scene)
     long with = scene_samples("samples-exhibits", "msaa", 4, 5, 9, &a);
     long without = scene_samples("samples-exhibits", "no-fill-rule", 4, 5, 9, &b);
     cr_expect_eq(without - with, 8, "samples covered twice: %ld", without - with);
+    expect_quoted(README, "l08.fill.doubled", (double)(without - with));
     int doubled = 0;
     for (int i = 0; i < a.w * a.h; i++) {
         bool column16 = i % a.w == 16 && i / a.w >= 39 && i / a.w <= 46;
@@ -351,6 +367,7 @@ Test(lesson08, exhibit_fill_rule_on_the_exhibit_scene)
         pixels += b.count[i] > a.count[i];
     cr_expect_eq(all_without - all_with, 16);
     cr_expect_eq(pixels, 16);
+    expect_quoted(README, "l08.fill.scene", pixels);
     target_free(&a);
     target_free(&b);
 }
@@ -427,18 +444,17 @@ Test(lesson08, exhibit_jaggies_fewer_with_more_samples)
     cr_log_info("off by more than 1/4: sliver %d %d %d, near-horizontal %d %d %d\n", s1.off, s4.off,
                 s8.off, h1.off, h4.off, h8.off);
     cr_expect(s1.off > s4.off && s4.off >= s8.off && h1.off > h4.off && h4.off >= h8.off);
-    cr_expect_eq(s1.off, 42);
-    cr_expect_eq(h1.off, 14);
-    cr_expect_eq(s4.off + s8.off + h4.off + h8.off, 0);
+    expect_quoted(README, "l08.sliver.off1", s1.off);
+    expect_quoted(README, "l08.horizontal.off1", h1.off);
+    cr_expect_eq(s4.off + s8.off + h4.off + h8.off, 0, "the text says: none at 4 or 8 samples");
     /* more than 1/N off: never at N = 4 on these edges, and only on the sliver at 8 */
     struct jaggies s4n = jaggies("msaa", SLIVER, 1, 4, 0.25), s8n = jaggies("msaa", SLIVER, 1, 8, 0.125);
     struct jaggies h4n = jaggies("msaa", HORIZONTAL, 3, 4, 0.25), h8n = jaggies("msaa", HORIZONTAL, 3, 8, 0.125);
     cr_log_info("off by more than 1/N: sliver %d %d, near-horizontal %d %d\n", s4n.off, s8n.off,
                 h4n.off, h8n.off);
-    cr_expect_eq(s4n.off, 0);
-    cr_expect_eq(s8n.off, 1);
-    cr_expect_eq(h4n.off + h8n.off, 0);
-    cr_expect_float_eq(s1.worst, 0.828, 0.001, "one sample: a pixel 83%% covered stays dark");
+    cr_expect_eq(s4n.off + h4n.off + h8n.off, 0, "the text says: none but the sliver at 8");
+    expect_quoted(README, "l08.sliver.off8n", s8n.off);
+    expect_quoted(README, "l08.sliver.worst1", s1.worst);
 }
 
 Test(lesson08, exhibit_regular_grid_against_the_rotated_pattern)
@@ -449,7 +465,6 @@ Test(lesson08, exhibit_regular_grid_against_the_rotated_pattern)
      * estimates up to a quarter pixel off; the rotated pattern puts its 4
      * samples at 4 different heights and 4 different x. */
     const int first[2] = { HORIZONTAL, VERTICAL };
-    const int want_rot[2] = { 0, 0 }, want_grid[2] = { 12, 12 };
     for (int e = 0; e < 2; e++) {
         /* off by more than an eighth (half a step of 4 samples), above rounding */
         struct jaggies rot = jaggies("msaa", first[e], first[e] + 2, 4, 0.125 + 1e-9);
@@ -460,12 +475,12 @@ Test(lesson08, exhibit_regular_grid_against_the_rotated_pattern)
         cr_expect_gt(grid.off, rot.off);
         cr_expect_gt(rot.odd, 2 * grid.odd, "the rotated pattern sees odd counts, the grid hardly");
         cr_expect_lt(rot.worst, grid.worst);
-        cr_expect_eq(rot.off, want_rot[e]);
-        cr_expect_eq(grid.off, want_grid[e]);
-        cr_expect_eq(grid.odd, 0);
-        cr_expect_eq(rot.odd, e ? 16 : 12);
+        cr_expect_eq(rot.off, 0, "the text says: the rotated pattern is never off by more than 1/8");
+        cr_expect_eq(grid.odd, 0, "the text says: the grid never gives an odd count");
         cr_expect_float_eq(rot.worst, 0.125, 1e-6);
-        cr_expect_float_eq(grid.worst, 0.232, 0.001);
+        expect_quoted(README, "l08.grid.off", grid.off);
+        expect_quoted(README, "l08.grid.worst", grid.worst);
+        expect_quoted(README, e ? "l08.vertical.odd" : "l08.horizontal.odd", rot.odd);
     }
 }
 
@@ -560,7 +575,7 @@ Test(lesson08, resolved_colours_within_2_levels_of_a_reference_resolve, .timeout
 
 /* --- what each way of shading costs ------------------------------------------------ */
 
-static struct trace_counters run_counted(const char *vname, int n)
+static struct trace_counters run_counted_q(const char *vname, int n, int q)
 {
     struct scene s;
     char err[256];
@@ -569,6 +584,7 @@ static struct trace_counters run_counted(const char *vname, int n)
     cr_assert(target_init(&fb, s.w, s.h, 0));
     struct raster_params p = default_params();
     p.samples = n;
+    p.block_size = q;
     struct trace_counters sum = { 0 };
     for (int i = 0; i < s.ntris; i++) {
         struct tri_setup t;
@@ -581,6 +597,11 @@ static struct trace_counters run_counted(const char *vname, int n)
     target_free(&fb);
     scene_free(&s);
     return sum;
+}
+
+static struct trace_counters run_counted(const char *vname, int n)
+{
+    return run_counted_q(vname, n, 0);
 }
 
 Test(lesson08, supersampling_multiplies_the_shading_multisampling_does_not)
@@ -597,9 +618,43 @@ Test(lesson08, supersampling_multiplies_the_shading_multisampling_does_not)
     cr_expect_lt(m8.mul - m4.mul, s8.mul - s4.mul);
     cr_expect_lt(m4.mul, 2 * m1.mul, "MSAA at 4 samples: less than twice one sample");
     /* the numbers the lesson's text quotes */
-    cr_expect_eq(m1.mul, 12624);
-    cr_expect_eq(m4.mul, 16974);
-    cr_expect_eq(m8.mul, 21137);
-    cr_expect_eq(s4.mul, 23752);
-    cr_expect_eq(s8.mul, 38724);
+    expect_quoted(README, "l08.mul.msaa1", (double)m1.mul);
+    expect_quoted(README, "l08.mul.msaa4", (double)m4.mul);
+    expect_quoted(README, "l08.mul.msaa8", (double)m8.mul);
+    expect_quoted(README, "l08.mul.ssaa4", (double)s4.mul);
+    expect_quoted(README, "l08.mul.ssaa8", (double)s8.mul);
+    /* answer 2: the blocks full and the pixels tested at 1, 4 and 8 samples */
+    struct trace_counters b1 = run_counted_q("msaa", 1, 8), b4 = run_counted_q("msaa", 4, 8),
+                          b8 = run_counted_q("msaa", 8, 8);
+    expect_quoted(ANSWERS, "l08.full1", (double)b1.blocks[BLOCK_FULL]);
+    expect_quoted(ANSWERS, "l08.full4", (double)b4.blocks[BLOCK_FULL]);
+    expect_quoted(ANSWERS, "l08.full8", (double)b8.blocks[BLOCK_FULL]);
+    expect_quoted(ANSWERS, "l08.tested1", (double)b1.tested);
+    expect_quoted(ANSWERS, "l08.tested4", (double)b4.tested);
+    cr_expect_geq(b1.blocks[BLOCK_FULL], b4.blocks[BLOCK_FULL], "fewer full blocks with samples");
+}
+
+/* Answer 1: the offsets O_s of the edge (0, 0) - (8, 2) at 4 samples, as
+ * the explorer's TRIANGLE section prints them. */
+Test(lesson08, answer_1_offsets_as_the_explorer_prints_them)
+{
+    struct vertex v[3] = { test_vertex(0, 0), test_vertex(8, 2), test_vertex(0, 6) };
+    struct tri_setup t;
+    tri_setup(&t, v, 16, 16);
+    const struct lesson_explorer *x = lesson_explorer_of(&lesson_08);
+    cr_assert(x && x->constants);
+    struct raster_params p = default_params();
+    p.samples = 4;
+    char buf[1024];
+    x->constants(&t, &p, buf, sizeof buf);
+    /* edge AB of the triangle as set up (t.swapped says whether B and C traded places) */
+    const char *want[4] = { "O_0 = -2.750", "O_1 = -1.750", "O_2 = 1.750", "O_3 = 2.750" };
+    const char *want_swapped[4] = { "O_0 = 2.750", "O_1 = 1.750", "O_2 = -1.750", "O_3 = -2.750" };
+    for (int s = 0; s < 4; s++) {
+        const char *w = t.swapped ? want_swapped[s] : want[s];
+        bool found = false;
+        for (const char *line = buf; line && *line && !found; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL)
+            found = strncmp(line, w, strlen(w)) == 0;
+        cr_expect(found, "no \"%s\" in:\n%s", w, buf);
+    }
 }
