@@ -103,7 +103,7 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
-	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+	$(B)/tristep-bench --out $(B) --markdown BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
 # Every figure of figures/list into $(FIGURES), one process each (cairo's SVG ids count per process).
 FIGURES  ?= figures
 figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)

@@ -329,6 +329,37 @@ Test(window, s_saves_the_scene_with_its_dragged_vertex, .fini = cleanup, .timeou
     scene_free(&s);
 }
 
+/* Figures for print in the window too: L switches to the light theme, C to
+ * the pixel grid alone, and E exports exactly what --figure draws with
+ * --theme light --figure-part canvas. */
+Test(window, light_theme_and_canvas_part_from_keys_export_the_print_figure, .fini = cleanup,
+     .timeout = 60)
+{
+    make_dir();
+    write_text(in_dir("keys"), "Right\nRight\nRight\nl\nc\ne\nq\n");
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--keys", "keys", "--size", size, NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    char *err = read_all(in_dir("err"), NULL);
+    cr_assert_eq(st, 0, "exit status %d; stderr:\n%s", st, err ? err : "");
+    free(err);
+    cairo_surface_t *got = load_png(in_dir("tristep-" PROGRAM "-step3-color.png"));
+    char *fargv[] = { (char *)program(), "--figure", "want.png", "--step", "3", "--view", "color",
+                      "--size", size, "--theme", "light", "--figure-part", "canvas", NULL };
+    cr_assert_eq(run(fargv, NULL, NULL, "figure.err", 30000), 0, "--figure failed");
+    cairo_surface_t *want = load_png(in_dir("want.png"));
+    cr_assert_eq(differing(got, want, 0, 0, WIN_W, WIN_H), 0,
+                 "the window's export after L and C is not the light canvas figure");
+    /* and it is the light one: a white page where the dark theme is dark */
+    cairo_surface_flush(got);
+    const uint32_t *px = (const uint32_t *)cairo_image_surface_get_data(got);
+    cr_expect_eq(px[2] & 0xffffff, 0xffffffu, "the corner is %06x, not white",
+                 (unsigned)(px[2] & 0xffffff));
+    cairo_surface_destroy(got);
+    cairo_surface_destroy(want);
+}
+
 Test(window, space_plays_at_the_speed_and_pauses, .fini = cleanup, .timeout = 60)
 {
     make_dir();

@@ -46,7 +46,7 @@
 static const char *const pseudocode[] = {
     "snap A, B, C; I0k, J0k, K0k of edges 01, 02, 03 (6)-(8)",  /* 0 */
     "K0k += bias0k   (top-left rule: 0 or -1)",                 /* 1 */
-    "F0k = I0k * minX + J0k * minY + K0k   (first centre)",     /* 2 */
+    "F0k = I0k X + J0k Y + K0k   (X, Y: the first centre)",     /* 2 */
     "Cy0k = F0k",                                               /* 3 */
     "loop y = minY to maxY:",                                   /* 4 */
     "  Cx0k = Cy0k;  u, v, w = Cx02, Cx03, Cx01 / area2  (13)-(15)", /* 5 */

@@ -289,6 +289,15 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         }
         break;
     case SDLK_e: export_view(a); break;
+    case SDLK_l:    /* figures for print: the light theme, also in the window */
+        ex->theme = ex->theme == THEME_LIGHT ? THEME_DARK : THEME_LIGHT;
+        say(a, "%s theme", theme_name(ex->theme));
+        break;
+    case SDLK_c:    /* the pixel grid alone, as --figure-part canvas */
+        ex->part = ex->part == PART_CANVAS ? PART_ALL : PART_CANVAS;
+        say(a, "%s", ex->part == PART_CANVAS ? "the pixel grid alone (C: panel and bar back)"
+                                             : "panel and scrub bar");
+        break;
     case SDLK_s: save_scene(a); break;
     case SDLK_f: ex->zoom = 0; break;
     case SDLK_h: case SDLK_F1: ex->help = !ex->help; break;

@@ -49,9 +49,14 @@ struct palette {
     uint32_t probe;                                 /* a point a lesson computes */
     uint32_t upper, lower;                          /* two parts of one triangle */
     uint32_t brighter, deeper;                      /* gradients of luminance, of depth */
+    bool paper;             /* for print: pixels nothing was drawn on show as `empty_px`,
+                               not as the scene's (dark) background */
 };
 
-extern const struct palette palette_dark;
+extern const struct palette palette_dark, palette_light;
+
+/* The palette of a theme. */
+const struct palette *palette_of(enum theme t);
 
 static inline void set_rgba(cairo_t *cr, uint32_t c, double a)
 {

@@ -211,7 +211,13 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     int done = explorer_finished(ex);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
-    at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    if (done == 0) {
+        /* nothing finished yet: compare the whole scene rather than show zeros */
+        done = ex->replay.ntris;
+        at = cat(buf, n, at, "whole scene, %d triangle%s:\n", done, done == 1 ? "" : "s");
+    } else {
+        at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    }
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
@@ -330,10 +336,13 @@ void paint_panel(struct painter *p)
     }
     y += heading(p, x, y, w, "SO FAR");
     y += counters(p, x, y, w) + 8 * s;
-    (void)y;
-    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
-    draw_text(p, x, L->h - 24 * s, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11, p->pal->dim, false);
-    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    /* the key hints at the bottom, unless the panel's text reaches down there */
+    if (y <= L->h - 24 * s) {
+        pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
+        draw_text(p, x, L->h - 24 * s, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11,
+                  p->pal->dim, false);
+        pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    }
     cairo_restore(cr);
 }
 
@@ -374,6 +383,8 @@ void paint_help(struct painter *p)
         at = cat(keys, n, at, "P                    affine / perspective-correct\n");
     at = cat(keys, n, at,
         "E                    export the view (PNG and SVG)\n"
+        "L                    light theme (for paper) / dark\n"
+        "C                    the pixel grid alone / with panel and bar\n"
         "F                    fit the scene to the window\n"
         "H / F1               this help\n"
         "Q / Esc              quit\n"

@@ -463,6 +463,8 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     ex->edge = -1;
     ex->zoom = d->zoom;
     ex->scale = d->scale > 0 ? d->scale : 1;
+    ex->theme = d->theme;
+    ex->part = d->part;
     ex->speed = 8;              /* 16 events per second */
     ex->marks_tri = -1;
     ex->exact_upto = -1;
@@ -506,14 +508,53 @@ void explorer_free(struct explorer *ex)
 
 /* --- layout ---------------------------------------------------------------------- */
 
+static const char *const theme_names[THEME_COUNT] = { "dark", "light" };
+static const char *const part_names[PART_COUNT] = { "all", "canvas" };
+
+/* The index of `name` in names[0..n), or -1. */
+static int name_index(const char *const *names, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *theme_name(enum theme t)
+{
+    return t >= 0 && t < THEME_COUNT ? theme_names[t] : "?";
+}
+
+bool theme_from_name(const char *name, enum theme *out)
+{
+    int i = name_index(theme_names, THEME_COUNT, name);
+    if (i >= 0)
+        *out = (enum theme)i;
+    return i >= 0;
+}
+
+const char *figure_part_name(enum figure_part f)
+{
+    return f >= 0 && f < PART_COUNT ? part_names[f] : "?";
+}
+
+bool figure_part_from_name(const char *name, enum figure_part *out)
+{
+    int i = name_index(part_names, PART_COUNT, name);
+    if (i >= 0)
+        *out = (enum figure_part)i;
+    return i >= 0;
+}
+
 void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L)
 {
     double s = ex->scale;
     L->s = s;
     L->w = w, L->h = h;
-    L->pw = fmin(430 * s, w * 0.45);
+    bool canvas_only = ex->part == PART_CANVAS;   /* the grid alone fills the frame */
+    L->pw = canvas_only ? 0 : fmin(430 * s, w * 0.45);
     L->px = w - L->pw;
-    L->bar_h = 46 * s;
+    L->bar_h = canvas_only ? 0 : 46 * s;
     L->cx = 0, L->cy = 0;
     L->cw = L->px, L->ch = h - L->bar_h;
     L->bar_y = L->ch;

@@ -53,8 +53,10 @@ enum { EDGE_AB, EDGE_BC, EDGE_CA };
  *
  *     F(P) = I * Px + J * Py + K,   I = Ay - By,  J = Bx - Ax,  K = Ax By - Ay Bx
  *
- * is the perp-dot product |AB x AP| of seed 001, formula (3), in 1/256 units
- * (one unit of F is 1/65536 of a square pixel; F01 + F02 + F03 = 2 * area). */
+ * is the perp-dot product AB x AP of seed 001, formula (3), in 1/256 units: a
+ * signed number (the seed writes it |AB x AP|, but those are not absolute
+ * values: its sign says on which side of AB the point P lies). One unit of F
+ * is 1/65536 of a square pixel; F01 + F02 + F03 = 2 * area. */
 struct tri_setup {
     struct vertex v[3];      /* A, B, C after normalisation (B and C swapped if needed) */
     int32_t x[3], y[3];      /* snapped positions, 1/256 pixel */
