@@ -13,6 +13,7 @@
 
 #include "app/app.h"
 #include "draw/figure.h"
+#include "front/front.h"
 #include "trace/replay.h"
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)
@@ -324,6 +325,11 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     if (!loaded) {
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
+    }
+    if (!front_scene(&s)) {    /* a 3-D scene: its screen triangles */
+        fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
+        scene_free(&s);
+        return EXIT_RUN;
     }
     o.params.checker = s.checker;
 

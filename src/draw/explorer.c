@@ -7,26 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "front/front.h"
+
 static const char *const view_names[VIEW_BUILTIN_COUNT] = {
     "color", "coverage", "edges", "bary", "depth", "blocks", "spans",
 };
 
 static const char *const edge_view_names[3] = { "edge-ab", "edge-bc", "edge-ca" };
-
-/* --- scenes ------------------------------------------------------------------ */
-
-static bool scene_copy(struct scene *dst, const struct scene *src)
-{
-    *dst = *src;
-    dst->tris = NULL;
-    dst->ntris = dst->cap = 0;
-    for (int i = 0; i < src->ntris; i++)
-        if (!scene_add(dst, src->tris[i].v)) {
-            scene_free(dst);
-            return false;
-        }
-    return true;
-}
 
 /* --- replaying a step ------------------------------------------------------- */
 
@@ -363,7 +350,12 @@ bool explorer_cycle_exhibit(struct explorer *ex)
         /* the exhibits are made to be seen on the lesson's exhibit scene */
         struct scene s;
         char err[256];
-        if (scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err)) {
+        bool ok = scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err);
+        if (ok && !front_scene(&s)) {   /* a 3-D scene: its screen triangles */
+            scene_free(&s);
+            ok = false;
+        }
+        if (ok) {
             scene_free(&ex->scene);
             ex->scene = s;
             ex->scene_is_default = false;
