@@ -22,7 +22,7 @@
 #include <string.h>
 
 #include "front/front.h"
-#include "trace/replay.h"   /* render_scene */
+#include "explore/replay.h" /* render_scene */
 #include "testlib.h"
 
 /* --- the test's own reading of the projection -------------------------------------- */

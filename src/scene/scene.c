@@ -218,6 +218,18 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
     return ok;
 }
 
+bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
+{
+    const struct builtin_scene *b = builtin_find(name);
+    if (!b) {
+        snprintf(err, errlen, "builtin:%s:0: no such built-in scene (try --list-scenes)", name);
+        return false;
+    }
+    char label[64];
+    snprintf(label, sizeof label, "builtin:%s", name);
+    return scene_parse(s, label, b->text, strlen(b->text), err, errlen);
+}
+
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
 {
     if (strncmp(path, "builtin:", 8) == 0)
@@ -301,16 +313,6 @@ void scene_free(struct scene *s)
     memset(s, 0, sizeof *s);
 }
 
-uint32_t scene_background(const struct scene *s)
-{
-    return pack_rgb(s->background[0], s->background[1], s->background[2]);
-}
-
-bool scene_number(struct parser *p, const char *tok, double *out)
-{
-    return parse_number(p, tok, out);
-}
-
 bool scene_copy(struct scene *dst, const struct scene *src)
 {
     *dst = *src;
@@ -335,4 +337,14 @@ bool scene_copy(struct scene *dst, const struct scene *src)
 oom:
     scene_free(dst);
     return false;
+}
+
+uint32_t scene_background(const struct scene *s)
+{
+    return pack_rgb(s->background[0], s->background[1], s->background[2]);
+}
+
+bool scene_number(struct parser *p, const char *tok, double *out)
+{
+    return parse_number(p, tok, out);
 }

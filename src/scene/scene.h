@@ -80,9 +80,10 @@ bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
  * is written as the screen-space triangles the front end made of it). */
 bool scene_write(const struct scene *s, FILE *out);
 void scene_free(struct scene *s);
-bool scene_add(struct scene *s, const struct vertex v[3]);
-/* A deep copy (dst is overwritten); false when out of memory (dst left empty). */
+/* A copy with triangles (and a 3-D world) of its own; false (dst empty)
+ * when out of memory. */
 bool scene_copy(struct scene *dst, const struct scene *src);
+bool scene_add(struct scene *s, const struct vertex v[3]);
 bool world_add(struct world *w, const struct world_tri *t);
 uint32_t scene_background(const struct scene *s);
 
