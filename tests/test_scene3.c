@@ -278,3 +278,76 @@ Test(scene3, written_as_its_screen_triangles, .init = make_dir, .fini = remove_d
     scene_free(&b);
     free(text);
 }
+
+/* --- the built-in model and the built-in 3-D scenes ------------------------------ */
+
+bool builtin_model(const char *name, char **text, size_t *len);   /* src/scene/models.c */
+
+Test(scene3, the_shipped_model_is_what_the_code_makes)
+{
+    char *text;
+    size_t len;
+    cr_assert(builtin_model("torus.obj", &text, &len));
+    FILE *f = fopen("models/torus.obj", "rb");
+    cr_assert_not_null(f, "models/torus.obj is missing (run the tests from the repository)");
+    char *file = malloc(len + 2);
+    size_t got = fread(file, 1, len + 1, f);
+    fclose(f);
+    cr_expect_eq(got, len, "models/torus.obj has %zu bytes, the generator makes %zu", got, len);
+    cr_expect(got == len && memcmp(file, text, len) == 0,
+              "models/torus.obj differs from what src/scene/models.c makes");
+    free(file);
+    free(text);
+    cr_expect(!builtin_model("no-such.obj", &text, &len));
+    cr_expect_null(text);
+}
+
+Test(scene3, builtin_model_loads_and_a_missing_one_is_named, .init = make_dir, .fini = remove_dir)
+{
+    struct scene s = load_ok("size 8 8\n" CAMERA "obj builtin:torus.obj 0.5 0.5 0.5\n");
+    cr_expect_eq(s.world.ntris, 24 * 12 * 2, "24 x 12 quads, fanned");
+    scene_free(&s);
+    const char *path = put("m.scene", "size 8 8\n" CAMERA "obj builtin:teapot.obj 1 1 1\n",
+                           strlen("size 8 8\n" CAMERA "obj builtin:teapot.obj 1 1 1\n"));
+    char err[512];
+    cr_assert(!scene_load(&s, path, err, sizeof err));
+    char prefix[300];
+    snprintf(prefix, sizeof prefix, "%s:3: ", path);
+    cr_expect(strncmp(err, prefix, strlen(prefix)) == 0 && strstr(err, "teapot"), "%s", err);
+}
+
+/* Each built-in 3-D scene shows what its description promises. */
+Test(scene3, builtin_3d_scenes_show_what_they_say)
+{
+    static const char *const names[] = { "room", "horizon", "model", "depth-pair" };
+    for (int i = 0; i < 4; i++) {
+        struct scene s;
+        char err[256];
+        cr_assert(scene_builtin(&s, names[i], err, sizeof err), "%s", err);
+        cr_assert_gt(s.world.camera_line, 0, "builtin:%s is a 3-D scene", names[i]);
+        cr_assert(front_scene(&s));
+        uint8_t *count = calloc((size_t)s.w * s.h, 1);
+        for (int k = 0; k < s.ntris; k++) {
+            struct tri_setup t;
+            tri_setup(&t, s.tris[k].v, s.w, s.h);
+            reference_mask(&t, count);
+        }
+        int hist[4] = { 0 };
+        for (int k = 0; k < s.w * s.h; k++)
+            hist[count[k] < 3 ? count[k] : 3]++;
+        if (i == 0) {
+            cr_expect_eq(hist[1], s.w * s.h, "room: every pixel sees exactly one wall");
+            cr_expect_gt(s.ntris, s.world.ntris, "room: the near plane cut walls");
+        } else if (i == 1) {
+            cr_expect_eq(hist[2] + hist[3], 0, "horizon: no pixel twice");
+            cr_expect(hist[0] > s.w * s.h / 4 && hist[1] > s.w * s.h / 4, "horizon: sky and floor");
+        } else if (i == 2) {
+            cr_expect_eq(s.world.cull, CULL_BACK);
+            cr_expect_gt(hist[1], 500, "model: the torus is seen");
+        } else {
+            cr_expect_eq(hist[2], s.w * s.h, "depth-pair: both walls fill the screen");
+        }
+        free(count);
+        scene_free(&s);
+    }
+}

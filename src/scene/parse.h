@@ -4,6 +4,7 @@
 #ifndef TRISTEP_SCENE_PARSE_H
 #define TRISTEP_SCENE_PARSE_H
 
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -34,5 +35,10 @@ bool scene3_finish(struct parser *p, struct scene *s);
  * colour rgb, to w. Errors name the OBJ file (`name`) and its line. */
 bool obj_read(struct world *w, FILE *f, const char *name, const double rgb[3], char *err,
               size_t errlen);
+
+/* models.c: the text of the built-in OBJ model `name` ("torus.obj"), made
+ * afresh into *text (the caller frees it). False for no such model (*text
+ * NULL) or when out of memory (*len != 0 is never promised then). */
+bool builtin_model(const char *name, char **text, size_t *len);
 
 #endif

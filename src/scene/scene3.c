@@ -8,6 +8,8 @@
  * scene.c reads every line and hands these four keywords over. Nothing here
  * projects: the camera and the world triangles are checked and stored, and
  * the 3-D front end (src/front/) makes screen triangles of them. */
+#define _POSIX_C_SOURCE 200809L   /* fmemopen */
+
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -157,7 +159,8 @@ static bool parse_tri3(struct parser *p, struct scene *s, char **tok, int n)
 }
 
 /* obj PATH r g b: PATH relative to the scene file's folder (as given: to the
- * current folder for standard input and built-in scenes). */
+ * current folder for standard input and built-in scenes); builtin:NAME is a
+ * model of models.c. */
 static bool parse_obj(struct parser *p, struct scene *s, char **tok, int n)
 {
     if (n != 4)
@@ -165,6 +168,19 @@ static bool parse_obj(struct parser *p, struct scene *s, char **tok, int n)
     double rgb[3];
     if (!numbers(p, tok + 1, 3, rgb) || !colour(p, "obj colour", rgb))
         return false;
+    if (strncmp(tok[0], "builtin:", 8) == 0) {
+        char *text;
+        size_t len;
+        if (!builtin_model(tok[0] + 8, &text, &len))
+            return scene_fail(p, "no built-in model '%s' (there is builtin:torus.obj)", tok[0]);
+        FILE *f = fmemopen(text, len, "rb");
+        bool ok = f ? obj_read(&s->world, f, tok[0], rgb, p->err, p->errlen)
+                    : scene_fail(p, "out of memory");
+        if (f)
+            fclose(f);
+        free(text);
+        return ok;
+    }
     const char *slash = strrchr(p->name, '/');
     size_t dir = tok[0][0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
     size_t len = dir + strlen(tok[0]) + 1;
