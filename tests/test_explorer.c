@@ -14,6 +14,7 @@
 #include <time.h>
 
 #include "draw/paint.h"
+#include "front/front.h"   /* front_scene */
 #include "testlib.h"
 
 /* --- scenes ------------------------------------------------------------------------ */
@@ -24,10 +25,12 @@ enum { SCENE_BUILTIN, SCENE_EXHIBIT, SCENE_RANDOM, SCENE_KINDS };
 static bool load_scene(const struct lesson *l, int kind, struct scene *s)
 {
     char err[256];
+    /* a 3-D scene (lesson 06) with its screen triangles, as the program makes them */
     if (kind == SCENE_BUILTIN)
-        return scene_builtin(s, l->builtin_scene, err, sizeof err);
+        return scene_builtin(s, l->builtin_scene, err, sizeof err) && front_scene(s);
     if (kind == SCENE_EXHIBIT)
-        return l->exhibit_scene && scene_builtin(s, l->exhibit_scene, err, sizeof err);
+        return l->exhibit_scene && scene_builtin(s, l->exhibit_scene, err, sizeof err)
+               && front_scene(s);
     /* a few random triangles of every category on a small target */
     memset(s, 0, sizeof *s);
     s->w = 20, s->h = 14;
@@ -69,12 +72,22 @@ static void count_kind(void *ctx, const struct trace_event *ev)
 /* The scene drawn by the variant with only the first `n` events happening
  * (n = UINT64_MAX: all), into fb. Returns the number of events that happened;
  * counts every kind of event and the row/block/span stops into *k. */
-static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *s, uint64_t n,
-                           struct target *fb, struct kinds *k)
+static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *given,
+                           uint64_t n, struct target *fb, struct kinds *k)
 {
+    /* a 3-D scene under a variant with a front end of its own (lesson 06's
+     * exhibits): its own screen triangles, as the explorer makes them */
+    struct scene own = { 0 };
+    const struct scene *s = given;
+    front_fn front = lesson_front(l, &l->variants[variant]);
+    if (given->world.camera_line && front != front_scene) {
+        cr_assert(scene_copy(&own, given) && front(&own));
+        s = &own;
+    }
     cr_assert(target_init(fb, s->w, s->h, scene_background(s)));
     struct raster_params p = default_params();
     p.checker = s->checker;
+    p.scene = s;
     uint64_t done = 0;
     struct kinds local = { 0 };
     if (!k)
@@ -92,6 +105,7 @@ static uint64_t run_frozen(const struct lesson *l, int variant, const struct sce
         if (happened == tr.count && done != k->last_stop)
             k->group_stops++, k->last_stop = done;
     }
+    scene_free(&own);
     return done;
 }
 
