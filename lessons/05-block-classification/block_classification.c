@@ -29,9 +29,7 @@
  * steps through), and four pixels per register (what the benchmark times).
  * Both shade a pixel with the same function, so they write the same bytes.
  */
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "lesson.h"
 #include "shade/quad.h"      /* four pixels shaded and written per SSE register */
@@ -98,8 +96,6 @@ static int64_t edge_at(const struct edges *e, int k, int x, int y)
  * of a row (struct quad), their depth, colour and write (write_quad). That is
  * shared machinery, not this lesson's idea: read it there. */
 
-/* --- the three cases ------------------------------------------------------ */
-
 /* Everything one triangle's blocks share. */
 struct run {
     const struct tri_setup *t;
@@ -118,6 +114,66 @@ static bool frozen(const struct trace *tr)
 {
     return NARRATING && tr && tr->frozen;
 }
+
+/* --- classifying a block by its corners ---------------------------------- */
+
+/* The source's checkw, checku, checkv: one bit per corner, set when that
+ * corner is inside the edge. The corners are the CENTRES of the block's
+ * corner pixels (the samples the pixel test uses), not the block's outline:
+ *
+ *      (x0, y0) bit 3  o---------o  bit 2 (x1, y0)
+ *                      |  block  |
+ *                      |  pixels |
+ *      (x0, y1) bit 1  o---------o  bit 0 (x1, y1)
+ *
+ * A linear F is >= 0 on all four corners exactly when it is >= 0 on every
+ * pixel centre between them; it is < 0 on all four exactly when it is < 0 on
+ * every one of them. */
+#define CORNERS_COST { .mul = 4, .add = 6 }     /* one edge: tl, then tr, bl, br from it */
+
+static void corner_masks(struct run *r, int x0, int y0, int x1, int y1, unsigned mask[3])
+{
+    const struct edges *e = &r->e;
+    for (int k = 0; k < 3; k++) {
+        int64_t tl = edge_at(e, k, x0, y0);
+        int64_t tr = tl + e->dx[k] * (x1 - x0);
+        int64_t bl = tl + e->dy[k] * (y1 - y0);
+        int64_t br = tr + (bl - tl);
+        mask[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
+                | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
+    }
+    COUNT(r->tr, 3, CORNERS_COST);
+}
+
+/* How the masks are read. Only the first is right. */
+enum block_rule {
+    RULE_PER_EDGE,          /* empty: all corners outside ONE edge; full: inside ALL edges */
+    RULE_CORNERS_OUTSIDE,   /* exhibit: empty when no corner is inside the triangle */
+    RULE_OR_INSIDE,         /* exhibit: the pseudo-code's || in the fully-inside test */
+};
+
+static enum block_class classify(const unsigned m[3], enum block_rule rule)
+{
+    switch (rule) {
+    case RULE_CORNERS_OUTSIDE:
+        /* "every corner of the block is outside the triangle", read literally:
+         * a corner is inside the triangle when it is inside all three edges */
+        if ((m[0] & m[1] & m[2]) == 0)
+            return BLOCK_EMPTY;
+        break;
+    case RULE_OR_INSIDE:
+        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
+            return BLOCK_EMPTY;
+        return m[0] == 0xF || m[1] == 0xF || m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
+    case RULE_PER_EDGE:
+        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
+            return BLOCK_EMPTY;
+        break;
+    }
+    return m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
+}
+
+/* --- the three cases ------------------------------------------------------ */
 
 /* FULL: RenderBlock. Every pixel of the block is covered, so there is no
  * test at all: shade four pixels at a time and write them. Only the first
@@ -243,63 +299,7 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
     }
 }
 
-/* --- classifying a block by its corners ---------------------------------- */
-
-/* The source's checkw, checku, checkv: one bit per corner, set when that
- * corner is inside the edge. The corners are the CENTRES of the block's
- * corner pixels (the samples the pixel test uses), not the block's outline:
- *
- *      (x0, y0) bit 3  o---------o  bit 2 (x1, y0)
- *                      |  block  |
- *                      |  pixels |
- *      (x0, y1) bit 1  o---------o  bit 0 (x1, y1)
- *
- * A linear F is >= 0 on all four corners exactly when it is >= 0 on every
- * pixel centre between them; it is < 0 on all four exactly when it is < 0 on
- * every one of them. */
-#define CORNERS_COST { .mul = 4, .add = 6 }     /* one edge: tl, then tr, bl, br from it */
-
-static void corner_masks(struct run *r, int x0, int y0, int x1, int y1, unsigned mask[3])
-{
-    const struct edges *e = &r->e;
-    for (int k = 0; k < 3; k++) {
-        int64_t tl = edge_at(e, k, x0, y0);
-        int64_t tr = tl + e->dx[k] * (x1 - x0);
-        int64_t bl = tl + e->dy[k] * (y1 - y0);
-        int64_t br = tr + (bl - tl);
-        mask[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
-                | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
-    }
-    COUNT(r->tr, 3, CORNERS_COST);
-}
-
-/* How the masks are read. Only the first is right. */
-enum block_rule {
-    RULE_PER_EDGE,          /* empty: all corners outside ONE edge; full: inside ALL edges */
-    RULE_CORNERS_OUTSIDE,   /* exhibit: empty when no corner is inside the triangle */
-    RULE_OR_INSIDE,         /* exhibit: the pseudo-code's || in the fully-inside test */
-};
-
-static enum block_class classify(const unsigned m[3], enum block_rule rule)
-{
-    switch (rule) {
-    case RULE_CORNERS_OUTSIDE:
-        /* "every corner of the block is outside the triangle", read literally:
-         * a corner is inside the triangle when it is inside all three edges */
-        if ((m[0] & m[1] & m[2]) == 0)
-            return BLOCK_EMPTY;
-        break;
-    case RULE_OR_INSIDE:
-        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
-            return BLOCK_EMPTY;
-        return m[0] == 0xF || m[1] == 0xF || m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
-    case RULE_PER_EDGE:
-        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
-            return BLOCK_EMPTY;
-        break;
-    }
-    return m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
-}
+/* --- blocks ----------------------------------------------------------------- */
 
 /* Classify one block (pixels x0..x1, y0..y1), narrate it, and act. */
 static enum block_class block(struct run *r, enum block_rule rule, int x0, int y0, int x1, int y1,
