@@ -261,7 +261,7 @@ static double counters(struct painter *p, double x, double y, double w)
                           ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
                           (unsigned long long)ex->extra, (unsigned long long)ex->missing);
         if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)
-            snprintf(e + at, sizeof e - (size_t)at, "\nwrong colour %llu", (unsigned long long)ex->wrong_colour);
+            snprintf(e + at, sizeof e - (size_t)at, "   wrong colour %llu", (unsigned long long)ex->wrong_colour);
         h += 4 * p->s;
         h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing + ex->wrong_colour ? p->pal->extra : p->pal->covered, false);
     }
