@@ -335,6 +335,12 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
     }
+    o.params.scene = &s;
+    if (!lesson_front(l, o.variant)(&s)) {    /* a 3-D scene: its screen triangles */
+        fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
+        scene_free(&s);
+        return EXIT_RUN;
+    }
     o.params.checker = s.checker;
 
     bool headless = o.dump_coverage || o.dump_image || o.figure;
