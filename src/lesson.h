@@ -30,6 +30,10 @@ struct raster_params {
      * outside a replay of such a lesson) */
     const struct lesson_unit *units;
     int nunits;
+    int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
+    /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
+     * of a world triangle from it before rasterizing its first screen triangle */
+    const struct scene *scene;
 };
 
 /* One unit of a scene-level lesson's narrated run: triangle `tri` of the
@@ -46,6 +50,10 @@ struct lesson_unit {
 struct lesson_variant;
 typedef long (*lesson_units_fn)(const struct scene *s, const struct lesson_variant *v,
                                 const struct raster_params *p, struct lesson_unit *out, long cap);
+
+/* Makes a 3-D scene's screen triangles (src/front/: front_scene, or an
+ * exhibit's own way); false only when out of memory. */
+typedef bool (*front_fn)(struct scene *s);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
@@ -76,7 +84,10 @@ enum lesson_param_flags {
     LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
     LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
     LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
+    LESSON_PARAM_SAMPLES = 8,   /* samples per pixel 1, 4, 8; 4 unless --samples (lesson 08) */
 };
+
+#define LESSON_SAMPLES_DEFAULT 4    /* --samples of a lesson with LESSON_PARAM_SAMPLES */
 
 /* A named cost (trace/trace.h) counted n times, in a lesson's declaration of
  * what one pixel costs: COST_TERM(3, EDGE_VALUE_COST). A list of terms ends
@@ -130,6 +141,14 @@ struct lesson {
     /* With it, the order the narrated replay steps through (the explorer
      * keeps one count per unit instead of one per triangle), or NULL. */
     lesson_units_fn narration_units;
+    /* How each variant makes a 3-D scene's screen triangles (nvariants
+     * entries; lesson 06's exhibits have their own), or NULL: every variant
+     * uses the shared front end (src/front/) */
+    const front_fn *fronts;
+    /* Which variants keep another quantity than z in the depth buffer
+     * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
+     * NULL: none. An exhibit among them is compared by its colours alone. */
+    const bool *other_depth;
 
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
@@ -142,6 +161,9 @@ static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
         return NULL;
     return l->rasterize_scene[v - l->variants];
 }
+/* The front end variant v of lesson l runs on a 3-D scene: its entry of
+ * l->fronts, or front_scene. */
+front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
 

@@ -11,12 +11,14 @@
  * (The per-triangle path against the reference on 100,000 random triangles,
  * both builds, is test_property.c's job; ThreadSanitizer runs on the
  * threaded path in tsan_tiles below.) */
+#define _POSIX_C_SOURCE 200809L     /* mkdtemp */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "testlib.h"
 #include "explore/replay.h"
@@ -502,4 +504,58 @@ Test(lesson07, exhibit_numbers_quoted_in_the_text)
     target_free(&whole);
     free(ref);
     scene_free(&s);
+}
+
+/* The whole file at path, malloc'ed, its size in *n. */
+static unsigned char *slurp(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "%s: not written", path);
+    unsigned char *buf = malloc(1 << 20);
+    cr_assert_not_null(buf);
+    *n = fread(buf, 1, 1 << 20, f);
+    cr_assert(feof(f), "%s: larger than 1 MiB", path);
+    fclose(f);
+    return buf;
+}
+
+/* Lesson 07 reads 3-D scenes like every lesson from 05 on: the program's
+ * headless run (the shared front end, then bins and tiles on 2 workers)
+ * covers exactly the pixels that lesson 05's program covers, on every
+ * built-in 3-D scene. */
+Test(lesson07, program_covers_3d_scenes_as_lesson_05_does, .timeout = 60)
+{
+    char dir[] = "/tmp/tristep-l07-3d-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    int scenes = 0;
+    for (int i = 0; i < builtin_scene_count; i++) {
+        if (!strstr(builtin_scenes[i].text, "\ncamera "))
+            continue;
+        const char *const progs[] = { "07-tiles --threads 2", "05-block-classification" };
+        unsigned char *pgm[2];
+        size_t n[2];
+        for (int k = 0; k < 2; k++) {
+            char path[256], cmd[1024];
+            snprintf(path, sizeof path, "%s/%d.pgm", dir, k);
+            snprintf(cmd, sizeof cmd, "%s/%s --scene builtin:%s --dump-coverage %s", test_build_dir(),
+                     progs[k], builtin_scenes[i].name, path);
+            int st = system(cmd);
+            cr_assert(WIFEXITED(st) && WEXITSTATUS(st) == 0, "%s: status 0x%x", cmd, st);
+            pgm[k] = slurp(path, &n[k]);
+            remove(path);
+        }
+        cr_assert(n[0] == n[1] && memcmp(pgm[0], pgm[1], n[0]) == 0,
+                  "builtin:%s: lesson 07 covers other pixels than lesson 05", builtin_scenes[i].name);
+        size_t covered = 0, k = 0;  /* the pixels follow the header's 3 lines */
+        for (int lines = 0; k < n[0] && lines < 3; k++)
+            lines += pgm[0][k] == '\n';
+        for (; k < n[0]; k++)
+            covered += pgm[0][k] != 0;
+        cr_assert_gt(covered, 0, "builtin:%s: nothing covered", builtin_scenes[i].name);
+        free(pgm[0]);
+        free(pgm[1]);
+        scenes++;
+    }
+    rmdir(dir);
+    cr_assert_geq(scenes, 4, "only %d built-in 3-D scenes", scenes);
 }

@@ -71,12 +71,14 @@ struct row {
     struct bench_timing t[NSCENES];
     const struct lesson *lesson;        /* NULL for a peer */
     const struct lesson_variant *var;
+    int samples;                /* lesson 08's samples per pixel (0, 1: the centre) */
 };
 
 static struct row rows[MAX_ROWS];
 static int nrows;
 static double frame_ms = -1;     /* explorer frame, < 0 not measured */
 static double figures_s = -1;    /* make figures, < 0 not measured */
+static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
 
 /* The targets as printed, kept for bench.csv. */
 struct target_line {
@@ -143,11 +145,47 @@ static void draw_scene(const struct row *row, const struct scene *s,
     }
 }
 
+/* Lesson 08's exact answer at n samples: for every pixel, the samples the
+ * scene's triangles cover (saturating at 255), each sample decided by the
+ * reference (raster.h: reference_point_covered) over a generous box. Made
+ * once per scene and sample count, untimed. */
+static uint8_t *sample_reference(const struct scene *s, int n)
+{
+    const struct sample_pattern *sp = sample_pattern(n);
+    uint8_t *cov = calloc((size_t)s->w * (size_t)s->h, 1);
+    if (!cov || !sp) {
+        fprintf(stderr, "tristep-bench: out of memory\n");
+        exit(1);
+    }
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        int64_t lo[2] = { t.x[0], t.y[0] }, hi[2] = { t.x[0], t.y[0] };
+        for (int k = 1; k < 3; k++) {
+            lo[0] = t.x[k] < lo[0] ? t.x[k] : lo[0], hi[0] = t.x[k] > hi[0] ? t.x[k] : hi[0];
+            lo[1] = t.y[k] < lo[1] ? t.y[k] : lo[1], hi[1] = t.y[k] > hi[1] ? t.y[k] : hi[1];
+        }
+        int64_t x0 = floor_div(lo[0], SUBPIXEL_ONE) - 1, x1 = floor_div(hi[0], SUBPIXEL_ONE) + 1;
+        int64_t y0 = floor_div(lo[1], SUBPIXEL_ONE) - 1, y1 = floor_div(hi[1], SUBPIXEL_ONE) + 1;
+        x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0;
+        x1 = x1 >= s->w ? s->w - 1 : x1, y1 = y1 >= s->h ? s->h - 1 : y1;
+        for (int64_t y = y0; y <= y1; y++)
+            for (int64_t x = x0; x <= x1; x++)
+                for (int k = 0; k < n; k++)
+                    if (reference_point_covered(&t, x * SUBPIXEL_ONE + sp->x[k], y * SUBPIXEL_ONE + sp->y[k])) {
+                        uint8_t *c = &cov[y * s->w + x];
+                        *c += *c < 255;
+                    }
+    }
+    return cov;
+}
+
 /* One timed run of a row on scene i (r < 0: the warm-up, not kept). The
- * target is cleared outside the clock and does not count coverage. */
+ * target (multisample for a row of lesson 08's samples) is cleared outside
+ * the clock and does not count coverage. */
 static void time_once(struct row *row, int i, const struct scene *s, struct target *fb, int r)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
     target_clear(fb);
     struct target timed = *fb;
     timed.count = NULL;
@@ -157,15 +195,30 @@ static void time_once(struct row *row, int i, const struct scene *s, struct targ
         row->t[i].t[r] = now() - t0;
 }
 
+/* A row's target on one scene, among that scene's targets by sample count. */
+static struct target *row_target(struct target fbs[], const struct row *row)
+{
+    return &fbs[row->samples > 1 ? row->samples : 0];
+}
+
 /* Untimed: the same code once more, counting coverage, against the
- * reference and llvmpipe. */
+ * reference and llvmpipe; a row of samples > 1 against sample_reference()
+ * alone (llvmpipe is not asked for samples). */
 static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
                            uint8_t *const peer_cov[], struct target *fb)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
     target_clear(fb);
     draw_scene(row, &sc->s, &p, fb);
     size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
+    if (row->samples > 1) {
+        static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
+        if (!ref[i][row->samples])
+            ref[i][row->samples] = sample_reference(&sc->s, row->samples);
+        row->t[i].diff_ref = count_diff(fb->count, ref[i][row->samples], n);
+        row->t[i].diff_peer = -1;
+        return;
+    }
     row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
     row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
 }
@@ -435,6 +488,11 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
         fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
         fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+    /* the 3-D front end: world triangles per second, no pixels */
+    if (front.t.runs > 0)
+        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
+                front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
+                front.in / front.t.median * 1e-6);
     /* the targets: program target-met or target-missed, variant = its id,
      * median_s = the value measured, min_s = the goal */
     for (int k = 0; k < ntargets; k++)
@@ -741,6 +799,16 @@ int main(int argc, char **argv)
                 continue;
             rows[nrows++] = (struct row){ .program = (*l)->id, .variant = var->name,
                                           .exhibit = var->exhibit, .lesson = *l, .var = var };
+            /* a lesson with samples: its exact variants at 4 and 8 samples
+             * too, each checked against its own reference */
+            for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !var->exhibit
+                            && nrows < MAX_ROWS; n += 4) {
+                static char names[MAX_ROWS][48];
+                snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);
+                rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
+                                            .lesson = *l, .var = var, .samples = n };
+                nrows++;
+            }
         }
     }
 
@@ -750,18 +818,31 @@ int main(int argc, char **argv)
      * its thread count once per process), with its own warm-up. */
     uint8_t *peer_cov[NSCENES] = { NULL };
     bool have_peer = false;
-    struct target fb[NSCENES];
+    /* one target per scene and sample count that a row uses: fbs[i][0]
+     * for one sample, fbs[i][n] for lesson 08's n samples */
+    static struct target fbs[NSCENES][SAMPLES_MAX + 1];
+    struct target *fb[NSCENES];
     for (int i = 0; i < NSCENES; i++) {
         peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
-        if (!peer_cov[i] || !target_init(&fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
+        fb[i] = &fbs[i][0];
+        if (!peer_cov[i] || !target_init(fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
             fprintf(stderr, "tristep-bench: out of memory\n");
             return 1;
+        }
+        for (int k = npeers; k < nrows; k++) {
+            int n = rows[k].samples > 1 ? rows[k].samples : 0;
+            if (!fbs[i][n].color
+                && (!target_init(&fbs[i][n], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))
+                    || !target_multisample(&fbs[i][n], n))) {
+                fprintf(stderr, "tristep-bench: out of memory\n");
+                return 1;
+            }
         }
     }
     for (int k = npeers; k < nrows; k++) {
         rows[k].t[0].runs = rows[k].t[1].runs = rows[k].t[2].runs = o.runs;
         for (int i = 0; i < NSCENES; i++)
-            time_once(&rows[k], i, &sc[i].s, &fb[i], -1);
+            time_once(&rows[k], i, &sc[i].s, row_target(fbs[i], &rows[k]), -1);
     }
     bool peer_ok[2] = { npeers > 0, npeers > 1 };
     for (int r = 0; r < o.runs; r++) {
@@ -773,7 +854,7 @@ int main(int argc, char **argv)
             struct bench_timing one[NSCENES];
             uint8_t *cov[NSCENES];
             for (int i = 0; i < NSCENES; i++)
-                cov[i] = c == 0 && r == 0 ? peer_cov[i] : fb[i].count;   /* scratch after the first */
+                cov[i] = c == 0 && r == 0 ? peer_cov[i] : fb[i]->count;   /* scratch after the first */
             if (!peer_run(sc, NSCENES, cfg[c].threads, 1, 1, one, cov, why, sizeof why)) {
                 printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
                 peer_ok[c] = false;
@@ -791,7 +872,7 @@ int main(int argc, char **argv)
         }
         for (int k = npeers; k < nrows; k++)
             for (int i = 0; i < NSCENES; i++)
-                time_once(&rows[k], i, &sc[i].s, &fb[i], r);
+                time_once(&rows[k], i, &sc[i].s, row_target(fbs[i], &rows[k]), r);
     }
     have_peer = peer_ok[0];
     /* a peer that failed leaves the table */
@@ -806,11 +887,13 @@ int main(int argc, char **argv)
         for (int i = 0; i < NSCENES; i++) {
             bench_timing_stats(&rows[k].t[i]);
             if (!rows[k].peer)
-                check_coverage(&rows[k], i, &sc[i], have_peer ? peer_cov : NULL, &fb[i]);
+                check_coverage(&rows[k], i, &sc[i], have_peer ? peer_cov : NULL,
+                               row_target(fbs[i], &rows[k]));
         }
     }
     for (int i = 0; i < NSCENES; i++)
-        target_free(&fb[i]);
+        for (int n = 0; n <= SAMPLES_MAX; n++)
+            target_free(&fbs[i][n]);
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
@@ -847,6 +930,16 @@ int main(int argc, char **argv)
             printf("make figures: %s\n", note);
         }
     }
+
+    if (bench_front_run(&front, o.runs))
+        printf("\n3-D front end (lesson 06), a %d-triangle torus seen from inside its tube at "
+               "1920 x 1080:\n  %.2f Mtri/s through look-at, near/far clipping, projection, guard "
+               "band, fan and cull\n  (median %.1f ms, min %.1f ms; %d cut by near or far, %d "
+               "wholly outside them, %d past the guard band; %d screen triangles out)\n",
+               front.in, front.in / front.t.median * 1e-6, front.t.median * 1e3, front.t.lo * 1e3,
+               front.depth_clipped, front.culled_whole, front.guard_clipped, front.out);
+    else
+        printf("\n3-D front end: could not be measured (out of memory)\n");
 
     print_targets(sc, limit, cache_limit);
 
