@@ -29,12 +29,12 @@
  * steps through), and four pixels per register (what the benchmark times).
  * Both shade a pixel with the same function, so they write the same bytes.
  */
-#include <emmintrin.h>      /* SSE2: four floats or four int32 per register */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lesson.h"
+#include "simd.h"      /* SSE2: four floats or four int32 per register */
 
 static const char *const pseudocode[] = {
     "setup: F0k = I0k x + J0k y + K0k + bias_k, k = 1, 2, 3",         /* 0 */
