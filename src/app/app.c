@@ -14,13 +14,13 @@
 
 #include <SDL.h>
 #include <cairo.h>
-#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "draw/explorer.h"
 #include "draw/figure.h"
+#include "script.h"
 
 #define SPEED_MAX 40        /* 2^20 events per second */
 #define FRAME_MS 16         /* at most one frame this often while playing */
@@ -47,8 +47,9 @@ struct app {
     Uint64 play_last;
 
     /* --keys */
-    char **script;
-    size_t nscript, at;
+    struct script script;
+    size_t at;
+    bool scripted;
 };
 
 /* --- SDL errors ------------------------------------------------------------------- */
@@ -347,39 +348,6 @@ static void wheel(struct app *a, int dy)
 
 static void play(struct app *a);
 
-static bool read_script(struct app *a, const char *path)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "%s: --keys '%s': cannot open\n", a->lesson->id, path);
-        return false;
-    }
-    char line[256];
-    size_t cap = 0;
-    while (fgets(line, sizeof line, f)) {
-        char *s = line, *e = line + strcspn(line, "\r\n");
-        *e = '\0';
-        while (isspace((unsigned char)*s))
-            s++;
-        while (e > s && isspace((unsigned char)e[-1]))
-            *--e = '\0';
-        if (!*s || *s == '#')
-            continue;
-        if (a->nscript == cap) {
-            cap = cap ? 2 * cap : 32;
-            char **n = realloc(a->script, cap * sizeof *n);
-            if (!n)
-                break;
-            a->script = n;
-        }
-        if (!(a->script[a->nscript] = SDL_strdup(s)))
-            break;
-        a->nscript++;
-    }
-    fclose(f);
-    return true;
-}
-
 static bool push_key(SDL_Keycode k, Uint16 mod)
 {
     SDL_Event ev = { .type = SDL_KEYDOWN };
@@ -405,13 +373,27 @@ static bool push_mouse(Uint32 type, int x, int y)
     return SDL_PushEvent(&ev) >= 0;
 }
 
-/* Turn the next script line into events. "Shift+Right", "Ctrl+Left", "v",
- * "PageDown" (SDL's key names), "wait" (a frame and 100 ms), "drag X1 Y1 X2 Y2". */
+/* Every key name of the script is one SDL knows (after SDL_Init: the names
+ * of keys come from the keyboard map); an unknown one is an input error. */
+static bool check_script_keys(struct app *a)
+{
+    for (size_t i = 0; i < a->script.n; i++) {
+        const struct script_cmd *c = &a->script.cmd[i];
+        if (c->kind == SCRIPT_KEY && SDL_GetKeyFromName(c->key) == SDLK_UNKNOWN) {
+            fprintf(stderr, "%s:%d: unknown key '%s' (SDL's key names: Right, PageDown, v, ...)\n",
+                    a->script.name, c->line, c->key);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Turn the next script command into events (script.h). */
 static void next_script_line(struct app *a)
 {
-    const char *line = a->script[a->at++];
-    int x1, y1, x2, y2;
-    if (strcmp(line, "wait") == 0) {
+    const struct script_cmd *c = &a->script.cmd[a->at++];
+    switch (c->kind) {
+    case SCRIPT_WAIT:
         a->dirty = true;            /* one frame, and a tenth of a second to play in */
         if (!present(a))
             a->quit = true;
@@ -419,35 +401,18 @@ static void next_script_line(struct app *a)
         if (a->ex.playing)
             play(a);
         return;
-    }
-    if (sscanf(line, "drag %d %d %d %d", &x1, &y1, &x2, &y2) == 4) {
-        push_mouse(SDL_MOUSEBUTTONDOWN, x1, y1);
+    case SCRIPT_DRAG:
+        push_mouse(SDL_MOUSEBUTTONDOWN, c->x1, c->y1);
         for (int i = 1; i <= 4; i++)
-            push_mouse(SDL_MOUSEMOTION, x1 + (x2 - x1) * i / 4, y1 + (y2 - y1) * i / 4);
-        push_mouse(SDL_MOUSEBUTTONUP, x2, y2);
+            push_mouse(SDL_MOUSEMOTION, c->x1 + (c->x2 - c->x1) * i / 4,
+                       c->y1 + (c->y2 - c->y1) * i / 4);
+        push_mouse(SDL_MOUSEBUTTONUP, c->x2, c->y2);
+        return;
+    case SCRIPT_KEY:
+        push_key(SDL_GetKeyFromName(c->key), (c->mods & SCRIPT_SHIFT ? KMOD_LSHIFT : 0)
+                                             | (c->mods & SCRIPT_CTRL ? KMOD_LCTRL : 0));
         return;
     }
-    Uint16 mod = 0;
-    const char *name = line;
-    for (;;) {
-        if (SDL_strncasecmp(name, "Shift+", 6) == 0)
-            mod |= KMOD_LSHIFT, name += 6;
-        else if (SDL_strncasecmp(name, "Ctrl+", 5) == 0)
-            mod |= KMOD_LCTRL, name += 5;
-        else
-            break;
-    }
-    static const char *const alias[][2] = {
-        { "PgDn", "PageDown" }, { "PgUp", "PageUp" }, { "Esc", "Escape" },
-    };
-    for (size_t i = 0; i < sizeof alias / sizeof alias[0]; i++)
-        if (SDL_strcasecmp(name, alias[i][0]) == 0)
-            name = alias[i][1];
-    SDL_Keycode k = SDL_GetKeyFromName(name);
-    if (k == SDLK_UNKNOWN)
-        fprintf(stderr, "%s: --keys: unknown key '%s' (ignored)\n", a->lesson->id, line);
-    else
-        push_key(k, mod);
 }
 
 /* --- the loop --------------------------------------------------------------------- */
@@ -512,11 +477,11 @@ static void run(struct app *a)
         if (a->dirty && !present(a))
             return;
         bool got;
-        if (a->at < a->nscript && !SDL_PollEvent(NULL)) {
+        if (a->at < a->script.n && !SDL_PollEvent(NULL)) {
             next_script_line(a);
             continue;
         }
-        if (a->script && a->at >= a->nscript && !SDL_PollEvent(NULL)) {
+        if (a->scripted && a->at >= a->script.n && !SDL_PollEvent(NULL)) {
             a->quit = true;             /* the script ran out without "q" */
             break;
         }
@@ -563,8 +528,18 @@ int explorer_run(const struct lesson *l, const struct cli_options *o, struct sce
     int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
     if (status >= 0)
         return status;
-    if (o->keys && !read_script(&a, o->keys))
-        return EXIT_USAGE;
+    if (o->keys) {
+        char err[512];
+        if (!script_load(&a.script, o->keys, err, sizeof err)) {
+            fprintf(stderr, "%s\n", err);
+            return EXIT_USAGE;
+        }
+        a.scripted = true;
+        if (!check_script_keys(&a)) {
+            script_free(&a.script);
+            return EXIT_USAGE;
+        }
+    }
     explorer_fonts();
     status = EXIT_OK;
     if (!explorer_init(&a.ex, &d)) {
@@ -584,8 +559,6 @@ int explorer_run(const struct lesson *l, const struct cli_options *o, struct sce
     if (a.win)
         SDL_DestroyWindow(a.win);
     SDL_Quit();
-    for (size_t i = 0; i < a.nscript; i++)
-        SDL_free(a.script[i]);
-    free(a.script);
+    script_free(&a.script);
     return status;
 }

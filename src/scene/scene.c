@@ -215,31 +215,32 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
     return ok;
 }
 
-bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
+bool read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen)
 {
-    if (strncmp(path, "builtin:", 8) == 0)
-        return scene_builtin(s, path + 8, err, errlen);
+    *text = NULL;
+    *len = 0;
     FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
     if (!f) {
         snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
         return false;
     }
-    char *text = NULL;
-    size_t len = 0, cap = 0;
+    char *buf = NULL;
+    size_t n = 0, cap = 0;
     bool ok = true;
     for (;;) {
-        if (len == cap) {
-            cap = cap ? cap * 2 : 65536;
-            char *nt = realloc(text, cap);
-            if (!nt) {
+        if (n == cap) {
+            size_t ncap = cap ? cap * 2 : 65536;
+            char *nb = ncap > cap ? realloc(buf, ncap) : NULL;
+            if (!nb) {
                 ok = false;
                 snprintf(err, errlen, "%s:0: out of memory", path);
                 break;
             }
-            text = nt;
+            buf = nb;
+            cap = ncap;
         }
-        size_t got = fread(text + len, 1, cap - len, f);
-        len += got;
+        size_t got = fread(buf + n, 1, cap - n, f);
+        n += got;
         if (got == 0)
             break;
     }
@@ -249,8 +250,24 @@ bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
     }
     if (f != stdin)
         fclose(f);
-    if (ok)
-        ok = scene_parse(s, path, text, len, err, errlen);
+    if (!ok) {
+        free(buf);
+        return false;
+    }
+    *text = buf;
+    *len = n;
+    return true;
+}
+
+bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
+{
+    if (strncmp(path, "builtin:", 8) == 0)
+        return scene_builtin(s, path + 8, err, errlen);
+    char *text;
+    size_t len;
+    if (!read_text_file(path, &text, &len, err, errlen))
+        return false;
+    bool ok = scene_parse(s, path, text, len, err, errlen);
     free(text);
     return ok;
 }
