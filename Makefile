@@ -1,7 +1,8 @@
-# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
+#          make fuzz [SECONDS=N] | make clean
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
-B        := $(BUILD)$(if $(SANITIZE),/sanitize)
+B        := $(BUILD)$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize))
 PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
 LES_SRC  := $(wildcard lessons/*/*.c)
@@ -13,13 +14,19 @@ nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 CFLAGS   ?= -O2 -g
 CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS)
+SAN      := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer
 ifdef SANITIZE
-CFLAGS   += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-LDFLAGS  += -fsanitize=address,undefined
+CFLAGS   += $(SAN)
+LDFLAGS  += $(SAN)
+endif
+ifdef FUZZ      # make fuzz: libFuzzer needs clang
+CC       := clang
+CFLAGS   += $(SAN) -fsanitize=fuzzer-no-link
+LDFLAGS  += $(SAN)
 endif
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench clean deps-test deps-bench FORCE
+.PHONY: all run test figures bench fuzz fuzz-run clean deps-test deps-bench FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -56,9 +63,27 @@ $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
 
+# Fuzzing (tests/fuzz/fuzz.h): one libFuzzer program per harness, and a
+# replay of the committed corpus that needs no libFuzzer (run by make test).
+FUZZERS  := $(patsubst tests/fuzz/corpus/%,%,$(wildcard tests/fuzz/corpus/*))
+FUZZ_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(filter-out %/libfuzzer.c %/replay.c,$(wildcard tests/fuzz/*.c))) \
+            $(B)/obj/tests/testlib.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+$(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DFUZZ_HARNESS=fuzz_$* -c $< -o $@
+$(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(CC) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -o $@
+$(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+SECONDS  ?= 60
+fuzz: deps-test ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
+fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
+	@for f in $(FUZZERS); do mkdir -p $(B)/corpus/$$f $(B)/crashes; \
+	  echo "fuzz: $$f for $(SECONDS) s (new inputs in $(B)/corpus/$$f, failures in $(B)/crashes)"; \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp nice -n 10 $(B)/fuzz-$$f -max_total_time=$(SECONDS) -print_final_stats=1 -artifact_prefix=$(B)/crashes/$$f- \
+	    $$([ -f tests/fuzz/$$f.dict ] && echo -dict=tests/fuzz/$$f.dict) $(B)/corpus/$$f tests/fuzz/corpus/$$f || exit 1; done
+
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
+	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'

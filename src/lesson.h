@@ -142,8 +142,9 @@ static inline uint32_t shade_pixel(const struct raster_params *p, double r, doub
                                    double b, double s, double t)
 {
     if (p->checker > 0) {
-        long i = (long)floor(s * p->checker), j = (long)floor(t * p->checker);
-        if ((i + j) & 1) {
+        /* which square: its parity, with NaN and out-of-range sums kept out of the cast */
+        double k = floor(s * p->checker) + floor(t * p->checker);
+        if (fabs(k) < 0x1p62 && ((long long)k & 1)) {
             r *= CHECKER_DARK;
             g *= CHECKER_DARK;
             b *= CHECKER_DARK;

@@ -1,0 +1,86 @@
+/* explorer.c - fuzz harness: scene text -> the explorer (fuzz.h).
+ *
+ * One lesson and one variant (exhibits included), chosen from the input's
+ * first byte, on the scene cut to its first FUZZ_TRIS triangles (the size is
+ * kept: the explorer must cope with a 16384 x 16384 scene): replay to the
+ * end, to the middle and back to the start, step by every unit in both
+ * directions, drag a vertex to a place the input chooses, and paint frames
+ * of several views into a small image. */
+#include <cairo.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "draw/explorer.h"
+#include "fuzz.h"
+
+#define FUZZ_TRIS 4
+#define FRAME_W 320
+#define FRAME_H 200
+
+static int nlessons(void)
+{
+    int n = 0;
+    while (all_lessons[n])
+        n++;
+    return n;
+}
+
+static void paint(struct explorer *ex, cairo_surface_t *surface, int view)
+{
+    explorer_set_view_name(ex, explorer_view_name(ex, view % explorer_view_count(ex)));
+    cairo_t *cr = cairo_create(surface);
+    explorer_paint(ex, cr, FRAME_W, FRAME_H);
+    cairo_destroy(cr);
+}
+
+int fuzz_explorer(const uint8_t *data, size_t size)
+{
+    if (size < 2)
+        return 0;
+    static bool fonts;
+    if (!fonts) {
+        explorer_fonts();
+        fonts = true;
+    }
+    struct scene s;
+    char err[512];
+    if (!scene_parse(&s, "fuzz.scene", (const char *)data + 1, size - 1, err, sizeof err))
+        return 0;
+    if (s.w * s.h > 1 << 20) {   /* the target must stay small for the fuzzer's speed */
+        s.w = s.w > 1024 ? 1024 : s.w;
+        s.h = s.h > 1024 ? 1024 : s.h;
+    }
+    if (s.ntris > FUZZ_TRIS)
+        s.ntris = FUZZ_TRIS;
+    const struct lesson *l = all_lessons[data[0] % nlessons()];
+    int variant = (data[0] / 8) % l->nvariants;
+    struct explorer ex;
+    struct explorer_desc d = {
+        .lesson = l, .scene = &s, .scene_name = "fuzz.scene",
+        .variant = &l->variants[variant],
+        .params = { .checker = s.checker, .subpixel_bits = SUBPIXEL_BITS - (data[0] / 32) % 3,
+                    .block_size = (int[]){ 4, 8, 16 }[(data[0] / 4) % 3] },
+        .step_end = true,
+    };
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, FRAME_W, FRAME_H);
+    if (explorer_init(&ex, &d)) {
+        paint(&ex, surface, 0);
+        explorer_set_step(&ex, ex.replay.total / 2);
+        paint(&ex, surface, 1 + data[0]);
+        for (int unit = STEP_EVENT; unit <= STEP_TRIANGLE; unit++) {
+            explorer_move(&ex, (enum step_unit)unit, 1);
+            explorer_move(&ex, (enum step_unit)unit, -1);
+        }
+        paint(&ex, surface, 2 + data[0]);
+        /* a drag to the far corner the input picks (clamped to the scene range) */
+        double far = data[size - 1] & 1 ? 1e9 : -1e9;
+        explorer_move_vertex(&ex, data[size - 1] % 3, far, -far);
+        paint(&ex, surface, 3 + data[0]);
+        explorer_set_step(&ex, 0);
+        paint(&ex, surface, 4 + data[0]);
+        explorer_free(&ex);
+    }
+    cairo_surface_destroy(surface);
+    scene_free(&s);
+    return 0;
+}

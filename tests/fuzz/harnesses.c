@@ -1,0 +1,25 @@
+/* harnesses.c - the list of fuzz harnesses (fuzz.h) and their failure report. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fuzz.h"
+
+const struct fuzz_harness fuzz_harnesses[] = {
+    { "scene", fuzz_scene },
+    { "keys", fuzz_keys },
+    { "lessons", fuzz_lessons },
+    { "explorer", fuzz_explorer },
+    { NULL, NULL },
+};
+
+void fuzz_fail(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("fuzz: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    abort();
+}
