@@ -18,8 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw/explorer.h"
-#include "draw/figure.h"
+#include "draw/paint.h"
 #include "script.h"
 
 #define SPEED_MAX 40        /* 2^20 events per second */
@@ -502,13 +501,13 @@ static void run(struct app *a)
     }
 }
 
-static bool open_window(struct app *a, const struct cli_options *o)
+static bool open_window(struct app *a, const struct app_desc *d)
 {
     if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0)
         return sdl_failed(a, "SDL_Init");
     char title[160];
     snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
-    int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
+    int w = d->width ? d->width : 1280, h = d->height ? d->height : 800;
     a->win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h,
                               SDL_WINDOW_RESIZABLE);
     if (!a->win)
@@ -520,17 +519,13 @@ static bool open_window(struct app *a, const struct cli_options *o)
     return make_texture(a);
 }
 
-int explorer_run(const struct lesson *l, const struct cli_options *o, struct scene *s)
+int explorer_run(const struct app_desc *d)
 {
+    const struct lesson *l = d->explorer.lesson;
     struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
-    char name[160];
-    struct explorer_desc d;
-    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
-    if (status >= 0)
-        return status;
-    if (o->keys) {
+    if (d->keys) {
         char err[512];
-        if (!script_load(&a.script, o->keys, err, sizeof err)) {
+        if (!script_load(&a.script, d->keys, err, sizeof err)) {
             fprintf(stderr, "%s\n", err);
             return EXIT_USAGE;
         }
@@ -541,12 +536,15 @@ int explorer_run(const struct lesson *l, const struct cli_options *o, struct sce
         }
     }
     explorer_fonts();
-    status = EXIT_OK;
-    if (!explorer_init(&a.ex, &d)) {
-        fprintf(stderr, "%s: out of memory for the scene\n", l->id);
+    int status = EXIT_OK;
+    char err[512];
+    if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;
     } else {
-        if (open_window(&a, o))
+        if (d->view)
+            explorer_set_view_name(&a.ex, d->view);
+        if (open_window(&a, d))
             run(&a);
         if (a.failed)
             status = EXIT_RUN;

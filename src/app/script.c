@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene.h"   /* read_text_file */
+#include "util/file.h"   /* read_text_file */
 
 static bool fail(const struct script *s, int line, char *err, size_t errlen, const char *fmt, ...)
 {

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/file.h"   /* read_text_file */
+
 #define MAX_TOKENS 32   /* more than the longest line needs (tri + 24 numbers) */
 
 struct parser {
@@ -227,48 +229,16 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
     return ok;
 }
 
-bool read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen)
+bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
 {
-    *text = NULL;
-    *len = 0;
-    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
+    const struct builtin_scene *b = builtin_find(name);
+    if (!b) {
+        snprintf(err, errlen, "builtin:%s:0: no such built-in scene (try --list-scenes)", name);
         return false;
     }
-    char *buf = NULL;
-    size_t n = 0, cap = 0;
-    bool ok = true;
-    for (;;) {
-        if (n == cap) {
-            size_t ncap = cap ? cap * 2 : 65536;
-            char *nb = ncap > cap ? realloc(buf, ncap) : NULL;
-            if (!nb) {
-                ok = false;
-                snprintf(err, errlen, "%s:0: out of memory", path);
-                break;
-            }
-            buf = nb;
-            cap = ncap;
-        }
-        size_t got = fread(buf + n, 1, cap - n, f);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    if (ok && ferror(f)) {
-        ok = false;
-        snprintf(err, errlen, "%s:0: cannot read: %s", path, strerror(errno));
-    }
-    if (f != stdin)
-        fclose(f);
-    if (!ok) {
-        free(buf);
-        return false;
-    }
-    *text = buf;
-    *len = n;
-    return true;
+    char label[64];
+    snprintf(label, sizeof label, "builtin:%s", name);
+    return scene_parse(s, label, b->text, strlen(b->text), err, errlen);
 }
 
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
@@ -323,6 +293,19 @@ void scene_free(struct scene *s)
 {
     free(s->tris);
     memset(s, 0, sizeof *s);
+}
+
+bool scene_copy(struct scene *dst, const struct scene *src)
+{
+    *dst = *src;
+    dst->tris = NULL;
+    dst->ntris = dst->cap = 0;
+    for (int i = 0; i < src->ntris; i++)
+        if (!scene_add(dst, src->tris[i].v)) {
+            scene_free(dst);
+            return false;
+        }
+    return true;
 }
 
 uint32_t scene_background(const struct scene *s)

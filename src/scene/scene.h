@@ -45,13 +45,11 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
                  char *err, size_t errlen);
 /* Read and parse a file ("-" is standard input). */
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
-/* Read a whole text file ("-" is standard input) into a fresh buffer
- * (*text, to free; *len bytes, not NUL-terminated). On failure writes
- * "path:0: message" into err. Shared by every reader of untrusted text. */
-bool read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen);
 /* Write a scene that scene_parse reads back to the same values. */
 bool scene_write(const struct scene *s, FILE *out);
 void scene_free(struct scene *s);
+/* A copy with triangles of its own; false (dst empty) when out of memory. */
+bool scene_copy(struct scene *dst, const struct scene *src);
 bool scene_add(struct scene *s, const struct vertex v[3]);
 uint32_t scene_background(const struct scene *s);
 

@@ -10,7 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw/explorer.h"
+#include "draw/paint.h"
+#include "draw/views.h"
+#include "explore/explorer.h"
 #include "fuzz.h"
 
 #define FUZZ_TRIS 4
@@ -63,7 +65,7 @@ int fuzz_explorer(const uint8_t *data, size_t size)
         .step_end = true,
     };
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, FRAME_W, FRAME_H);
-    if (explorer_init(&ex, &d)) {
+    if (explorer_init(&ex, &d, err, sizeof err)) {
         paint(&ex, surface, 0);
         explorer_set_step(&ex, ex.replay.total / 2);
         paint(&ex, surface, 1 + data[0]);

@@ -1,6 +1,6 @@
 /* replay.c - every committed fuzz input through its harness, without
- * libFuzzer (fuzz.h): `fuzz-replay tests/fuzz/corpus` runs DIR/NAME/* through
- * harness NAME for every harness; a failing input aborts with its name on
+ * libFuzzer (fuzz.h): `fuzz-replay DIR` runs every file of DIR/NAME through
+ * harness NAME, for every harness; a failing input aborts with its name on
  * stderr (and the sanitizers' report). */
 #define _POSIX_C_SOURCE 200809L   /* opendir and friends */
 
@@ -11,11 +11,11 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "scene/scene.h"   /* read_text_file */
+#include "util/file.h"   /* read_text_file */
 
 /* Which input is running, named when it fails: on abort (a violated
  * property), and from the sanitizers' death callback (their reports). */
-static char current[4096];
+static char current[4200];
 
 static void name_current(void)
 {
@@ -74,14 +74,17 @@ static long replay_dir(const struct fuzz_harness *h, const char *dir)
     long count = 0;
     for (size_t i = 0; i < n; i++) {
         char path[4096], err[512];
-        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        int pn = snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         char *data;
         size_t len;
-        if (!read_text_file(path, &data, &len, err, sizeof err)) {
+        if (pn < 0 || (size_t)pn >= sizeof path) {
+            fprintf(stderr, "fuzz-replay: %s/%s: name too long\n", dir, names[i]);
+            count = -1;
+        } else if (!read_text_file(path, &data, &len, err, sizeof err)) {
             fprintf(stderr, "fuzz-replay: %s\n", err);
             count = -1;
         } else {
-            snprintf(current, sizeof current, "%s (harness %s)", path, h->name);
+            snprintf(current, sizeof current, "%s (harness %.20s)", path, h->name);
             h->run((const uint8_t *)data, len);
             current[0] = '\0';
             free(data);
