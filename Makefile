@@ -7,8 +7,9 @@ B        := $(BUILD)$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize))
 PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
 LES_SRC  := $(wildcard lessons/*/*.c)
+EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
 TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c)) $(B)/obj/lessons.o
-ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(LES_SRC:%.c=$(B)/fast/%.o)
+ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
@@ -38,6 +39,7 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
+# What the explorer adds for a lesson (NAME_explorer.c) only narrated.
 $(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
 $(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
 $(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
@@ -49,11 +51,13 @@ $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/le
 
 # Every lesson, both builds, listed for the tests and the bench (again when
 # a lesson folder appears: that changes the mtime of lessons/).
-$(B)/lessons.c: Makefile lessons | $(B)/config.mk
-	@printf '#include "lesson.h"\n' > $@
+$(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
+	@printf '#include "lesson_explorer.h"\n' > $@
 	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
 	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
+	@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@
+	@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@
 $(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.

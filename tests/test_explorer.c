@@ -7,6 +7,7 @@
  * random scene; the scale test builds 200,000 small triangles at 1920x1080.
  */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shade/shade.h"
 #include "testlib.h"
 
 /* one unit of F is 1/65536 px^2 */
@@ -462,11 +463,11 @@ Test(target, checker_parity_of_nan_and_huge_coordinates)
 {
     struct raster_params p = { .checker = 4 };
     uint32_t light = pack_rgb(1, 1, 1), dark = pack_rgb(CHECKER_DARK, CHECKER_DARK, CHECKER_DARK);
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, NAN, 0.1), light);
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, 1e300, 0.1), light);
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, 0.1, 0.1), light);      /* square (0, 0) */
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, 0.3, 0.1), dark);       /* square (1, 0) */
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, -0.1, 0.1), dark);      /* square (-1, 0) */
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, -0.3, -0.1), dark);     /* square (-2, -1) */
-    cr_expect_eq(shade_pixel(&p, 1, 1, 1, -0.3, -0.3), light);    /* square (-2, -2) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, NAN, 0.1), light);
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 1e300, 0.1), light);
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 0.1, 0.1), light);      /* square (0, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 0.3, 0.1), dark);       /* square (1, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.1, 0.1), dark);      /* square (-1, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.3, -0.1), dark);     /* square (-2, -1) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.3, -0.3), light);    /* square (-2, -2) */
 }

@@ -248,7 +248,7 @@ static int explorer_desc_from_cli(const struct lesson *l, const struct cli_optio
     };
     if (o->view) {
         /* check the name first: a bad view is a usage error */
-        struct explorer probe = { .lesson = l, .edge = -1 };
+        struct explorer probe = { .lesson = l, .side = lesson_explorer_of(l), .edge = -1 };
         if (!explorer_set_view_name(&probe, o->view)) {
             fprintf(stderr, "%s: --view '%s': no such view; views:", l->id, o->view);
             for (int i = 0; i < explorer_view_count(&probe); i++)

@@ -45,7 +45,7 @@ static double legend(struct painter *p, double x, double y, double w)
     struct explorer *ex = p->ex;
     double y0 = y, s = p->s;
     if (ex->view >= VIEW_BUILTIN_COUNT)
-        y += draw_text(p, x, y, w, ex->lesson->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
+        y += draw_text(p, x, y, w, ex->side->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
                        p->pal->text, false);
     struct view_ctx v;
     view_ctx_init(&v, ex, p->pal);
@@ -130,7 +130,12 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             format_edge(v, sizeof v, ev->e[k]);
             at = cat(buf, n, at, "%s = %lld (%s px\u00b2)\n", edge_names[k], (long long)ev->e[k], v);
         }
-        at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f\n", ev->bary[0], ev->bary[1], ev->bary[2]);
+        if (ex->tri.area2 > 0) {       /* the weights follow from the edge values */
+            double b[3];
+            barycentric(&ex->tri, ev->e, b);
+            at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f\n", (float)b[0], (float)b[1],
+                     (float)b[2]);
+        }
         break;
     case TRACE_PIXEL_WRITE:
         at = cat(buf, n, at, "write (%d, %d): z %.5g, depth %s\n", ev->x, ev->y, ev->z,
@@ -146,6 +151,10 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "%s%s %.6g", k ? ", " : "", ex->lesson->aux_names[k], ev->aux[k]);
         if (ex->lesson->aux_names[0])
             at = cat(buf, n, at, "\n");
+    }
+    if (ex->side && ex->side->watch && ex->tri.area2 > 0 && at < n) {
+        ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
+        at += strlen(buf + at);
     }
     return at;
 }
@@ -317,9 +326,9 @@ void paint_panel(struct painter *p)
     y += pseudocode(p, x, y, w) + 8 * s;
     y += heading(p, x, y, w, "WATCH");
     y += watch(p, x, y, w) + 8 * s;
-    if (ex->lesson->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
+    if (ex->side && ex->side->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
         buf[0] = '\0';
-        ex->lesson->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        ex->side->constants(&ex->tri, &ex->params, buf, sizeof buf);
         for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
             buf[e - 1] = '\0';
         y += heading(p, x, y, w, "TRIANGLE");

@@ -62,7 +62,13 @@ static void take_event(void *ctx, const struct trace_event *ev)
             c->flags = (uint8_t)((c->flags & ~CELL_INSIDE) | CELL_TESTED
                                  | ((ev->flags & TRACE_INSIDE) ? CELL_INSIDE : 0));
             memcpy(c->e, ev->e, sizeof c->e);
-            memcpy(c->bary, ev->bary, sizeof c->bary);
+            /* the weights follow from the edge values: u, v, w = F_bc, F_ca, F_ab / area2 */
+            if (ex->tri.area2 > 0) {
+                double b[3];
+                barycentric(&ex->tri, ev->e, b);
+                for (int k = 0; k < 3; k++)
+                    c->bary[k] = (float)b[k];
+            }
             memcpy(c->aux, ev->aux, sizeof c->aux);
         }
         break;
@@ -407,6 +413,7 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
 {
     memset(ex, 0, sizeof *ex);
     ex->lesson = d->lesson;
+    ex->side = d->side ? d->side : lesson_explorer_of(d->lesson);
     ex->scene_is_default = d->scene_is_default;
     snprintf(ex->scene_name, sizeof ex->scene_name, "%s", d->scene_name ? d->scene_name : "scene");
     ex->params = d->params;

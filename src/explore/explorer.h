@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "lesson.h"
+#include "lesson_explorer.h"
 #include "explore/replay.h"
 
 enum step_unit {
@@ -63,6 +64,7 @@ struct explorer_layout {
 /* How to start: zero-initialise and set what you need. */
 struct explorer_desc {
     const struct lesson *lesson;
+    const struct lesson_explorer *side;     /* NULL: the lesson's own (lesson_explorer_of) */
     const struct scene *scene;      /* copied: the explorer owns its own copy */
     bool scene_is_default;          /* the lesson's built-in scene (X may switch scenes) */
     const char *scene_name;         /* as shown in the panel */
@@ -76,6 +78,7 @@ struct explorer_desc {
 
 struct explorer {
     const struct lesson *lesson;
+    const struct lesson_explorer *side;     /* what the explorer adds for it, or NULL */
     struct scene scene;
     bool scene_is_default;
     char scene_name[128];
