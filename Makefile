@@ -3,7 +3,7 @@
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
-B        := $(BUILD)$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize))
+B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
 PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
 LES_SRC  := $(wildcard lessons/*/*.c)
@@ -17,12 +17,24 @@ CFLAGS   ?= -O2 -g
 CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS)
 SAN      := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer
-ifdef SANITIZE
+ifneq ($(SANITIZE),)
+ifeq ($(PORT),)
 CFLAGS   += $(SAN)
 LDFLAGS  += $(SAN)
 endif
+endif
+ifeq ($(PORT),aarch64)    # make aarch64: Debian's cross compiler, SSE2 through SIMDe to NEON
+override CC := aarch64-linux-gnu-gcc
+CFLAGS   += -I$(B)/include
+LDFLAGS  += -static
+RUN      := qemu-aarch64
+endif
+ifeq ($(PORT),simde)      # make simde-test: SSE2 through SIMDe's portable C, sanitized
+CFLAGS   += -DTRISTEP_SIMDE -DSIMDE_NO_NATIVE $(SAN)
+LDFLAGS  += $(SAN)
+endif
 ifdef FUZZ      # make fuzz: libFuzzer needs clang
-CC       := clang
+override CC := clang
 CFLAGS   += $(SAN) -fsanitize=fuzzer-no-link
 LDFLAGS  += $(SAN)
 endif
@@ -34,7 +46,7 @@ all: $(PROGRAMS)
 ifneq ($(MAKECMDGOALS),clean)
 include $(B)/config.mk
 endif
-$(B)/config.mk: src/deps.sh ; @sh src/deps.sh build $@
+$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),build) $@
 deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # Lessons are compiled twice: narrated for the programs and tests, fast
@@ -52,12 +64,12 @@ $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/le
 # Every lesson, both builds, listed for the tests and the bench (again when
 # a lesson folder appears: that changes the mtime of lessons/).
 $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
-	@printf '#include "lesson_explorer.h"\n' > $@
+	@printf '#include "%s"\n' $(if $(PORT),lesson.h,lesson_explorer.h) > $@
 	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
 	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
-	@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@
-	@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@
+	$(if $(PORT),,@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@)
+	$(if $(PORT),,@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@)
 $(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
@@ -86,11 +98,26 @@ fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp nice -n 10 $(B)/fuzz-$$f -max_total_time=$(SECONDS) -print_final_stats=1 -artifact_prefix=$(B)/crashes/$$f- \
 	    $$([ -f tests/fuzz/$$f.dict ] && echo -dict=tests/fuzz/$$f.dict) $(B)/corpus/$$f tests/fuzz/corpus/$$f || exit 1; done
 
+# Portable (issue 17): the core, the lessons (both builds) and the
+# exactness driver tests/portable/exact.c, no SDL, cairo or Criterion:
+# `make aarch64` cross-compiles them statically and runs them under qemu,
+# `make simde-test` runs them natively through SIMDe's portable code.
+CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster scene trace shade,src/$(d)/*.c)))
+ALG_SRC  := $(filter-out $(EXP_SRC),$(LES_SRC))
+$(B)/exact: $(patsubst %.c,$(B)/obj/%.o,tests/portable/exact.c tests/testlib.c $(CORE_SRC)) \
+            $(B)/obj/lessons.o $(ALG_SRC:%.c=$(B)/obj/%.o) $(ALG_SRC:%.c=$(B)/fast/%.o)
+	$(CC) $(LDFLAGS) $^ -lm -o $@
+$(B)/include/simde: ; @mkdir -p $(@D) && ln -sfn /usr/include/simde $@   # without the rest of /usr/include
+aarch64 simde-test: ; @$(MAKE) --no-print-directory PORT=$(@:-test=) port-run
+port-run: $(if $(filter aarch64,$(PORT)),$(B)/include/simde) $(B)/exact ; $(RUN) $(B)/exact
+.PHONY: aarch64 simde-test port-run
+
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus
+	@$(MAKE) --no-print-directory aarch64 simde-test
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
