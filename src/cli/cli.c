@@ -12,6 +12,7 @@
 #include "app/app.h"
 #include "draw/paint.h"
 #include "explore/replay.h"
+#include "front/front.h"
 #include "util/file.h"
 
 /* --- writing files ------------------------------------------------------------ */
@@ -309,6 +310,11 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     if (!loaded) {
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
+    }
+    if (!front_scene(&s)) {    /* a 3-D scene: its screen triangles */
+        fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
+        scene_free(&s);
+        return EXIT_RUN;
     }
     o.params.checker = s.checker;
 

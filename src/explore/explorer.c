@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "front/front.h"
+
 /* --- replaying a step ------------------------------------------------------- */
 
 static struct cell *explorer_cell_mut(struct explorer *ex, int x, int y)
@@ -350,7 +352,12 @@ bool explorer_cycle_exhibit(struct explorer *ex)
         /* the exhibits are made to be seen on the lesson's exhibit scene */
         struct scene s;
         char err[256];
-        if (scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err)) {
+        bool ok = scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err);
+        if (ok && !front_scene(&s)) {   /* a 3-D scene: its screen triangles */
+            scene_free(&s);
+            ok = false;
+        }
+        if (ok) {
             scene_free(&ex->scene);
             ex->scene = s;
             ex->scene_is_default = false;

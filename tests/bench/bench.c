@@ -63,6 +63,7 @@ static struct row rows[MAX_ROWS];
 static int nrows;
 static double frame_ms = -1;     /* explorer frame, < 0 not measured */
 static double figures_s = -1;    /* make figures, < 0 not measured */
+static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
 
 static double now(void)
 {
@@ -358,6 +359,11 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
         fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
         fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+    /* the 3-D front end: world triangles per second, no pixels */
+    if (front.t.runs > 0)
+        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
+                front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
+                front.in / front.t.median * 1e-6);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -628,6 +634,16 @@ int main(int argc, char **argv)
             printf("make figures: %s\n", note);
         }
     }
+
+    if (bench_front_run(&front, o.runs))
+        printf("\n3-D front end (lesson 06), a %d-triangle torus seen from inside its tube at "
+               "1920 x 1080:\n  %.2f Mtri/s through look-at, near/far clipping, projection, guard "
+               "band, fan and cull\n  (median %.1f ms, min %.1f ms; %d cut by near or far, %d "
+               "wholly outside them, %d past the guard band; %d screen triangles out)\n",
+               front.in, front.in / front.t.median * 1e-6, front.t.median * 1e3, front.t.lo * 1e3,
+               front.depth_clipped, front.culled_whole, front.guard_clipped, front.out);
+    else
+        printf("\n3-D front end: could not be measured (out of memory)\n");
 
     print_targets(sc, limit);
 
