@@ -13,6 +13,7 @@
 #include "draw/paint.h"
 #include "draw/views.h"
 #include "explore/explorer.h"
+#include "front/front.h"
 #include "fuzz.h"
 
 #define FUZZ_TRIS 4
@@ -48,6 +49,10 @@ int fuzz_explorer(const uint8_t *data, size_t size)
     char err[512];
     if (!scene_parse(&s, "fuzz.scene", (const char *)data + 1, size - 1, err, sizeof err))
         return 0;
+    if (!front_scene(&s)) {   /* a 3-D scene: its screen triangles (false: out of memory) */
+        scene_free(&s);
+        return 0;
+    }
     if (s.w * s.h > 1 << 20) {   /* the target must stay small for the fuzzer's speed */
         s.w = s.w > 1024 ? 1024 : s.w;
         s.h = s.h > 1024 ? 1024 : s.h;

@@ -14,9 +14,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Scene text -> scene_parse: accepted scenes hold only values in range and
- * read back the same after scene_write. */
+/* Scene text (2-D and 3-D) -> scene_parse: accepted scenes hold only values
+ * in range; a 3-D scene's front end makes screen triangles in the guard band
+ * at depths in [near, far]; scene_write reads back the same. */
 int fuzz_scene(const uint8_t *data, size_t size);
+/* Wavefront OBJ text -> obj_read: accepted models hold only world points
+ * within 10^6, in the obj line's colour, appended to what was there. */
+int fuzz_obj(const uint8_t *data, size_t size);
 /* --keys text -> script_parse: accepted scripts hold only valid commands. */
 int fuzz_keys(const uint8_t *data, size_t size);
 /* Scene text -> every exact variant of every lesson, narrated and fast, on

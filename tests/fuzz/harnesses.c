@@ -7,6 +7,7 @@
 
 const struct fuzz_harness fuzz_harnesses[] = {
     { "scene", fuzz_scene },
+    { "obj", fuzz_obj },
     { "keys", fuzz_keys },
     { "lessons", fuzz_lessons },
     { "explorer", fuzz_explorer },

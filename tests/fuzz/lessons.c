@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "../testlib.h"
+#include "front/front.h"
 #include "fuzz.h"
 
 #define FUZZ_SIDE 32
@@ -47,6 +48,10 @@ int fuzz_lessons(const uint8_t *data, size_t size)
     char err[512];
     if (!scene_parse(&s, "fuzz.scene", (const char *)data, size, err, sizeof err))
         return 0;
+    if (!front_scene(&s)) {   /* a 3-D scene: its screen triangles (false: out of memory) */
+        scene_free(&s);
+        return 0;
+    }
     int w = s.w < FUZZ_SIDE ? s.w : FUZZ_SIDE, h = s.h < FUZZ_SIDE ? s.h : FUZZ_SIDE;
     static struct test_variant tv[MAX_TEST_VARIANTS];
     int nv = exact_variants(tv, MAX_TEST_VARIANTS, BUILD_BOTH);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "front/front.h"
 #include "fuzz.h"
 #include "scene/scene.h"
 
@@ -39,7 +40,8 @@ static void check_ranges(const struct scene *s)
         }
 }
 
-/* scene_write then scene_parse gives back the very same values. */
+/* scene_write then scene_parse gives back the very same values (a 3-D scene
+ * as the screen triangles the front end made). */
 static void check_round_trip(const struct scene *s)
 {
     char *text = NULL;
@@ -71,6 +73,36 @@ static void check_round_trip(const struct scene *s)
     free(text);
 }
 
+/* A 3-D scene's world: camera as CONVENTIONS.md requires, world points
+ * within 10^6, colours in [0, 1]; what the front end makes of it, screen
+ * triangles inside the guard band at depths in [near, far]. */
+static void check_world(struct scene *s)
+{
+    const struct world *w = &s->world;
+    const struct camera *c = &w->cam;
+    if (!(c->fovy > 0 && c->fovy < 180 && c->near >= SCENE_Z_MIN && c->far > c->near
+          && c->far <= SCENE_Z_MAX))
+        fuzz_fail("accepted camera fovy %g near %g far %g", c->fovy, c->near, c->far);
+    for (int i = 0; i < w->ntris; i++)
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++)
+                if (!(fabs(w->tris[i].p[k][j]) <= WORLD_LIMIT) || !unit(w->tris[i].rgb[k][j]))
+                    fuzz_fail("world triangle %d: accepted %g / colour %g", i,
+                              w->tris[i].p[k][j], w->tris[i].rgb[k][j]);
+    if (!front_scene(s))
+        return;   /* out of memory */
+    for (int i = 0; i < s->ntris; i++) {
+        if (w->from[i] < 0 || w->from[i] >= w->ntris || (i && w->from[i] < w->from[i - 1]))
+            fuzz_fail("screen triangle %d comes from world triangle %d", i, w->from[i]);
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s->tris[i].v[k];
+            if (!(v->z >= c->near && v->z <= c->far))
+                fuzz_fail("screen triangle %d: depth %.17g outside [%g, %g]", i, v->z, c->near,
+                          c->far);
+        }
+    }
+}
+
 int fuzz_scene(const uint8_t *data, size_t size)
 {
     struct scene s;
@@ -84,6 +116,8 @@ int fuzz_scene(const uint8_t *data, size_t size)
             fuzz_fail("a rejected scene keeps triangles");
         return 0;
     }
+    if (s.world.camera_line)
+        check_world(&s);
     check_ranges(&s);
     check_round_trip(&s);
     scene_free(&s);
