@@ -49,11 +49,14 @@ endif
 $(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),build) $@
 deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
+# The compiler and its flags, rewritten only when they change (make CC=clang
+# after make rebuilds everything with clang).
+$(B)/cc.flag: FORCE | $(B)/config.mk ; @echo '$(CC) $(CFLAGS)' | cmp -s - $@ || echo '$(CC) $(CFLAGS)' > $@
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
 # What the explorer adds for a lesson (NAME_explorer.c) only narrated.
-$(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
-$(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/%.o: %.c $(B)/cc.flag | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c $(B)/cc.flag | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
 $(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
 # The library anew when src/ gains or loses a file (its folders' mtimes):
 # no member left over from a file moved away.
