@@ -1,5 +1,5 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
-#          make fuzz [SECONDS=N] | make clean
+#          make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
@@ -13,34 +13,39 @@ ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-ou
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
+# CFLAGS, LDFLAGS and LDLIBS are the user's (make CFLAGS=-O0 still builds);
+# what tristep needs goes into TS_* beside them.
 CFLAGS   ?= -O2 -g
-CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS)
-SAN      := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer
+SANITIZERS := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
+              -fno-omit-frame-pointer
 ifneq ($(SANITIZE),)
-ifeq ($(PORT),)
-CFLAGS   += $(SAN)
-LDFLAGS  += $(SAN)
+SAN      := $(SANITIZERS)
 endif
+ifdef FUZZ                # make fuzz: libFuzzer needs clang
+override CC := clang
+SAN      := $(SANITIZERS) -fsanitize=fuzzer-no-link
 endif
 ifeq ($(PORT),aarch64)    # make aarch64: Debian's cross compiler, SSE2 through SIMDe to NEON
 override CC := aarch64-linux-gnu-gcc
-CFLAGS   += -I$(B)/include
+SAN      :=
+TS_PORT  := -I$(B)/include
 LDFLAGS  += -static
 RUN      := qemu-aarch64
 endif
 ifeq ($(PORT),simde)      # make simde-test: SSE2 through SIMDe's portable C, sanitized
-CFLAGS   += -DTRISTEP_SIMDE -DSIMDE_NO_NATIVE $(SAN)
-LDFLAGS  += $(SAN)
+SAN      := $(SANITIZERS)
+TS_PORT  := -DTRISTEP_SIMDE -DSIMDE_NO_NATIVE
 endif
-ifdef FUZZ      # make fuzz: libFuzzer needs clang
-override CC := clang
-CFLAGS   += $(SAN) -fsanitize=fuzzer-no-link
-LDFLAGS  += $(SAN)
-endif
+TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN) $(TS_PORT)
+CC_ALL    = $(CC) $(CFLAGS) $(TS_CFLAGS)
+LD_ALL    = $(CC) $(LDFLAGS) $(SAN)
+LIBS      = $(LDLIBS) $(PKG_LIBS)
+# What comes before any compiling (order-only): the library flags, and the
+# packages of make test and make bench (so make -j2 test installs them first).
+FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench fuzz fuzz-run clean deps-test deps-bench FORCE
+.PHONY: all run test figures bench fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -51,18 +56,18 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # The compiler and its flags, rewritten only when they change (make CC=clang
 # after make rebuilds everything with clang).
-$(B)/cc.flag: FORCE | $(B)/config.mk ; @echo '$(CC) $(CFLAGS)' | cmp -s - $@ || echo '$(CC) $(CFLAGS)' > $@
+$(B)/cc.flag: FORCE | $(B)/config.mk ; @echo '$(CC_ALL)' | cmp -s - $@ || echo '$(CC_ALL)' > $@
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
 # What the explorer adds for a lesson (NAME_explorer.c) only narrated.
-$(B)/obj/%.o: %.c $(B)/cc.flag | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
-$(B)/fast/%.o: %.c $(B)/cc.flag | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
-$(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
+$(B)/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/main-%.o: src/cli/main.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
 # The library anew when src/ gains or loses a file (its folders' mtimes):
 # no member left over from a file moved away.
 $(B)/libtristep.a: $(LIB_OBJ) src $(wildcard src/*/) ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
 $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(LD_ALL) $^ $(LIBS) -o $@
 
 # Every lesson, both builds, listed for the tests and the bench (again when
 # a lesson folder appears: that changes the mtime of lessons/).
@@ -73,26 +78,26 @@ $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
 	$(if $(PORT),,@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@)
 	$(if $(PORT),,@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@)
-$(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
-$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
+$(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
 # Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
 # changes, so the bench is rebuilt once `make bench` has installed it.
 OSMESA   := $(shell pkg-config --exists osmesa 2>/dev/null && echo -lOSMesa)
 $(B)/osmesa.flag: FORCE ; @echo '$(OSMESA)' | cmp -s - $@ || echo '$(OSMESA)' > $@
-$(B)/obj/tests/bench/%.o: CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
+$(B)/obj/tests/bench/%.o: TS_CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
 $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
+	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
 
 # Fuzzing (tests/fuzz/fuzz.h): one libFuzzer program per harness, and a
 # replay of the committed corpus that needs no libFuzzer (run by make test).
 FUZZERS  := $(patsubst tests/fuzz/corpus/%,%,$(wildcard tests/fuzz/corpus/*))
 FUZZ_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(filter-out %/libfuzzer.c %/replay.c,$(wildcard tests/fuzz/*.c))) \
             $(B)/obj/tests/testlib.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
-$(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DFUZZ_HARNESS=fuzz_$* -c $< -o $@
-$(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(CC) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -o $@
-$(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+$(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DFUZZ_HARNESS=fuzz_$* -c $< -o $@
+$(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(LD_ALL) -fsanitize=fuzzer $^ $(LIBS) -o $@
+$(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(LD_ALL) $^ $(LIBS) -o $@
 SECONDS  ?= 60
 fuzz: deps-test ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
 fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
@@ -105,15 +110,14 @@ fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 # exactness driver tests/portable/exact.c, no SDL, cairo or Criterion:
 # `make aarch64` cross-compiles them statically and runs them under qemu,
 # `make simde-test` runs them natively through SIMDe's portable code.
-CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster scene trace shade,src/$(d)/*.c)))
+CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster scene front trace shade,src/$(d)/*.c)))
 ALG_SRC  := $(filter-out $(EXP_SRC),$(LES_SRC))
 $(B)/exact: $(patsubst %.c,$(B)/obj/%.o,tests/portable/exact.c tests/testlib.c $(CORE_SRC)) \
             $(B)/obj/lessons.o $(ALG_SRC:%.c=$(B)/obj/%.o) $(ALG_SRC:%.c=$(B)/fast/%.o)
-	$(CC) $(LDFLAGS) $^ -lm -o $@
+	$(LD_ALL) $^ -lm -o $@
 $(B)/include/simde: ; @mkdir -p $(@D) && ln -sfn /usr/include/simde $@   # without the rest of /usr/include
 aarch64 simde-test: ; @$(MAKE) --no-print-directory PORT=$(@:-test=) port-run
 port-run: $(if $(filter aarch64,$(PORT)),$(B)/include/simde) $(B)/exact ; $(RUN) $(B)/exact
-.PHONY: aarch64 simde-test port-run
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
@@ -123,9 +127,10 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	@$(MAKE) --no-print-directory aarch64 simde-test
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
-	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
-# Every figure of figures/list, one process each (cairo's SVG ids count per process).
-figures: all ; sh figures/make-figures.sh $(B)
+	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+# Every figure of figures/list into $(FIGURES), one process each (cairo's SVG ids count per process).
+FIGURES  ?= figures
+figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)
 clean: ; rm -rf $(BUILD)
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

@@ -155,14 +155,6 @@ Test(lesson03, multiplications_do_not_grow_with_the_width)
 
 /* --- the float exhibit --------------------------------------------------------------- */
 
-struct counting { int w; uint8_t *count; };
-
-static void cover(void *ctx, int x, int y)
-{
-    struct counting *c = ctx;
-    c->count[(size_t)y * (size_t)c->w + (size_t)x]++;
-}
-
 struct float_errors {
     long extra, missing;       /* per triangle, against the exact reference */
     long on_dropped_edge;      /* extra pixels whose centre is exactly on an edge
@@ -205,7 +197,7 @@ static void float_errors_of(const struct tri_setup *t, struct float_errors *e)
     lesson_03_fast.variants[0].rasterize(t, &p, &exact, NULL);
     uint8_t *ref = calloc((size_t)w * (size_t)h, 1);
     cr_assert_not_null(ref);
-    reference_coverage(t, cover, &(struct counting){ w, ref });
+    reference_mask(t, ref);
     cr_assert_eq(memcmp(exact.count, ref, (size_t)w * (size_t)h), 0,
                  "the exact loop differs from the reference");
 

@@ -187,7 +187,8 @@ static bool same(cairo_surface_t *a, cairo_surface_t *b)
 
 Test(overlays, explorer_calls_both_hooks)
 {
-    explorer_fonts();
+    char why[512];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
     struct lesson_explorer side = { .lesson = &lesson_01, .overlay = record_overlay,
                                     .constants = record_constants };
     memset(&seen, 0, sizeof seen);
@@ -225,7 +226,8 @@ Test(overlays, explorer_calls_both_hooks)
 static void assert_overlay_draws(const struct lesson_explorer *real, const char *view,
                                  uint64_t step)
 {
-    explorer_fonts();
+    char why[512];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
     const struct lesson *l = real->lesson;
     struct lesson_explorer bare = { .lesson = l };
     struct lesson_explorer only_constants = { .lesson = l, .constants = real->constants };

@@ -49,7 +49,7 @@ static const struct bad_script bad_scripts[] = {
       "RightRightRightRightRightRightRightRightRightRightRightRightRightRightRightRightRight"
       "RightRightRightRightRightRightRightRightRightRightRightRightRightRightRightRightRight"
       "RightRightRightRightRightRightRightRightRightRightRightRightRight\n",
-      "k.keys:2: line too long" },
+      "k.keys:2: line longer than" },
     { "key name too long", "Right Right Right Right Right Right Right Right Right\n",
       "k.keys:1: 'Right Right" },
     { "control character", "Ri\x01ght\n", "k.keys:1: control character" },

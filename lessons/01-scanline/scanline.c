@@ -76,17 +76,6 @@ static struct point point_of(const struct tri_setup *t, const struct raster_para
     };
 }
 
-/* Floor and ceiling of a / b for b > 0 (C's division truncates toward 0). */
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    return a / b - (a % b < 0);
-}
-
-static int64_t ceil_div(int64_t a, int64_t b)
-{
-    return -floor_div(-a, b);
-}
-
 /* The first pixel row whose centre y + 0.5 is at or below y (1/256 px).
  * Rows [row_at(y_top), row_at(y_bottom)) are the triangle's rows: a centre
  * exactly on the top vertex's height is in, on the bottom one's out. */

@@ -523,8 +523,8 @@ int explorer_run(const struct app_desc *d)
 {
     const struct lesson *l = d->explorer.lesson;
     struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
+    char err[512];
     if (d->keys) {
-        char err[512];
         if (!script_load(&a.script, d->keys, err, sizeof err)) {
             fprintf(stderr, "%s\n", err);
             return EXIT_USAGE;
@@ -535,9 +535,9 @@ int explorer_run(const struct app_desc *d)
             return EXIT_USAGE;
         }
     }
-    explorer_fonts();
     int status = EXIT_OK;
-    char err[512];
+    if (!explorer_fonts(err, sizeof err))
+        fprintf(stderr, "%s: %s; the text will not look as in the figures\n", l->id, err);
     if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;

@@ -131,7 +131,8 @@ bool script_parse(struct script *s, const char *name, const char *text, size_t l
         if (a == b || text[a] == '#')
             continue;
         if (b - a >= sizeof buf) {
-            fail(s, line, err, errlen, "line too long for a key, 'wait' or 'drag'");
+            fail(s, line, err, errlen, "line longer than %d characters (too long for a key, "
+                 "'wait' or 'drag')", (int)sizeof buf - 1);
             goto error;
         }
         memcpy(buf, text + a, b - a);

@@ -244,7 +244,7 @@ static int explorer_desc_from_cli(const struct lesson *l, const struct cli_optio
         snprintf(name, n, "builtin:%s", l->builtin_scene);
     *d = (struct explorer_desc){
         .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
-        .variant = o->variant, .params = o->params, .step = o->step, .step_end = o->step_end,
+        .variant = o->variant, .params = &o->params, .step = o->step, .step_end = o->step_end,
         .zoom = o->zoom, .scale = o->scale,
     };
     if (o->view) {
@@ -270,7 +270,10 @@ static int figure_export(const struct lesson *l, const struct cli_options *o, co
     int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
     if (status >= 0)
         return status;
-    explorer_fonts();
+    if (!explorer_fonts(err, sizeof err)) {
+        fprintf(stderr, "%s: %s\n", l->id, err);     /* the figure would not be the figure */
+        return EXIT_RUN;
+    }
     if (!explorer_init(&ex, &d, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         return EXIT_RUN;

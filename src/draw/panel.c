@@ -205,9 +205,7 @@ static double watch(struct painter *p, double x, double y, double w)
 static double compare_lines(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    int done = ex->cur < 0 ? 0 : ex->cur;
-    if (ex->cur >= 0 && ex->local + 1 >= ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur])
-        done = ex->cur + 1;     /* the current triangle has finished too */
+    int done = explorer_finished(ex);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
@@ -227,19 +225,8 @@ static double compare_lines(struct painter *p, double x, double y, double w)
 static double counters(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    struct trace_counters c = { 0 };
-    int before = ex->cur >= 0 ? ex->cur : 0;
-    const struct trace_counters *a = &ex->replay.sums[before];
-    c.tested = a->tested + ex->tri_c.tested;
-    c.covered = a->covered + ex->tri_c.covered;
-    c.written = a->written + ex->tri_c.written;
-    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
-        c.blocks[k] = a->blocks[k] + ex->tri_c.blocks[k];
-    c.rows = a->rows + ex->tri_c.rows;
-    c.spans = a->spans + ex->tri_c.spans;
-    /* the last event carries the arithmetic done before it in its triangle */
-    c.mul = a->mul + (ex->has_last ? ex->last.mul : 0);
-    c.add = a->add + (ex->has_last ? ex->last.add : 0);
+    struct trace_counters c;
+    explorer_counters(ex, &c);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     at = cat(buf, n, at, "pixels tested  %10llu   covered %10llu\n", (unsigned long long)c.tested,

@@ -69,7 +69,9 @@ struct explorer_desc {
     bool scene_is_default;          /* the lesson's built-in scene (X may switch scenes) */
     const char *scene_name;         /* as shown in the panel */
     const struct lesson_variant *variant;   /* NULL: variants[0] */
-    struct raster_params params;
+    /* taken as given (subpixel_bits 0 is whole pixels, as in --dump-coverage);
+     * NULL: the defaults, SUBPIXEL_BITS and nothing else set */
+    const struct raster_params *params;
     uint64_t step;
     bool step_end;
     double zoom;                    /* 0: fit the scene into the canvas */
@@ -159,6 +161,13 @@ bool explorer_cycle_twin(struct explorer *ex);
  * triangle to (x, y) snapped to 1/256 pixel; vertices of other triangles at
  * the same place move with it. The lesson re-runs; the step is kept. */
 bool explorer_move_vertex(struct explorer *ex, int k, double x, double y);
+
+/* Triangles finished at this step: those before the current one, and the
+ * current one too once its last event has happened. */
+int explorer_finished(const struct explorer *ex);
+/* What the algorithm did up to this step: the counters of the triangles
+ * before the current one plus the current one's so far. */
+void explorer_counters(const struct explorer *ex, struct trace_counters *c);
 
 /* The cell of the current triangle at pixel (x, y), or NULL. */
 const struct cell *explorer_cell(const struct explorer *ex, int x, int y);

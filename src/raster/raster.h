@@ -93,6 +93,18 @@ static inline bool is_top_left(int64_t I, int64_t J)
     return left || top;
 }
 
+/* Floor and ceiling of a / b for b > 0, also for negative a (C's division
+ * truncates toward 0: -3 / 2 is -1, floor_div(-3, 2) is -2). */
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+    return a / b - (a % b < 0);
+}
+
+static inline int64_t ceil_div(int64_t a, int64_t b)
+{
+    return -floor_div(-a, b);
+}
+
 /* Fixed-point coordinate of the centre of pixel column/row p. */
 static inline int64_t pixel_centre(int p)
 {

@@ -66,6 +66,10 @@ struct trace_counters {
     uint64_t mul, add;                      /* arithmetic the lesson declared */
 };
 
+/* sum = a + b, field by field (sum may be a or b). */
+void trace_counters_add(struct trace_counters *sum, const struct trace_counters *a,
+                        const struct trace_counters *b);
+
 struct trace_event {
     uint8_t kind;       /* enum trace_kind */
     uint8_t line;       /* line of the lesson's pseudo-code, 0-based */

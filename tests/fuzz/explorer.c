@@ -41,12 +41,12 @@ int fuzz_explorer(const uint8_t *data, size_t size)
     if (size < 2)
         return 0;
     static bool fonts;
+    char err[512];
     if (!fonts) {
-        explorer_fonts();
+        explorer_fonts(err, sizeof err);   /* without DejaVu the text looks different: no matter here */
         fonts = true;
     }
     struct scene s;
-    char err[512];
     if (!scene_parse(&s, "fuzz.scene", (const char *)data + 1, size - 1, err, sizeof err))
         return 0;
     if (!front_scene(&s)) {   /* a 3-D scene: its screen triangles (false: out of memory) */
@@ -62,12 +62,14 @@ int fuzz_explorer(const uint8_t *data, size_t size)
     const struct lesson *l = all_lessons[data[0] % nlessons()];
     int variant = (data[0] / 8) % l->nvariants;
     struct explorer ex;
+    static const int blocks[] = { 4, 8, 16 };
+    const struct raster_params params = {
+        .checker = s.checker, .subpixel_bits = SUBPIXEL_BITS - (data[0] / 32) % 3,
+        .block_size = blocks[(data[0] / 4) % 3],
+    };
     struct explorer_desc d = {
         .lesson = l, .scene = &s, .scene_name = "fuzz.scene",
-        .variant = &l->variants[variant],
-        .params = { .checker = s.checker, .subpixel_bits = SUBPIXEL_BITS - (data[0] / 32) % 3,
-                    .block_size = (int[]){ 4, 8, 16 }[(data[0] / 4) % 3] },
-        .step_end = true,
+        .variant = &l->variants[variant], .params = &params, .step_end = true,
     };
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, FRAME_W, FRAME_H);
     if (explorer_init(&ex, &d, err, sizeof err)) {
