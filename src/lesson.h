@@ -19,7 +19,14 @@ struct raster_params {
     int block_size;       /* q for block lessons (0 = the lesson's default) */
     bool affine;          /* texture affinely, not perspective-correct (exhibit) */
     int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
+    /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
+     * of a world triangle from it before rasterizing its first screen triangle */
+    const struct scene *scene;
 };
+
+/* Makes a 3-D scene's screen triangles (src/front/: front_scene, or an
+ * exhibit's own way); false only when out of memory. */
+typedef bool (*front_fn)(struct scene *s);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
@@ -77,7 +84,15 @@ struct lesson {
      * (shaded and written); NULL for none. tests/test_counters.c recounts
      * both from what the code COUNTs. */
     const struct cost_term *cost_tested, *cost_covered;
+    /* How each variant makes a 3-D scene's screen triangles (nvariants
+     * entries; lesson 06's exhibits have their own), or NULL: every variant
+     * uses the shared front end (src/front/) */
+    const front_fn *fronts;
 };
+
+/* The front end variant v of lesson l runs on a 3-D scene: its entry of
+ * l->fronts, or front_scene. */
+front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
 

@@ -12,7 +12,6 @@
 #include "app/app.h"
 #include "draw/paint.h"
 #include "explore/replay.h"
-#include "front/front.h"
 #include "util/file.h"
 
 /* --- writing files ------------------------------------------------------------ */
@@ -314,7 +313,8 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
     }
-    if (!front_scene(&s)) {    /* a 3-D scene: its screen triangles */
+    o.params.scene = &s;
+    if (!lesson_front(l, o.variant)(&s)) {    /* a 3-D scene: its screen triangles */
         fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
         scene_free(&s);
         return EXIT_RUN;

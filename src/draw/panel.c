@@ -11,7 +11,7 @@
 #include "views.h"
 
 static const char *const kind_names[TRACE_KIND_COUNT] = {
-    "setup", "row", "span", "block", "pixel test", "pixel write",
+    "setup", "row", "span", "block", "pixel test", "pixel write", "front end",
 };
 static const char *const class_names[BLOCK_CLASS_COUNT] = { "empty", "full", "partial" };
 
@@ -142,6 +142,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
                  (ev->flags & TRACE_DEPTH_PASS) ? "pass" : "fail");
         at = cat(buf, n, at, "colour #%06x\n", (unsigned)(ev->rgba & 0xffffff));
         break;
+    case TRACE_FRONT:           /* the lesson's watch says what the step did */
     case TRACE_KIND_COUNT:
         break;
     }
@@ -152,7 +153,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
         if (ex->lesson->aux_names[0])
             at = cat(buf, n, at, "\n");
     }
-    if (ex->side && ex->side->watch && ex->tri.area2 > 0 && at < n) {
+    if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
         ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }

@@ -2,6 +2,7 @@
  * the cells of the current triangle, stepping, variants, dragging, layout. */
 #include "explorer.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,6 +84,7 @@ static void take_event(void *ctx, const struct trace_event *ev)
         }
         break;
     case TRACE_SETUP:
+    case TRACE_FRONT:           /* a step of the 3-D front end: no pixel of the grid */
     case TRACE_KIND_COUNT:
         break;
     }
@@ -150,6 +152,33 @@ static bool advance_exact(struct explorer *ex, int upto)
     return true;
 }
 
+/* An exhibit with a front end of its own (lesson 06) makes other triangles
+ * than variants[0]: its exact picture is the whole scene as variants[0]
+ * projects and draws it, compared once every triangle is finished. */
+static bool own_front(const struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    return ex->scene.world.camera_line
+           && lesson_front(ex->lesson, v) != lesson_front(ex->lesson, ex->lesson->variants);
+}
+
+static bool exact_whole_scene(struct explorer *ex)
+{
+    if (ex->exact_upto == INT_MAX)
+        return true;
+    struct scene s;
+    if (!scene_copy(&s, &ex->scene))
+        return false;
+    const struct lesson_variant *v0 = &ex->lesson->variants[0];
+    struct raster_params p = ex->params;
+    p.scene = &s;
+    target_free(&ex->exact);
+    bool ok = lesson_front(ex->lesson, v0)(&s) && render_scene(&s, v0, &p, &ex->exact);
+    scene_free(&s);
+    ex->exact_upto = ok ? INT_MAX : -1;
+    return ok;
+}
+
 /* An exhibit: compare the coverage counts of the finished triangles with
  * what variants[0] gives for the same triangles. */
 static bool compare_exhibit(struct explorer *ex)
@@ -164,8 +193,16 @@ static bool compare_exhibit(struct explorer *ex)
     int done = explorer_finished(ex);
     /* the picture of exactly the finished triangles */
     const uint8_t *count = ex->cur >= 0 && done > ex->cur ? ex->fb.count : ex->replay.base.count;
-    if (!advance_exact(ex, done))
+    if (own_front(ex)) {
+        if (done < ex->replay.ntris) {      /* other triangles: only the whole picture compares */
+            memset(ex->diff, 0, n);
+            return true;
+        }
+        if (!exact_whole_scene(ex))
+            return false;
+    } else if (!advance_exact(ex, done)) {
         return false;
+    }
     ex->diff_done = done;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
@@ -299,8 +336,25 @@ static bool compare_recount(struct explorer *ex)
     return true;
 }
 
+/* A 3-D scene's screen triangles as the current variant makes them (an
+ * exhibit may make them its own way): made again only when the variant's
+ * way differs from the one that made them, so dragged vertices stay. */
+static bool project_scene(struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    ex->params.scene = &ex->scene;
+    front_fn f = lesson_front(ex->lesson, v);
+    if (!ex->scene.world.camera_line || f == ex->projected_by)
+        return true;
+    ex->projected_by = f;
+    ex->focus = 0;
+    return ex->projected_by(&ex->scene);
+}
+
 static bool rerun(struct explorer *ex, uint64_t step)
 {
+    if (!project_scene(ex))
+        return false;
     ex->replay.variant = &ex->lesson->variants[ex->variant];
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
@@ -353,6 +407,7 @@ bool explorer_cycle_exhibit(struct explorer *ex)
         if (ok) {
             scene_free(&ex->scene);
             ex->scene = s;
+            ex->projected_by = front_scene;
             ex->scene_is_default = false;
             snprintf(ex->scene_name, sizeof ex->scene_name, "builtin:%s", ex->lesson->exhibit_scene);
             ex->params.checker = s.checker;
@@ -444,7 +499,9 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
         ex->params.checker = ex->scene.checker;
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
-        if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+        if (!project_scene(ex))
+            failed = "projecting the 3-D scene";
+        else if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
             failed = "counting the scene's events";
         else if (!compare_init(ex))
             failed = "running the lessons compared with this one";

@@ -240,6 +240,11 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
 
 bool front_scene(struct scene *s)
 {
+    return front_scene_with(s, front_triangle);
+}
+
+bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+{
     struct world *w = &s->world;
     if (!w->camera_line)
         return true;
@@ -249,7 +254,7 @@ bool front_scene(struct scene *s)
     int from_cap = 0;
     for (int i = 0; i < w->ntris; i++) {
         struct vertex tris[POLY_MAX - 2][3];
-        int n = front_triangle(&v, w->cull, &w->tris[i], tris);
+        int n = pipeline(&v, w->cull, &w->tris[i], tris);
         for (int k = 0; k < n; k++) {
             if (!scene_add(s, tris[k]))
                 return false;
