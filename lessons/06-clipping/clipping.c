@@ -267,7 +267,6 @@ static double store_depth(enum depth_store how, double d, double n, double f)
     return (double)(float)d;
 }
 
-#if NARRATING
 /* What a stored value says the depth is. */
 static double stored_as_d(enum depth_store how, double v, double n, double f)
 {
@@ -285,7 +284,6 @@ static double stored_as_d(enum depth_store how, double v, double n, double f)
     }
     return v;
 }
-#endif
 
 /* The pixel loop of lesson 02 with exact edge values, shaded in double
  * precision (perspective-correct), storing the chosen depth: what matters
