@@ -36,7 +36,11 @@ struct fuzz_harness {
 };
 extern const struct fuzz_harness fuzz_harnesses[];   /* NULL-terminated */
 
-/* Report a violated property with the input's size and abort. */
+/* A rejected input's message must be one line "name:LINE: ..." with a line
+ * number from 1: abort otherwise. */
+void fuzz_check_message(const char *err, const char *name);
+
+/* Report a violated property and abort. */
 _Noreturn void fuzz_fail(const char *fmt, ...);
 
 #endif

@@ -2,6 +2,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "fuzz.h"
 
@@ -23,4 +24,12 @@ void fuzz_fail(const char *fmt, ...)
     fputc('\n', stderr);
     va_end(ap);
     abort();
+}
+
+void fuzz_check_message(const char *err, const char *name)
+{
+    size_t n = strlen(name);
+    if (strncmp(err, name, n) != 0 || err[n] != ':' || err[n + 1] < '1' || err[n + 1] > '9'
+        || strchr(err, '\n'))
+        fuzz_fail("malformed message '%s'", err);
 }

@@ -9,9 +9,7 @@ int fuzz_keys(const uint8_t *data, size_t size)
     struct script s;
     char err[512];
     if (!script_parse(&s, "fuzz.keys", (const char *)data, size, err, sizeof err)) {
-        if (strncmp(err, "fuzz.keys:", 10) != 0 || err[10] < '1' || err[10] > '9'
-            || strchr(err, '\n'))
-            fuzz_fail("malformed message '%s'", err);
+        fuzz_check_message(err, "fuzz.keys");
         if (s.n != 0 || s.cmd)
             fuzz_fail("a rejected script keeps commands");
         return 0;

@@ -25,8 +25,7 @@ int fuzz_obj(const uint8_t *data, size_t size)
     if (!world_add(&w, &first))
         abort();
     if (!obj_read(&w, f, "fuzz.obj", rgb, err, sizeof err)) {
-        if (strncmp(err, "fuzz.obj:", 9) != 0 || err[9] < '1' || err[9] > '9' || strchr(err, '\n'))
-            fuzz_fail("malformed message '%s'", err);
+        fuzz_check_message(err, "fuzz.obj");
     } else {
         if (w.ntris < 1 || memcmp(&w.tris[0], &first, sizeof first) != 0)
             fuzz_fail("the triangles already there were changed");

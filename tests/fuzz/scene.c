@@ -108,10 +108,7 @@ int fuzz_scene(const uint8_t *data, size_t size)
     struct scene s;
     char err[512];
     if (!scene_parse(&s, "fuzz.scene", (const char *)data, size, err, sizeof err)) {
-        /* the message is one line "fuzz.scene:LINE: ..." and the scene is empty */
-        if (strncmp(err, "fuzz.scene:", 11) != 0 || err[11] < '1' || err[11] > '9'
-            || strchr(err, '\n'))
-            fuzz_fail("malformed message '%s'", err);
+        fuzz_check_message(err, "fuzz.scene");
         if (s.ntris != 0 || s.tris)
             fuzz_fail("a rejected scene keeps triangles");
         return 0;
