@@ -1,8 +1,8 @@
 /* explorer.c - fuzz harness: scene text -> the explorer (fuzz.h).
  *
  * One lesson and one variant (exhibits included), chosen from the input's
- * first byte, on the scene cut to its first FUZZ_TRIS triangles (the size is
- * kept: the explorer must cope with a 16384 x 16384 scene): replay to the
+ * first byte, on the scene cut to its first FUZZ_TRIS triangles and at most
+ * FUZZ_SIDE pixels a side (its coordinates are kept, up to 16384): replay to the
  * end, to the middle and back to the start, step by every unit in both
  * directions, drag a vertex to a place the input chooses, and paint frames
  * of several views into a small image. */
@@ -17,6 +17,7 @@
 #include "fuzz.h"
 
 #define FUZZ_TRIS 4
+#define FUZZ_SIDE 256
 #define FRAME_W 320
 #define FRAME_H 200
 
@@ -53,10 +54,8 @@ int fuzz_explorer(const uint8_t *data, size_t size)
         scene_free(&s);
         return 0;
     }
-    if (s.w * s.h > 1 << 20) {   /* the target must stay small for the fuzzer's speed */
-        s.w = s.w > 1024 ? 1024 : s.w;
-        s.h = s.h > 1024 ? 1024 : s.h;
-    }
+    s.w = s.w > FUZZ_SIDE ? FUZZ_SIDE : s.w;   /* the target stays small for the fuzzer's speed */
+    s.h = s.h > FUZZ_SIDE ? FUZZ_SIDE : s.h;
     if (s.ntris > FUZZ_TRIS)
         s.ntris = FUZZ_TRIS;
     const struct lesson *l = all_lessons[data[0] % nlessons()];
