@@ -76,8 +76,9 @@ enum { L_EACH, L_VIEW, L_NEAR, L_FAR, L_PROJECT, L_GUARD, L_FAN, L_RASTER };
 
 /* trace_event.aux[] of this lesson: lesson 05's block events keep their q
  * and level; the depth variants' pixel tests add the exact view depth and
- * what the stored value says it is. */
-static const char *const aux_names[] = { "q", "level", "d", "stored as d", NULL };
+ * what the stored value says it is, and where the stored value lies
+ * between what near (0) and far (1) would store. */
+static const char *const aux_names[] = { "q", "level", "d", "stored as d", "stored 0..1", NULL };
 
 /* --- the pipeline, narrated ------------------------------------------------
  *
@@ -285,6 +286,13 @@ static double stored_as_d(enum depth_store how, double v, double n, double f)
     return v;
 }
 
+/* Where a stored value lies between the values of near (0) and far (1). */
+static double stored_fraction(enum depth_store how, double d, double n, double f)
+{
+    double at_n = store_depth(how, n, n, f), at_f = store_depth(how, f, n, f);
+    return (store_depth(how, d, n, f) - at_n) / (at_f - at_n);
+}
+
 /* The pixel loop of lesson 02 with exact edge values, shaded in double
  * precision (perspective-correct), storing the chosen depth: what matters
  * here is the stored value, not the speed. */
@@ -313,7 +321,8 @@ static void rasterize_storing(const struct tri_setup *t, const struct raster_par
             double stored = store_depth(how, d, n, f);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_RASTER, .x = x, .y = y,
                     .e = { e[0], e[1], e[2] }, .flags = TRACE_INSIDE,
-                    .aux = { 0, 0, (float)d, (float)stored_as_d(how, stored, n, f) });
+                    .aux = { 0, 0, (float)d, (float)stored_as_d(how, stored, n, f),
+                             (float)stored_fraction(how, d, n, f) });
             uint32_t rgba = shade_pixel(p, tr, rgb[0], rgb[1], rgb[2], st[0], st[1]);
             PLOT(fb, tr, L_RASTER, x, y, (float)stored, rgba);
         }

@@ -308,11 +308,27 @@ static bool depth_error_cell(const struct tri_setup *t, const struct trace_event
     return true;
 }
 
+/* The stored value between near (white) and far (black), linearly: what
+ * the storage spends on each depth shows as it is (NDC z of a far wall is
+ * all but black, reversed float depth all but white). */
+static bool stored_cell(const struct tri_setup *t, const struct trace_event *test,
+                        const struct trace_event *write, double rgb[3])
+{
+    (void)t;
+    if (!write || !test || !(test->aux[2] > 0))
+        return false;
+    double v = 1 - fmin(1, fmax(0, test->aux[4]));
+    rgb[0] = rgb[1] = rgb[2] = v;
+    return true;
+}
+
 static const struct lesson_view views[] = {
     { "frustum", "from above: the frustum, near and far, the guard band, the triangle and "
                  "the polygon left after clipping, new vertices with their t", no_cell },
     { "screen", "the screen zoomed out: the framebuffer, the guard band, the projected "
                 "polygon and the polygon drawn", no_cell },
+    { "stored", "the depth buffer's value between near (white) and far (black), linear: "
+                "NDC z crowds into the black end; a depth variant's pixels only", stored_cell },
     { "depth-error", "stored depth against the exact d: black below 1e-9, blue 1e-7, "
                      "green 1e-5, red 1e-2 and more (relative)", depth_error_cell },
 };

@@ -242,6 +242,8 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
         world.v[i] = view_vertex(v, t->p[i], t->rgb[i]);        /* world -> view */
     struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
     clip_polygon(&near_clipped, &world, &near, NULL);           /* d >= near */
+    if (near_clipped.n == 0)
+        return 0;                                               /* wholly behind near */
     clip_polygon(&clipped, &near_clipped, &far, NULL);          /* d <= far */
     project(v, &clipped);                                       /* view -> screen */
     if (!in_guard_band(&clipped))
