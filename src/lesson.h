@@ -64,6 +64,20 @@ struct cost_term {
 };
 #define COST_TERM(n, COST) { (n), #COST, COST }
 
+/* What `make exercise` and `make check` need of a lesson (src/exercise/):
+ * the rest comes from the descriptor itself (perspective, pseudocode). */
+struct lesson_exercise {
+    /* pseudo-code line of a pixel written by the student's code without
+     * narration of its own (a bare target_write): every write is a step */
+    int write_line;
+    /* the lesson's own property: no multiplication between two pixels of
+     * a row, by the counters (lesson 03) */
+    bool no_pixel_mul;
+    /* ... every block narrated FULL covered in full, every block covered
+     * in full narrated FULL (lesson 05) */
+    bool full_blocks;
+};
+
 struct lesson {
     const char *id;                     /* "02-barycentric", as the program's name */
     const char *title;
@@ -88,6 +102,12 @@ struct lesson {
      * entries; lesson 06's exhibits have their own), or NULL: every variant
      * uses the shared front end (src/front/) */
     const front_fn *fronts;
+    /* Which variants keep another quantity than z in the depth buffer
+     * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
+     * NULL: none. An exhibit among them is compared by its colours alone. */
+    const bool *other_depth;
+
+    struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
 
 /* The front end variant v of lesson l runs on a 3-D scene: its entry of

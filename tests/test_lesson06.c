@@ -158,13 +158,14 @@ Test(lesson06, the_front_end_is_told_before_the_rasterizer)
 
 /* --- the exact variants --------------------------------------------------------- */
 
-Test(lesson06, exact_variants_cover_what_the_reference_covers)
+Test(lesson06, the_lesson_and_its_storages_cover_what_the_reference_covers)
 {
     static const char *const names[] = { "room", "horizon", "model", "depth-pair" };
     for (int k = 0; k < 4; k++)
         for (int i = 0; i < lesson_06.nvariants; i++) {
             const struct lesson_variant *v = &lesson_06.variants[i];
-            if (v->exhibit)
+            /* the lesson, and the storages: their coverage is exact too */
+            if (v->exhibit && strcmp(v->name, "inverse") != 0 && strcmp(v->name, "reversed") != 0)
                 continue;
             struct scene s = load(names[k], v);
             uint8_t *ref = calloc((size_t)s.w * s.h, 1);

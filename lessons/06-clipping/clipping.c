@@ -346,6 +346,11 @@ static void rasterize_reversed(const struct tri_setup *t, const struct raster_pa
     rasterize_storing(t, p, fb, tr, STORE_REVERSED);
 }
 
+/* The storages other than d are exhibits too: not slips, but the explorer
+ * shows them against the lesson (by colour: their buffers hold other
+ * numbers) and the exercise checks, which read the depth buffer as d,
+ * rightly refuse them. */
+
 /* --- the classic slips, as front ends of their own ---------------------------- */
 
 /* Step 1 alone: the world triangle in view space. */
@@ -509,9 +514,10 @@ static void rasterize_edges32(const struct tri_setup *t, const struct raster_par
 
 static const struct lesson_variant variants[] = {
     { "clip", "clip near and far, guard band, lesson 05's rasterizer storing d", rasterize, false },
-    { "inverse", "the same picture, the depth buffer storing 1/d as a float", rasterize_inverse, false },
-    { "reversed", "the same picture, storing reversed float depth n (f - d) / ((f - n) d)",
-      rasterize_reversed, false },
+    { "inverse", "storage: the depth buffer holds 1/d as a float (the same picture)",
+      rasterize_inverse, true },
+    { "reversed", "storage: reversed float depth n (f - d) / ((f - n) d) (the same picture)",
+      rasterize_reversed, true },
     { "ndc24", "exhibit: OpenGL's NDC z in 24 bits: far surfaces close together fight",
       rasterize_ndc24, true },
     { "project-first", "exhibit: projecting before clipping: a triangle behind the eye, inside out",
@@ -532,6 +538,11 @@ static const front_fn fronts[] = {
 _Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof variants[0],
                "one front end per variant");
 
+/* The variants whose depth buffer holds another quantity than d. */
+static const bool other_depth[] = { false, true, true, true, false, false, false, false };
+_Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
+               "one entry per variant");
+
 const struct lesson lesson_06 = {
     .id = "06-clipping",
     .title = "From a 3-D scene to the screen: near and far clipping, the guard band",
@@ -543,6 +554,7 @@ const struct lesson lesson_06 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .fronts = fronts,
+    .other_depth = other_depth,
     /* a pixel costs what it costs in lesson 05: the front end's work is per
      * triangle, not per pixel */
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },
