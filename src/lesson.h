@@ -19,6 +19,7 @@ struct raster_params {
     int block_size;       /* q for block lessons (0 = the lesson's default) */
     bool affine;          /* texture affinely, not perspective-correct (exhibit) */
     int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
+    int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
     /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
      * of a world triangle from it before rasterizing its first screen triangle */
     const struct scene *scene;
@@ -52,7 +53,10 @@ enum lesson_param_flags {
     LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
     LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
     LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
+    LESSON_PARAM_SAMPLES = 8,   /* samples per pixel 1, 4, 8; 4 unless --samples (lesson 08) */
 };
+
+#define LESSON_SAMPLES_DEFAULT 4    /* --samples of a lesson with LESSON_PARAM_SAMPLES */
 
 /* A named cost (trace/trace.h) counted n times, in a lesson's declaration of
  * what one pixel costs: COST_TERM(3, EDGE_VALUE_COST). A list of terms ends

@@ -694,6 +694,13 @@ static void check_dump_bits(const char *program, const char *variant, const char
         argv[n++] = "--subpixel-bits";
         argv[n++] = bits_arg;
     }
+    /* a lesson with samples (08) counts samples, 4 by default: one sample is
+     * the pixel centre (its sample counts are test_lesson08.c's) */
+    const struct lesson *l = lesson_of(strrchr(program, '/') ? strrchr(program, '/') + 1 : program);
+    if (l && (l->params & LESSON_PARAM_SAMPLES)) {
+        argv[n++] = "--samples";
+        argv[n++] = "1";
+    }
     argv[n] = NULL;
     struct result r = run(argv, d->scratch);
     char what[700];

@@ -282,6 +282,14 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
             set_params(a, &p, buf);
         }
         break;
+    case SDLK_m:
+        if (prm & LESSON_PARAM_SAMPLES) {
+            int n = p.samples > 1 ? p.samples : 1;
+            p.samples = n == 1 ? 4 : n == 4 ? 8 : 1;
+            snprintf(buf, sizeof buf, "%d sample%s per pixel", p.samples, p.samples == 1 ? "" : "s");
+            set_params(a, &p, buf);
+        }
+        break;
     case SDLK_p:
         if (prm & LESSON_PARAM_AFFINE) {
             p.affine = !p.affine;

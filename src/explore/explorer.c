@@ -90,16 +90,17 @@ static void take_event(void *ctx, const struct trace_event *ev)
     }
 }
 
-/* The cells cover the triangle's box widened to 16-pixel alignment, so the
- * blocks of a block lesson (q <= 16) fit too. */
+/* The cells cover the triangle's box widened by a pixel (lesson 08's samples
+ * reach beyond the box of centres) and to 16-pixel alignment, so the blocks
+ * of a block lesson (q <= 16) fit too. */
 static bool prepare_cells(struct explorer *ex, const struct tri_setup *t)
 {
     ex->cell_w = ex->cell_h = 0;
     ex->cell_x0 = ex->cell_y0 = 0;
     if (t->minx > t->maxx || t->miny > t->maxy)
         return true;
-    int x0 = t->minx & ~15, y0 = t->miny & ~15;
-    int x1 = t->maxx | 15, y1 = t->maxy | 15;
+    int x0 = (t->minx > 0 ? t->minx - 1 : 0) & ~15, y0 = (t->miny > 0 ? t->miny - 1 : 0) & ~15;
+    int x1 = (t->maxx + 1) | 15, y1 = (t->maxy + 1) | 15;
     if (x1 >= ex->scene.w) x1 = ex->scene.w - 1;
     if (y1 >= ex->scene.h) y1 = ex->scene.h - 1;
     size_t n = (size_t)(x1 - x0 + 1) * (size_t)(y1 - y0 + 1);

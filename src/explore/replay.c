@@ -15,6 +15,10 @@ bool replay_recount(struct replay *r)
     struct target scratch;
     if (!target_init(&scratch, r->scene->w, r->scene->h, scene_background(r->scene)))
         return false;
+    if (!target_multisample(&scratch, r->params.samples)) {    /* lesson 08's samples */
+        target_free(&scratch);
+        return false;
+    }
     uint64_t *start = realloc(r->start, ((size_t)r->scene->ntris + 1) * sizeof *start);
     if (!start) {
         target_free(&scratch);
@@ -98,7 +102,8 @@ static bool advance_base(struct replay *r, int upto)
 {
     if (!r->base.color || upto < r->base_upto) {
         target_free(&r->base);
-        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene)))
+        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
+            || !target_multisample(&r->base, r->params.samples))
             return false;
         r->base_upto = 0;
     }
@@ -137,6 +142,10 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
 {
     if (!target_init(fb, s->w, s->h, scene_background(s)))
         return false;
+    if (!target_multisample(fb, p->samples)) {     /* lesson 08: memory for its samples */
+        target_free(fb);
+        return false;
+    }
     int bits = p->subpixel_bits;           /* 0..8, taken as given: 0 is whole pixels */
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;

@@ -155,6 +155,38 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  18.3 2.2 1  0.3 0.9 1   61.6 21.7 1  0.3 0.9 1   61.4 22.6 1  0.3 0.9 1\n"
         "tri  2.6 22.4 1  1 0.4 0.3   40.3 28.2 2  0.9 0.6 0.3   12.2 46.5 1.5  1 0.5 0.6\n"
     },
+    { "samples", "a sliver, a near-horizontal and a near-vertical edge, and a two-triangle quad (lesson 08)",
+        "# anti-aliasing with coverage samples: a thin sliver, a wide triangle\n"
+        "# whose top edge is nearly horizontal and whose right edge is nearly\n"
+        "# vertical, and two triangles sharing a diagonal (watertight per sample)\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  2.3 3.1 1  1 0.85 0.2   61.7 9.4 1  1 0.85 0.2   61.2 10.6 1  1 0.85 0.2\n"
+        "tri  3.4 16.2 1.5  0.2 0.6 1   40.6 18.9 1  0.3 0.9 1   39.1 45.3 2  0.2 0.4 0.9\n"
+        "tri  44.2 20.3 1  1 0.35 0.3   61.6 21.8 1  1 0.35 0.3   58.7 44.6 1  0.9 0.6 0.3\n"
+        "tri  44.2 20.3 1  0.4 0.9 0.4   58.7 44.6 1  0.4 0.9 0.4   43.1 43.7 1  0.4 0.9 0.4\n"
+    },
+    { "samples-exhibits", "lesson 08's exhibits: a sliver, near-horizontal and near-vertical edges, split rectangles",
+        "# what the samples decide:\n"
+        "# a sliver thinner than a pixel;\n"
+        "# a near-horizontal edge (2,10)-(30,11) and a near-vertical one\n"
+        "# (33,10)-(34,38), each the only slanted outer edge of a quad of two\n"
+        "# triangles (every other outer edge on pixel borders), where a regular\n"
+        "# grid of samples is further off the exact area than the rotated pattern;\n"
+        "# two rectangles sharing the edge x = 16.375, through sample 0 (96, 32)\n"
+        "# of 8 pixels at 4 samples (the fill rule per sample)\n"
+        "size 64 48\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  1.5 1.5 1  1 0.85 0.2   62.5 5.25 1  1 0.85 0.2   62.5 6.0 1  1 0.85 0.2\n"
+        "tri  2 10 1  0.3 0.9 1   30 11 1  0.3 0.9 1   30 30 1  0.3 0.9 1\n"
+        "tri  2 10 1  0.2 0.6 1   30 30 1  0.2 0.6 1   2 30 1  0.2 0.6 1\n"
+        "tri  33 10 1  1 0.4 0.3   62 10 1  1 0.4 0.3   62 38 1  1 0.4 0.3\n"
+        "tri  33 10 1  0.9 0.6 0.3   62 38 1  0.9 0.6 0.3   34 38 1  0.9 0.6 0.3\n"
+        "tri  4.5 38.5 1  0.9 0.9 0.9   16.375 38.5 1  0.9 0.9 0.9   16.375 46.5 1  0.9 0.9 0.9\n"
+        "tri  4.5 38.5 1  0.5 0.5 0.9   16.375 46.5 1  0.5 0.5 0.9   4.5 46.5 1  0.5 0.5 0.9\n"
+        "tri  16.375 38.5 1  0.9 0.5 0.5   28.5 38.5 1  0.9 0.5 0.5   28.5 46.5 1  0.9 0.5 0.5\n"
+        "tri  16.375 38.5 1  0.5 0.9 0.5   28.5 46.5 1  0.5 0.9 0.5   16.375 46.5 1  0.5 0.9 0.5\n"
+    },
     { "room", "3-D: a room seen from inside, the walls beside the eye cut by the near plane",
         "# a closed room (12 triangles) seen from inside: every pixel sees one wall;\n"
         "# the walls beside and behind the eye cross the near plane and reach\n"

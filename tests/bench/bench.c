@@ -114,15 +114,53 @@ static void draw_scene(const struct scene *s, const struct lesson_variant *v,
     }
 }
 
+/* Lesson 08's exact answer at n samples: for every pixel, the samples the
+ * scene's triangles cover (saturating at 255), each sample decided by the
+ * reference (raster.h: reference_point_covered) over a generous box. Made
+ * once per scene and sample count, untimed. */
+static uint8_t *sample_reference(const struct scene *s, int n)
+{
+    const struct sample_pattern *sp = sample_pattern(n);
+    uint8_t *cov = calloc((size_t)s->w * (size_t)s->h, 1);
+    if (!cov || !sp) {
+        fprintf(stderr, "tristep-bench: out of memory\n");
+        exit(1);
+    }
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        int64_t lo[2] = { t.x[0], t.y[0] }, hi[2] = { t.x[0], t.y[0] };
+        for (int k = 1; k < 3; k++) {
+            lo[0] = t.x[k] < lo[0] ? t.x[k] : lo[0], hi[0] = t.x[k] > hi[0] ? t.x[k] : hi[0];
+            lo[1] = t.y[k] < lo[1] ? t.y[k] : lo[1], hi[1] = t.y[k] > hi[1] ? t.y[k] : hi[1];
+        }
+        int64_t x0 = floor_div(lo[0], SUBPIXEL_ONE) - 1, x1 = floor_div(hi[0], SUBPIXEL_ONE) + 1;
+        int64_t y0 = floor_div(lo[1], SUBPIXEL_ONE) - 1, y1 = floor_div(hi[1], SUBPIXEL_ONE) + 1;
+        x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0;
+        x1 = x1 >= s->w ? s->w - 1 : x1, y1 = y1 >= s->h ? s->h - 1 : y1;
+        for (int64_t y = y0; y <= y1; y++)
+            for (int64_t x = x0; x <= x1; x++)
+                for (int k = 0; k < n; k++)
+                    if (reference_point_covered(&t, x * SUBPIXEL_ONE + sp->x[k], y * SUBPIXEL_ONE + sp->y[k])) {
+                        uint8_t *c = &cov[y * s->w + x];
+                        *c += *c < 255;
+                    }
+    }
+    return cov;
+}
+
+/* samples > 1: lesson 08's samples per pixel (its rows "msaa 4 samples", ...),
+ * checked against sample_reference() instead of the pixel-centre coverage. */
 static void time_variant(struct row *row, const struct lesson_variant *v,
                          struct bench_scene *sc, uint8_t *const peer_cov[],
-                         const struct options *o)
+                         const struct options *o, int samples)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = samples };
     for (int i = 0; i < NSCENES; i++) {
         const struct scene *s = &sc[i].s;
         struct target fb;
-        if (!target_init(&fb, s->w, s->h, scene_background(s))) {
+        if (!target_init(&fb, s->w, s->h, scene_background(s))
+            || !target_multisample(&fb, samples)) {
             fprintf(stderr, "tristep-bench: out of memory\n");
             exit(1);
         }
@@ -144,8 +182,16 @@ static void time_variant(struct row *row, const struct lesson_variant *v,
         target_clear(&fb);
         draw_scene(s, v, &p, &fb);
         size_t n = (size_t)s->w * (size_t)s->h;
-        bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
-        bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
+        if (samples > 1) {      /* llvmpipe is not asked for samples */
+            static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
+            if (!ref[i][samples])
+                ref[i][samples] = sample_reference(s, samples);
+            bt->diff_ref = count_diff(fb.count, ref[i][samples], n);
+            bt->diff_peer = -1;
+        } else {
+            bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
+            bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
+        }
         target_free(&fb);
     }
 }
@@ -686,7 +732,18 @@ int main(int argc, char **argv)
             struct row *r = &rows[nrows++];
             *r = (struct row){ (*l)->id, var->name, var->exhibit, false, { { .runs = 0 } } };
             fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
-            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o);
+            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, 1);
+            /* a lesson with samples: its exact variants at 4 and 8 samples too */
+            for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !var->exhibit
+                            && nrows < MAX_ROWS; n += 4) {
+                static char names[MAX_ROWS][48];
+                snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);
+                r = &rows[nrows];
+                *r = (struct row){ (*l)->id, names[nrows], false, false, { { .runs = 0 } } };
+                nrows++;
+                fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
+                time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, n);
+            }
         }
     }
 
