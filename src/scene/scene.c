@@ -3,10 +3,13 @@
 #include "parse.h"      /* struct parser; the 3-D lines (scene3.c) */
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "util/file.h"   /* read_text_file */
 
 #define MAX_TOKENS 32   /* more than the longest line needs (tri + 24 numbers) */
 
@@ -78,9 +81,16 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
                             i + 1, names[c], d[c], COORD_LIMIT, COORD_LIMIT);
         if (!(d[2] > 0))
             return fail(p, "vertex %d: z = %g must be positive (view-space depth)", i + 1, d[2]);
+        if (!(d[2] >= SCENE_Z_MIN && d[2] <= SCENE_Z_MAX))
+            return fail(p, "vertex %d: z = %g is outside [%g, %g]", i + 1, d[2], SCENE_Z_MIN,
+                        SCENE_Z_MAX);
         for (int c = 3; c < 6; c++)
             if (!in_unit(d[c]))
                 return fail(p, "vertex %d: %c = %g is outside [0, 1]", i + 1, names[c], d[c]);
+        for (int c = 6; c < per; c++)
+            if (!(fabs(d[c]) <= SCENE_ST_MAX))
+                return fail(p, "vertex %d: %c = %g is outside [-%g, %g]", i + 1, names[c], d[c],
+                            SCENE_ST_MAX, SCENE_ST_MAX);
         v[i] = (struct vertex){ .x = d[0], .y = d[1], .z = d[2],
                                 .r = d[3], .g = d[4], .b = d[5],
                                 .s = per == 8 ? d[6] : 0, .t = per == 8 ? d[7] : 0 };
@@ -95,9 +105,9 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
 bool scene_add(struct scene *s, const struct vertex v[3])
 {
     if (s->ntris == s->cap) {
-        int cap = s->cap ? s->cap * 2 : 64;
-        if (cap < s->cap)
+        if (s->cap > INT_MAX / 2)
             return false;
+        int cap = s->cap ? s->cap * 2 : 64;
         struct scene_tri *t = realloc(s->tris, (size_t)cap * sizeof *t);
         if (!t)
             return false;
@@ -168,6 +178,10 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
     bool ok = true;
 
     for (size_t pos = 0; pos < len && ok;) {
+        if (p.line == INT_MAX) {
+            ok = fail(&p, "more lines than a scene may have");
+            break;
+        }
         p.line++;
         size_t end = pos;
         while (end < len && text[end] != '\n')
@@ -234,38 +248,11 @@ bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
 {
     if (strncmp(path, "builtin:", 8) == 0)
         return scene_builtin(s, path + 8, err, errlen);
-    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
+    char *text;
+    size_t len;
+    if (!read_text_file(path, &text, &len, err, errlen))
         return false;
-    }
-    char *text = NULL;
-    size_t len = 0, cap = 0;
-    bool ok = true;
-    for (;;) {
-        if (len == cap) {
-            cap = cap ? cap * 2 : 65536;
-            char *nt = realloc(text, cap);
-            if (!nt) {
-                ok = false;
-                snprintf(err, errlen, "%s:0: out of memory", path);
-                break;
-            }
-            text = nt;
-        }
-        size_t got = fread(text + len, 1, cap - len, f);
-        len += got;
-        if (got == 0)
-            break;
-    }
-    if (ok && ferror(f)) {
-        ok = false;
-        snprintf(err, errlen, "%s:0: cannot read: %s", path, strerror(errno));
-    }
-    if (f != stdin)
-        fclose(f);
-    if (ok)
-        ok = scene_parse(s, path, text, len, err, errlen);
+    bool ok = scene_parse(s, path, text, len, err, errlen);
     free(text);
     return ok;
 }
