@@ -95,7 +95,7 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 
 # Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
 # does not run under TSan), run by tests/test_lesson07.c.
-TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/shade/quad.c
+TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
 $(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
