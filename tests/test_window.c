@@ -43,7 +43,8 @@ static void sleep_ms(int ms)
     nanosleep(&t, NULL);
 }
 
-/* Start argv in `dir` with extra environment "NAME=VALUE" entries, stdout
+/* Start argv in `dir` with extra environment "NAME=VALUE" entries ("NAME"
+ * alone removes it), stdout
  * and stderr into files of dir; returns the pid. */
 static pid_t start(char *const argv[], const char *const env[], const char *out, const char *err)
 {
@@ -53,8 +54,12 @@ static pid_t start(char *const argv[], const char *const env[], const char *out,
     if (pid == 0) {
         if (chdir(dir) != 0)
             _exit(126);
-        for (int i = 0; env && env[i]; i++)
-            putenv((char *)env[i]);
+        for (int i = 0; env && env[i]; i++) {
+            if (strchr(env[i], '='))
+                putenv((char *)env[i]);
+            else
+                unsetenv(env[i]);       /* "NAME" alone: not set */
+        }
         int in = open("/dev/null", O_RDONLY);
         int o = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
         int e = open(err ? err : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -308,6 +313,41 @@ Test(window, sdl_failure_names_the_call, .fini = cleanup, .timeout = 30)
     cr_assert_eq(st, 1, "exit status %d", st);
     cr_assert(err && strstr(err, "SDL_Init failed: ") && strlen(strstr(err, "failed: ")) > 10,
               "the message names the call and SDL's reason:\n%s", err ? err : "");
+    free(err);
+}
+
+/* No display (an SSH session, a container): SDL would fall back to its
+ * offscreen driver and wait for a window no one sees. The program says so,
+ * shows how to get pictures anyway and exits 1, unless a driver was chosen. */
+Test(window, no_display_says_so_and_how_to_get_pictures, .fini = cleanup, .timeout = 60)
+{
+    make_dir();
+    const char *const env[] = { "DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER", NULL };
+    char *argv[] = { (char *)program(), NULL };
+    int st = run(argv, env, "out", "err", 20000);
+    char *err = read_all(in_dir("err"), NULL);
+    cr_assert_neq(st, -1, "still waiting after 20 s with no display");
+    cr_assert_eq(st, 1, "exit status %d; stderr:\n%s", st, err ? err : "");
+    cr_assert(err && strstr(err, "no display found"), "the message says why:\n%s", err ? err : "");
+    char example[200];
+    snprintf(example, sizeof example, "%s --figure ", PROGRAM);
+    cr_assert(strstr(err, example) && strstr(err, "--dump-image "),
+              "the message shows the commands that make pictures without a window:\n%s", err);
+    /* the example it gives works, headless, in the same environment */
+    char *fig[] = { (char *)program(), "--figure", "step40.png", "--step", "40", "--view",
+                    "coverage", NULL };
+    cr_assert_eq(run(fig, env, NULL, "fig.err", 30000), 0, "the suggested --figure failed");
+    cairo_surface_destroy(load_png(in_dir("step40.png")));
+    free(err);
+
+    /* a driver chosen on purpose is obeyed: offscreen runs the script */
+    write_text(in_dir("keys"), "Right\nq\n");
+    const char *const chosen[] = { "DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER=offscreen",
+                                   "SDL_RENDER_VSYNC=0", NULL };
+    char *keys[] = { (char *)program(), "--keys", "keys", NULL };
+    st = run(keys, chosen, NULL, "err2", 30000);
+    err = read_all(in_dir("err2"), NULL);
+    cr_assert_eq(st, 0, "SDL_VIDEODRIVER=offscreen: exit status %d; stderr:\n%s", st, err ? err : "");
     free(err);
 }
 

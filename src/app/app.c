@@ -537,10 +537,51 @@ static void run(struct app *a)
     }
 }
 
+/* Without a display (an SSH session, a container) SDL falls back to a
+ * driver that shows nothing (offscreen) and the program would wait for a
+ * window no one sees. Unless the user chose that driver (SDL_VIDEODRIVER,
+ * as the tests do), say so and how to get the pictures without a window. */
+static bool no_display(struct app *a, const char *why)
+{
+    const char *id = a->lesson->id;
+    fprintf(stderr,
+            "%s: no display found (%s): the explorer needs a window.\n"
+            "Pictures without one:\n"
+            "  %s --figure step40.png --step 40 --view coverage   the explorer's view (.png, .svg, .pdf)\n"
+            "  %s --dump-image final.png                          the finished picture\n"
+            "Over SSH, 'ssh -X' brings the window to your screen; SDL_VIDEODRIVER=x11 or\n"
+            "wayland names a display driver, SDL_VIDEODRIVER=offscreen runs without one.\n",
+            id, why, id, id);
+    a->failed = true;
+    return false;
+}
+
+static bool init_video(struct app *a)
+{
+    const char *chosen = SDL_getenv("SDL_VIDEODRIVER");
+    bool explicit = chosen && *chosen;
+    if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0) {
+        if (!explicit && !SDL_getenv("DISPLAY") && !SDL_getenv("WAYLAND_DISPLAY")) {
+            char why[300];
+            snprintf(why, sizeof why, "DISPLAY and WAYLAND_DISPLAY are not set; SDL_Init: %s",
+                     SDL_GetError());
+            return no_display(a, why);
+        }
+        return sdl_failed(a, "SDL_Init");
+    }
+    const char *driver = SDL_GetCurrentVideoDriver();
+    if (!explicit && driver && (strcmp(driver, "offscreen") == 0 || strcmp(driver, "dummy") == 0)) {
+        char why[200];
+        snprintf(why, sizeof why, "SDL fell back to its '%s' video driver%s", driver,
+                 SDL_getenv("DISPLAY") || SDL_getenv("WAYLAND_DISPLAY") ? ""
+                 : "; DISPLAY and WAYLAND_DISPLAY are not set");
+        return no_display(a, why);
+    }
+    return true;
+}
+
 static bool open_window(struct app *a, const struct cli_options *o)
 {
-    if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0)
-        return sdl_failed(a, "SDL_Init");
     char title[160];
     snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
     int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
@@ -567,7 +608,9 @@ int explorer_run(const struct lesson *l, const struct cli_options *o, struct sce
         return EXIT_USAGE;
     explorer_fonts();
     status = EXIT_OK;
-    if (!explorer_init(&a.ex, &d)) {
+    if (!init_video(&a)) {
+        status = EXIT_RUN;             /* no display, or SDL could not start */
+    } else if (!explorer_init(&a.ex, &d)) {
         fprintf(stderr, "%s: out of memory for the scene\n", l->id);
         status = EXIT_RUN;
     } else {
