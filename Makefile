@@ -1,4 +1,5 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
 B        := $(BUILD)$(if $(SANITIZE),/sanitize)
@@ -33,7 +34,9 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 $(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
 $(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
 $(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
-$(B)/libtristep.a: $(LIB_OBJ) ; $(AR) rcs $@ $^
+# The library anew when src/ gains or loses a file (its folders' mtimes):
+# no member left over from a file moved away.
+$(B)/libtristep.a: $(LIB_OBJ) src $(wildcard src/*/) ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
 $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 

@@ -1,5 +1,5 @@
-/* lesson.h - what a lesson file provides, and the one entry point that turns
- * it into a program (options, headless modes, the explorer). */
+/* lesson.h - what a lesson file provides: its algorithm, variants, narration
+ * and views (lesson_main in src/cli/cli.h turns it into a program). */
 #ifndef TRISTEP_LESSON_H
 #define TRISTEP_LESSON_H
 
@@ -151,10 +151,5 @@ static inline uint32_t shade_pixel(const struct raster_params *p, double r, doub
     }
     return pack_rgb(r, g, b);
 }
-
-/* The program: parse options, load the scene, run headless or open the
- * explorer. Returns the exit status (0 ok, 1 failure while running, 2 bad
- * command line or input). */
-int lesson_main(const struct lesson *l, int argc, char **argv);
 
 #endif

@@ -3,7 +3,7 @@
 #include <criterion/criterion.h>
 #include <string.h>
 
-#include "draw/explorer.h"
+#include "draw/paint.h"
 
 extern const struct lesson lesson_03, lesson_05;
 
@@ -13,7 +13,7 @@ static void open_lesson(struct explorer *ex, const struct lesson *l, struct scen
     cr_assert(scene_builtin(s, l->builtin_scene, err, sizeof err), "%s", err);
     struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = l->builtin_scene,
                                .params = { .subpixel_bits = SUBPIXEL_BITS } };
-    cr_assert(explorer_init(ex, &d));
+    cr_assert(explorer_init(ex, &d, err, sizeof err), "%s", err);
 }
 
 /* Lesson 02 tests every pixel of each triangle's clamped bounding box. */

@@ -13,7 +13,7 @@
 #include <sys/resource.h>
 #include <time.h>
 
-#include "draw/explorer.h"
+#include "draw/paint.h"
 #include "testlib.h"
 
 /* --- scenes ------------------------------------------------------------------------ */
@@ -43,7 +43,8 @@ static bool load_scene(const struct lesson *l, int kind, struct scene *s)
 static void open_explorer(struct explorer *ex, const struct lesson *l, const struct scene *s)
 {
     struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = "test" };
-    cr_assert(explorer_init(ex, &d), "%s: explorer_init", l->id);
+    char err[256];
+    cr_assert(explorer_init(ex, &d, err, sizeof err), "%s", err);
 }
 
 /* --- the independent run ---------------------------------------------------------- */
@@ -254,7 +255,8 @@ Test(explorer, replay_equals_frozen_run)
             for (int v = 0; v < l->nvariants; v++) {
                 struct explorer ex;
                 struct explorer_desc d = { .lesson = l, .scene = &s, .variant = &l->variants[v] };
-                cr_assert(explorer_init(&ex, &d));
+                char err[256];
+                cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
                 uint64_t total = ex.replay.total;
                 uint64_t steps[8] = { 0, 1, total / 2, total - 1, total };
                 for (int i = 5; i < 8; i++)

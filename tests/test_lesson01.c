@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_01, lesson_01_fast;
 

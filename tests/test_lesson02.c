@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "lesson.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_02;
 

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_02, lesson_03, lesson_03_fast;
 

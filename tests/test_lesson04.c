@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "testlib.h"
-#include "trace/replay.h"
+#include "explore/replay.h"
 
 extern const struct lesson lesson_04, lesson_04_fast;
 

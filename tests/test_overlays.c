@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw/explorer.h"
+#include "draw/paint.h"
 #include "testlib.h"
 
 extern const struct lesson lesson_01, lesson_03, lesson_05;
@@ -161,9 +161,9 @@ static cairo_surface_t *paint(const struct lesson *l, const char *view, uint64_t
     char err[256];
     cr_assert(scene_builtin(&s, l->builtin_scene, err, sizeof err), "%s", err);
     struct explorer ex;
-    struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "test", .view = view,
-                               .step = step };
-    cr_assert(explorer_init(&ex, &d));
+    struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "test", .step = step };
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    cr_assert(!view || explorer_set_view_name(&ex, view), "%s: no view %s", l->id, view);
     scene_free(&s);
     cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 960, 600);
     cairo_t *cr = cairo_create(img);

@@ -25,7 +25,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "draw/explorer.h"
+#include "draw/paint.h"
 #include "testlib.h"
 
 #define PROGRAM "02-barycentric"
@@ -484,7 +484,7 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
     cr_assert(l);
     struct explorer ex;
     struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle" };
-    cr_assert(explorer_init(&ex, &d));
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
     struct explorer_layout L;
     explorer_layout(&ex, WIN_W, WIN_H, &L);
     cr_assert_eq(pixel(shot, (int)(L.px + L.pw - 6), (int)(L.h / 2)), 0x23262e,

@@ -19,8 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw/explorer.h"
-#include "draw/figure.h"
+#include "draw/paint.h"
 
 #define SPEED_MAX 40        /* 2^20 events per second */
 #define FRAME_MS 16         /* at most one frame this often while playing */
@@ -580,11 +579,11 @@ static bool init_video(struct app *a)
     return true;
 }
 
-static bool open_window(struct app *a, const struct cli_options *o)
+static bool open_window(struct app *a, const struct app_desc *d)
 {
     char title[160];
     snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
-    int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
+    int w = d->width ? d->width : 1280, h = d->height ? d->height : 800;
     a->win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h,
                               SDL_WINDOW_RESIZABLE);
     if (!a->win)
@@ -596,25 +595,24 @@ static bool open_window(struct app *a, const struct cli_options *o)
     return make_texture(a);
 }
 
-int explorer_run(const struct lesson *l, const struct cli_options *o, struct scene *s)
+int explorer_run(const struct app_desc *d)
 {
+    const struct lesson *l = d->explorer.lesson;
     struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
-    char name[160];
-    struct explorer_desc d;
-    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
-    if (status >= 0)
-        return status;
-    if (o->keys && !read_script(&a, o->keys))
+    if (d->keys && !read_script(&a, d->keys))
         return EXIT_USAGE;
     explorer_fonts();
-    status = EXIT_OK;
+    int status = EXIT_OK;
+    char err[512];
     if (!init_video(&a)) {
         status = EXIT_RUN;             /* no display, or SDL could not start */
-    } else if (!explorer_init(&a.ex, &d)) {
-        fprintf(stderr, "%s: out of memory for the scene\n", l->id);
+    } else if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;
     } else {
-        if (open_window(&a, o))
+        if (d->view)
+            explorer_set_view_name(&a.ex, d->view);
+        if (open_window(&a, d))
             run(&a);
         if (a.failed)
             status = EXIT_RUN;

@@ -2,9 +2,20 @@
 #ifndef TRISTEP_APP_H
 #define TRISTEP_APP_H
 
-#include "cli/cli.h"
+#include "explore/explorer.h"
 
-/* Open the explorer on a scene; returns the program's exit status. */
-int explorer_run(const struct lesson *l, const struct cli_options *o, struct scene *s);
+/* Exit statuses of the programs (CONVENTIONS.md). */
+enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
+
+/* What the window opens on: zero-initialise and set what you need. */
+struct app_desc {
+    struct explorer_desc explorer;
+    const char *view;               /* a view name (already checked), NULL: "color" */
+    const char *keys;               /* --keys FILE: scripted input, or NULL */
+    int width, height;              /* window size, 0: 1280 x 800 */
+};
+
+/* Open the explorer's window; returns the program's exit status. */
+int explorer_run(const struct app_desc *d);
 
 #endif

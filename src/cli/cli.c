@@ -1,100 +1,26 @@
 /* cli.c - lesson_main: options, headless modes, exit codes. */
-#define _POSIX_C_SOURCE 200809L   /* mkstemp, fileno, fsync */
+#define _POSIX_C_SOURCE 200809L   /* unlink */
 
 #include "cli.h"
 
-#include <cairo.h>
 #include <errno.h>
 #include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/app.h"
-#include "draw/figure.h"
-#include "trace/replay.h"
-
-const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)
-{
-    for (int i = 0; i < l->nvariants; i++)
-        if (strcmp(l->variants[i].name, name) == 0)
-            return &l->variants[i];
-    return NULL;
-}
+#include "draw/paint.h"
+#include "explore/replay.h"
+#include "util/file.h"
 
 /* --- writing files ------------------------------------------------------------ */
-
-bool write_file_atomic(const char *path, bool (*write)(FILE *out, void *ctx), void *ctx,
-                       char *err, size_t errlen)
-{
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        return false;
-    }
-    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        free(tmp);
-        return false;
-    }
-    FILE *out = fdopen(fd, "wb");
-    if (!out) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        close(fd);
-        unlink(tmp);
-        free(tmp);
-        return false;
-    }
-    bool ok = write(out, ctx);
-    ok = fflush(out) == 0 && ok && !ferror(out);
-    int saved = errno;
-    if (fclose(out) != 0)
-        ok = false;
-    /* mkstemp creates the file 0600; give it the usual permissions */
-    if (ok) {
-        mode_t mask = umask(0);
-        umask(mask);
-        chmod(tmp, 0666 & ~mask);
-    }
-    if (ok && rename(tmp, path) != 0) {
-        saved = errno;
-        ok = false;
-    }
-    if (!ok) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, saved ? strerror(saved) : "write failed");
-        unlink(tmp);
-    }
-    free(tmp);
-    return ok;
-}
 
 bool write_coverage_pgm(FILE *out, const struct target *fb)
 {
     fprintf(out, "P5\n%d %d\n255\n", fb->w, fb->h);
     size_t n = (size_t)fb->w * (size_t)fb->h;
     return fwrite(fb->count, 1, n, out) == n;
-}
-
-static cairo_status_t png_to_file(void *closure, const unsigned char *data, unsigned int len)
-{
-    return fwrite(data, 1, len, closure) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
-
-bool write_color_png(FILE *out, const struct target *fb)
-{
-    /* the colour buffer is already cairo's ARGB32 (opaque, so premultiplied) */
-    int stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, fb->w);
-    if (stride != fb->w * 4)
-        return false;
-    cairo_surface_t *s = cairo_image_surface_create_for_data(
-        (unsigned char *)fb->color, CAIRO_FORMAT_ARGB32, fb->w, fb->h, stride);
-    cairo_status_t st = cairo_surface_write_to_png_stream(s, png_to_file, out);
-    cairo_surface_destroy(s);
-    return st == CAIRO_STATUS_SUCCESS;
 }
 
 static bool pgm_writer(FILE *out, void *ctx) { return write_coverage_pgm(out, ctx); }
@@ -164,12 +90,6 @@ static bool parse_positive(const char *s, double max, double *out)
         return false;
     *out = v;
     return true;
-}
-
-static bool has_suffix(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix);
-    return n > m && strcmp(s + n - m, suffix) == 0;
 }
 
 enum {
@@ -310,6 +230,71 @@ static int dump(const struct cli_options *o, const struct scene *s)
     return status;
 }
 
+/* The explorer as the command line describes it, for the window and for
+ * figures alike: fills *d (its scene name into name[n]) and returns -1, or
+ * prints why --view is wrong and returns EXIT_USAGE. */
+static int explorer_desc_from_cli(const struct lesson *l, const struct cli_options *o,
+                                  const struct scene *s, char *name, size_t n,
+                                  struct explorer_desc *d)
+{
+    if (o->scene_path)
+        snprintf(name, n, "%s", o->scene_path);
+    else
+        snprintf(name, n, "builtin:%s", l->builtin_scene);
+    *d = (struct explorer_desc){
+        .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
+        .variant = o->variant, .params = o->params, .step = o->step, .step_end = o->step_end,
+        .zoom = o->zoom, .scale = o->scale,
+    };
+    if (o->view) {
+        /* check the name first: a bad view is a usage error */
+        struct explorer probe = { .lesson = l, .edge = -1 };
+        if (!explorer_set_view_name(&probe, o->view)) {
+            fprintf(stderr, "%s: --view '%s': no such view; views:", l->id, o->view);
+            for (int i = 0; i < explorer_view_count(&probe); i++)
+                fprintf(stderr, " %s", explorer_view_name(&probe, i));
+            fprintf(stderr, " edge-ab edge-bc edge-ca\n");
+            return EXIT_USAGE;
+        }
+    }
+    return -1;
+}
+
+/* Headless --figure: draw what the window would show at the chosen step and view. */
+static int figure_export(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+{
+    char name[160], err[512];
+    struct explorer ex;
+    struct explorer_desc d;
+    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
+    if (status >= 0)
+        return status;
+    explorer_fonts();
+    if (!explorer_init(&ex, &d, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        return EXIT_RUN;
+    }
+    if (o->view)
+        explorer_set_view_name(&ex, o->view);
+    int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
+    status = EXIT_OK;
+    if (!explorer_export(&ex, o->figure, w, h, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        status = EXIT_RUN;
+    }
+    explorer_free(&ex);
+    return status;
+}
+
+/* The window. */
+static int window(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+{
+    char name[160];
+    struct app_desc a = { .view = o->view, .keys = o->keys, .width = o->width, .height = o->height };
+    int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &a.explorer);
+    return status >= 0 ? status : explorer_run(&a);
+}
+
 int lesson_main(const struct lesson *l, int argc, char **argv)
 {
     struct cli_options o;
@@ -334,7 +319,7 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     if (status == EXIT_OK && o.figure)
         status = figure_export(l, &o, &s);
     if (!headless)
-        status = explorer_run(l, &o, &s);
+        status = window(l, &o, &s);
     scene_free(&s);
     return status;
 }

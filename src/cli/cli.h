@@ -1,5 +1,5 @@
-/* cli.h - the options every lesson program shares (CONVENTIONS.md), and the
- * careful writing of output files. */
+/* cli.h - the program every lesson becomes: the options they all share
+ * (CONVENTIONS.md), the headless modes, the explorer window. */
 #ifndef TRISTEP_CLI_H
 #define TRISTEP_CLI_H
 
@@ -7,11 +7,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "app/app.h"
 #include "lesson.h"
 
 #define TRISTEP_VERSION "0.1.0"
-
-enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
 
 struct cli_options {
     const char *scene_path;         /* NULL: the lesson's built-in scene */
@@ -29,15 +28,11 @@ struct cli_options {
     struct raster_params params;
 };
 
-/* Write a file all or nothing: `write` produces the bytes into a temporary
- * file beside `path`, which is renamed over `path` only when everything
- * succeeded. On failure nothing is left behind and err says why. */
-bool write_file_atomic(const char *path, bool (*write)(FILE *out, void *ctx), void *ctx,
-                       char *err, size_t errlen);
-
 /* Binary PGM (P5, maxval 255) of the coverage counts, row 0 at the top. */
 bool write_coverage_pgm(FILE *out, const struct target *fb);
-/* PNG of the colour buffer through cairo. */
-bool write_color_png(FILE *out, const struct target *fb);
+
+/* The program: parse options, load the scene, run headless or open the
+ * explorer. Returns the exit status (EXIT_OK, EXIT_RUN, EXIT_USAGE). */
+int lesson_main(const struct lesson *l, int argc, char **argv);
 
 #endif

@@ -1,6 +1,6 @@
 /* main.c - every lesson program is this file linked with one lesson.
  * The Makefile defines LESSON as the lesson's descriptor (lesson_02, ...). */
-#include "lesson.h"
+#include "cli/cli.h"
 
 extern const struct lesson LESSON;
 

@@ -1,4 +1,5 @@
-/* builtin.c - the built-in scenes, parsed by the same parser as files. */
+/* builtin.c - the built-in scenes: their text, parsed by the same parser as
+ * files (scene_builtin in scene.c). */
 #include "scene.h"
 
 #include <string.h>
@@ -164,16 +165,4 @@ const struct builtin_scene *builtin_find(const char *name)
         if (strcmp(builtin_scenes[i].name, name) == 0)
             return &builtin_scenes[i];
     return NULL;
-}
-
-bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
-{
-    const struct builtin_scene *b = builtin_find(name);
-    if (!b) {
-        snprintf(err, errlen, "builtin:%s:0: no such built-in scene (try --list-scenes)", name);
-        return false;
-    }
-    char label[64];
-    snprintf(label, sizeof label, "builtin:%s", name);
-    return scene_parse(s, label, b->text, strlen(b->text), err, errlen);
 }

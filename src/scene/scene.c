@@ -321,6 +321,18 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
     return reader_finish(&r, ok);
 }
 
+bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
+{
+    const struct builtin_scene *b = builtin_find(name);
+    if (!b) {
+        snprintf(err, errlen, "builtin:%s:0: no such built-in scene (try --list-scenes)", name);
+        return false;
+    }
+    char label[64];
+    snprintf(label, sizeof label, "builtin:%s", name);
+    return scene_parse(s, label, b->text, strlen(b->text), err, errlen);
+}
+
 /* Read a file in chunks of 1 MiB, each line parsed where it lies in the
  * buffer: a 340 MB scene never needs 340 MB of text in memory. */
 #define READ_CHUNK ((size_t)1 << 20)
@@ -419,6 +431,19 @@ void scene_free(struct scene *s)
 {
     free(s->tris);
     memset(s, 0, sizeof *s);
+}
+
+bool scene_copy(struct scene *dst, const struct scene *src)
+{
+    *dst = *src;
+    dst->tris = NULL;
+    dst->ntris = dst->cap = 0;
+    for (int i = 0; i < src->ntris; i++)
+        if (!scene_add(dst, src->tris[i].v)) {
+            scene_free(dst);
+            return false;
+        }
+    return true;
 }
 
 uint32_t scene_background(const struct scene *s)

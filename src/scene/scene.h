@@ -41,6 +41,8 @@ bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
 /* Write a scene that scene_parse reads back to the same values. */
 bool scene_write(const struct scene *s, FILE *out);
 void scene_free(struct scene *s);
+/* A copy with triangles of its own; false (dst empty) when out of memory. */
+bool scene_copy(struct scene *dst, const struct scene *src);
 bool scene_add(struct scene *s, const struct vertex v[3]);
 uint32_t scene_background(const struct scene *s);
 

@@ -23,7 +23,7 @@
 #include <unistd.h>
 
 #include "bench.h"
-#include "draw/explorer.h"
+#include "draw/paint.h"
 #include "lesson.h"
 
 extern const struct lesson *const all_lessons_fast[];
@@ -205,7 +205,9 @@ static double explorer_frame(int frames)
         if (strncmp(all_lessons[i]->id, "02", 2) == 0)
             d.lesson = all_lessons[i];
     double ms = -1;
-    if (explorer_init(&ex, &d)) {
+    if (!explorer_init(&ex, &d, err, sizeof err))
+        fprintf(stderr, "%s\n", err);
+    else {
         explorer_set_step(&ex, ex.replay.total / 2);
         ex.numbers = NUMBERS_ALWAYS;   /* one number a cell: at 12 px cells, three would not fit */
         explorer_set_view_name(&ex, "depth");

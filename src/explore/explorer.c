@@ -7,27 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const view_names[VIEW_BUILTIN_COUNT] = {
-    "color", "coverage", "edges", "bary", "depth", "blocks", "spans",
-};
-
-static const char *const edge_view_names[3] = { "edge-ab", "edge-bc", "edge-ca" };
-
-/* --- scenes ------------------------------------------------------------------ */
-
-static bool scene_copy(struct scene *dst, const struct scene *src)
-{
-    *dst = *src;
-    dst->tris = NULL;
-    dst->ntris = dst->cap = 0;
-    for (int i = 0; i < src->ntris; i++)
-        if (!scene_add(dst, src->tris[i].v)) {
-            scene_free(dst);
-            return false;
-        }
-    return true;
-}
-
 /* --- replaying a step ------------------------------------------------------- */
 
 static struct cell *explorer_cell_mut(struct explorer *ex, int x, int y)
@@ -299,8 +278,10 @@ static bool compare_init(struct explorer *ex)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
                 if (!replay_init(&ex->compare_replay[ex->ncompare], &ex->scene,
-                                 &all_lessons[k]->variants[0], &ex->params))
+                                 &all_lessons[k]->variants[0], &ex->params)) {
+                    replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
+                }
                 ex->compare[ex->ncompare++] = all_lessons[k];
             }
     return true;
@@ -420,44 +401,9 @@ bool explorer_move_vertex(struct explorer *ex, int k, double x, double y)
     return rerun(ex, ex->step);
 }
 
-/* --- views ---------------------------------------------------------------------- */
-
-int explorer_view_count(const struct explorer *ex)
-{
-    return VIEW_BUILTIN_COUNT + (ex->lesson->views ? ex->lesson->nviews : 0);
-}
-
-const char *explorer_view_name(const struct explorer *ex, int view)
-{
-    if (view < VIEW_BUILTIN_COUNT)
-        return view == VIEW_EDGES && ex->edge >= 0 ? edge_view_names[ex->edge] : view_names[view];
-    return ex->lesson->views[view - VIEW_BUILTIN_COUNT].name;
-}
-
-bool explorer_set_view_name(struct explorer *ex, const char *name)
-{
-    for (int k = 0; k < 3; k++)
-        if (strcmp(name, edge_view_names[k]) == 0) {
-            ex->view = VIEW_EDGES;
-            ex->edge = k;
-            return true;
-        }
-    for (int i = 0; i < explorer_view_count(ex); i++) {
-        const char *n = i < VIEW_BUILTIN_COUNT ? view_names[i]
-                                               : ex->lesson->views[i - VIEW_BUILTIN_COUNT].name;
-        if (strcmp(name, n) == 0) {
-            ex->view = i;
-            if (i == VIEW_EDGES)
-                ex->edge = -1;
-            return true;
-        }
-    }
-    return false;
-}
-
 /* --- life ------------------------------------------------------------------------ */
 
-bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
+bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err, size_t errlen)
 {
     memset(ex, 0, sizeof *ex);
     ex->lesson = d->lesson;
@@ -474,24 +420,26 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d)
     ex->marks_tri = -1;
     ex->exact_upto = -1;
     ex->hover_vertex = -1;
+    const char *failed = NULL;
     if (!scene_copy(&ex->scene, d->scene))
-        return false;
-    ex->params.checker = ex->scene.checker;
-    ex->centre_x = ex->scene.w / 2.0;
-    ex->centre_y = ex->scene.h / 2.0;
-    if (d->view && !explorer_set_view_name(ex, d->view)) {
-        scene_free(&ex->scene);
-        return false;
+        failed = "copying the scene";
+    else {
+        ex->params.checker = ex->scene.checker;
+        ex->centre_x = ex->scene.w / 2.0;
+        ex->centre_y = ex->scene.h / 2.0;
+        if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+            failed = "counting the scene's events";
+        else if (!compare_init(ex))
+            failed = "running the lessons compared with this one";
+        else if (!explorer_set_step(ex, d->step_end ? ex->replay.total : d->step))
+            failed = "drawing the first step";
     }
-    if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params)) {
-        scene_free(&ex->scene);
-        return false;
-    }
-    if (!compare_init(ex)) {
-        explorer_free(ex);
-        return false;
-    }
-    return explorer_set_step(ex, d->step_end ? ex->replay.total : d->step);
+    if (!failed)
+        return true;
+    snprintf(err, errlen, "%s: out of memory %s (%d x %d pixels, %d triangles)", d->lesson->id,
+             failed, d->scene->w, d->scene->h, d->scene->ntris);
+    explorer_free(ex);
+    return false;
 }
 
 void explorer_free(struct explorer *ex)

@@ -1,10 +1,12 @@
-/* explorer.h - the explorer's state, without a window: the scene as a lesson
- * draws it after N events, the current triangle's pixels as the narration
- * left them, stepping by event, row or block, and triangle, and one painter
- * (cairo) that draws it all for the SDL window and for PNG, SVG and PDF files.
+/* explorer.h - the explorer's state, without a window and without drawing:
+ * the scene as a lesson draws it after N events, the current triangle's
+ * pixels as the narration left them, stepping by event, row or block, and
+ * triangle, variants, dragging, and the layout of a frame. The painter
+ * (src/draw/paint.h) draws this state for the SDL window and for PNG, SVG
+ * and PDF files.
  *
  * The explorer never re-implements an algorithm: every picture is the
- * lesson's own output replayed to step N (src/trace/replay.h). Only what the
+ * lesson's own output replayed to step N (src/explore/replay.h). Only what the
  * current step needs is kept: the target, the per-pixel "cells" of the
  * current triangle (accumulated from its events), and per-triangle counter
  * sums; never every event of the scene.
@@ -12,18 +14,11 @@
 #ifndef TRISTEP_EXPLORER_H
 #define TRISTEP_EXPLORER_H
 
-#include <cairo.h>
 #include <stdbool.h>
 #include <stdint.h>
 
 #include "lesson.h"
-#include "trace/replay.h"
-
-/* The built-in views; a lesson's own views (lesson->views) follow them. */
-enum view {
-    VIEW_COLOR, VIEW_COVERAGE, VIEW_EDGES, VIEW_BARY, VIEW_DEPTH, VIEW_BLOCKS, VIEW_SPANS,
-    VIEW_BUILTIN_COUNT
-};
+#include "explore/replay.h"
 
 enum step_unit {
     STEP_EVENT,     /* one event */
@@ -73,7 +68,6 @@ struct explorer_desc {
     const char *scene_name;         /* as shown in the panel */
     const struct lesson_variant *variant;   /* NULL: variants[0] */
     struct raster_params params;
-    const char *view;               /* NULL: "color" */
     uint64_t step;
     bool step_end;
     double zoom;                    /* 0: fit the scene into the canvas */
@@ -122,7 +116,7 @@ struct explorer {
     struct replay compare_replay[LESSON_COMPARE_MAX];
 
     /* presentation */
-    int view;
+    int view;                       /* enum view (src/draw/views.h), then the lesson's */
     int edge;                       /* edges view: -1 all three, or 0..2 */
     enum numbers_mode numbers;
     double zoom;                    /* 0: fit */
@@ -139,7 +133,9 @@ struct explorer {
 
 enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2 };
 
-bool explorer_init(struct explorer *ex, const struct explorer_desc *d);
+/* Start from a description. On failure (out of memory) nothing is left
+ * allocated and err says what could not be done. */
+bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err, size_t errlen);
 void explorer_free(struct explorer *ex);
 
 /* Replay to a step (clamped to the total) and rebuild the view state. */
@@ -161,13 +157,6 @@ bool explorer_cycle_twin(struct explorer *ex);
  * the same place move with it. The lesson re-runs; the step is kept. */
 bool explorer_move_vertex(struct explorer *ex, int k, double x, double y);
 
-/* Views: built-in ones then the lesson's own. */
-int explorer_view_count(const struct explorer *ex);
-const char *explorer_view_name(const struct explorer *ex, int view);
-/* Accepts every view name, and "edge-ab", "edge-bc", "edge-ca" for one edge;
- * returns false for an unknown name. */
-bool explorer_set_view_name(struct explorer *ex, const char *name);
-
 /* The cell of the current triangle at pixel (x, y), or NULL. */
 const struct cell *explorer_cell(const struct explorer *ex, int x, int y);
 
@@ -179,18 +168,5 @@ void explorer_pan(struct explorer *ex, const struct explorer_layout *L, double d
 /* The focus triangle's vertex handle near screen point (sx, sy), or -1. */
 int explorer_hit_vertex(const struct explorer *ex, const struct explorer_layout *L,
                         double sx, double sy);
-
-/* Paint one frame of w x h (the window, a figure, or the bench's timing).
- * Text goes through Pango with DejaVu Sans Mono, pinned by explorer_fonts(). */
-void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h);
-/* Pin fontconfig to DejaVu only; call before anything touches Pango. */
-void explorer_fonts(void);
-/* Milliseconds per frame, averaged over n frames painted into a w x h image
- * surface (what `make bench` reports as the explorer's frame time). */
-double explorer_frame_ms(struct explorer *ex, int w, int h, int n);
-
-/* Write the current frame (w x h) to FILE.png, .svg or .pdf, all or nothing. */
-bool explorer_export(struct explorer *ex, const char *path, int w, int h,
-                     char *err, size_t errlen);
 
 #endif

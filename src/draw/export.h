@@ -1,0 +1,19 @@
+/* export.h - pictures written to files through cairo: the explorer's view as
+ * a figure (PNG, SVG or PDF) and a target's colour buffer as PNG. */
+#ifndef TRISTEP_EXPORT_H
+#define TRISTEP_EXPORT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "explore/explorer.h"
+
+/* Write the current frame (w x h) to FILE.png, .svg or .pdf, all or nothing. */
+bool explorer_export(struct explorer *ex, const char *path, int w, int h,
+                     char *err, size_t errlen);
+
+/* PNG of the colour buffer. */
+bool write_color_png(FILE *out, const struct target *fb);
+
+#endif

@@ -1,0 +1,22 @@
+/* paint.h - the painter: one frame of the explorer drawn with cairo, for the
+ * SDL window, for figures and for the bench's timing. Its views and its
+ * file export are in views.h and export.h, included here. */
+#ifndef TRISTEP_PAINT_H
+#define TRISTEP_PAINT_H
+
+#include <cairo.h>
+
+#include "draw/export.h"
+#include "draw/views.h"
+#include "explore/explorer.h"
+
+/* Paint one frame of w x h (the window, a figure, or the bench's timing).
+ * Text goes through Pango with DejaVu Sans Mono, pinned by explorer_fonts(). */
+void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h);
+/* Pin fontconfig to DejaVu only; call before anything touches Pango. */
+void explorer_fonts(void);
+/* Milliseconds per frame, averaged over n frames painted into a w x h image
+ * surface (what `make bench` reports as the explorer's frame time). */
+double explorer_frame_ms(struct explorer *ex, int w, int h, int n);
+
+#endif

@@ -1,0 +1,399 @@
+/* panel.c - the side panel (the lesson, its variant and scene, the view's
+ * legend, the pseudo-code with the current line lit, the watch, the
+ * counters) and the help overlay. */
+#include "painter.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "views.h"
+
+static const char *const kind_names[TRACE_KIND_COUNT] = {
+    "setup", "row", "span", "block", "pixel test", "pixel write",
+};
+static const char *const class_names[BLOCK_CLASS_COUNT] = { "empty", "full", "partial" };
+
+static double heading(struct painter *p, double x, double y, double w, const char *title)
+{
+    set_rgb(p->cr, p->pal->rule);
+    cairo_rectangle(p->cr, x, y + 9 * p->s, w, 1);
+    cairo_fill(p->cr);
+    double tw = text_width(p, title, 11);
+    set_rgb(p->cr, p->pal->panel);
+    cairo_rectangle(p->cr, x, y, tw + 8 * p->s, 18 * p->s);
+    cairo_fill(p->cr);
+    draw_text(p, x, y + 1 * p->s, 0, title, 11, p->pal->dim, false);
+    return 20 * p->s;
+}
+
+static double swatch(struct painter *p, double x, double y, uint32_t colour, const char *label)
+{
+    set_rgb(p->cr, colour);
+    cairo_rectangle(p->cr, x, y + 3 * p->s, 12 * p->s, 12 * p->s);
+    cairo_fill(p->cr);
+    set_rgba(p->cr, p->pal->border, 0.3);
+    cairo_set_line_width(p->cr, 1);
+    cairo_rectangle(p->cr, x + 0.5, y + 3 * p->s + 0.5, 12 * p->s - 1, 12 * p->s - 1);
+    cairo_stroke(p->cr);
+    return draw_text(p, x + 18 * p->s, y, 0, label, 11.5, p->pal->text, false);
+}
+
+static double legend(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    double y0 = y, s = p->s;
+    if (ex->view >= VIEW_BUILTIN_COUNT)
+        y += draw_text(p, x, y, w, ex->lesson->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
+                       p->pal->text, false);
+    struct view_ctx v;
+    view_ctx_init(&v, ex, p->pal);
+    struct swatch items[VIEW_LEGEND_MAX];
+    const char *note;
+    int n = view_legend(&v, items, &note);
+    for (int i = 0; i < n; i++)
+        y += swatch(p, x, y, items[i].colour, items[i].label) + 1 * s;
+    if (note)
+        y += draw_text(p, x, y, w, note, 11, p->pal->dim, false);
+    if (ex->lesson->variants[ex->variant].exhibit) {
+        y += swatch(p, x, y, p->pal->extra, "extra: more than the exact rule") + s;
+        y += swatch(p, x, y, p->pal->missing, "missing: a crack") + s;
+    }
+    y += swatch(p, x, y, p->pal->accent, "the current step") + s;
+    return y - y0;
+}
+
+static double pseudocode(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    double y0 = y, lh = 17 * p->s;
+    int lit = ex->has_last ? ex->last.line : -1;
+    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
+    for (int i = 0; ex->lesson->pseudocode && ex->lesson->pseudocode[i]; i++) {
+        if (i == lit) {
+            set_rgb(p->cr, p->pal->hilite);
+            cairo_rectangle(p->cr, x - 4 * p->s, y, w + 8 * p->s, lh);
+            cairo_fill(p->cr);
+            set_rgb(p->cr, p->pal->accent);
+            cairo_rectangle(p->cr, x - 4 * p->s, y, 3 * p->s, lh);
+            cairo_fill(p->cr);
+        }
+        char buf[160];
+        snprintf(buf, sizeof buf, "%2d %s", i + 1, ex->lesson->pseudocode[i]);
+        draw_text(p, x, y + 1 * p->s, w, buf, 11.5, i == lit ? p->pal->accent : p->pal->text, false);
+        y += lh;
+    }
+    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    return y - y0;
+}
+
+/* Append to buf[n] at `at`; returns the new end (>= n once full). */
+static size_t cat(char *buf, size_t n, size_t at, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static size_t cat(char *buf, size_t n, size_t at, const char *fmt, ...)
+{
+    if (at >= n)
+        return at;
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(buf + at, n - at, fmt, ap);
+    va_end(ap);
+    return k < 0 ? at : at + (size_t)k;
+}
+
+static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_t at,
+                           const struct trace_event *ev)
+{
+    switch ((enum trace_kind)ev->kind) {
+    case TRACE_SETUP:
+        at = cat(buf, n, at, "box x %d..%d, y %d..%d\n", ev->x, ev->x1, ev->y, ev->y1);
+        at = cat(buf, n, at, "area2 = %lld (%.4g px\u00b2)%s\n", (long long)ex->tri.area2,
+                 (double)ex->tri.area2 / 65536, ex->tri.swapped ? "  B, C swapped" : "");
+        break;
+    case TRACE_ROW:
+        at = cat(buf, n, at, "row y = %d, x %d..%d\n", ev->y, ev->x, ev->x1);
+        break;
+    case TRACE_SPAN:
+        at = cat(buf, n, at, "span y = %d, x %d..%d\n", ev->y, ev->x, ev->x1);
+        break;
+    case TRACE_BLOCK:
+        at = cat(buf, n, at, "block (%d, %d)..(%d, %d): %s\n", ev->x, ev->y, ev->x1, ev->y1,
+                 ev->klass < BLOCK_CLASS_COUNT ? class_names[ev->klass] : "?");
+        at = cat(buf, n, at, "corner masks %x %x %x\n", ev->mask[0], ev->mask[1], ev->mask[2]);
+        break;
+    case TRACE_PIXEL_TEST:
+        at = cat(buf, n, at, "pixel (%d, %d): %s\n", ev->x, ev->y,
+                 (ev->flags & TRACE_INSIDE) ? "inside" : "outside");
+        for (int k = 0; k < 3; k++) {
+            char v[24];
+            format_edge(v, sizeof v, ev->e[k]);
+            at = cat(buf, n, at, "%s = %lld (%s px\u00b2)\n", edge_names[k], (long long)ev->e[k], v);
+        }
+        at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f\n", ev->bary[0], ev->bary[1], ev->bary[2]);
+        break;
+    case TRACE_PIXEL_WRITE:
+        at = cat(buf, n, at, "write (%d, %d): z %.5g, depth %s\n", ev->x, ev->y, ev->z,
+                 (ev->flags & TRACE_DEPTH_PASS) ? "pass" : "fail");
+        at = cat(buf, n, at, "colour #%06x\n", (unsigned)(ev->rgba & 0xffffff));
+        break;
+    case TRACE_KIND_COUNT:
+        break;
+    }
+    if (ex->lesson->aux_names && (ev->kind == TRACE_PIXEL_TEST || ev->kind == TRACE_ROW
+                                  || ev->kind == TRACE_SPAN || ev->kind == TRACE_BLOCK)) {
+        for (int k = 0; k < 6 && ex->lesson->aux_names[k]; k++)
+            at = cat(buf, n, at, "%s%s %.6g", k ? ", " : "", ex->lesson->aux_names[k], ev->aux[k]);
+        if (ex->lesson->aux_names[0])
+            at = cat(buf, n, at, "\n");
+    }
+    return at;
+}
+
+static double watch(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    char buf[2048];
+    size_t at = 0, n = sizeof buf;
+    buf[0] = '\0';
+    if (!ex->has_last) {
+        at = cat(buf, n, at, "nothing has happened yet: step forward (Right)\n");
+    } else {
+        at = cat(buf, n, at, "%s, line %d, triangle %d\n",
+                 ex->last.kind < TRACE_KIND_COUNT ? kind_names[ex->last.kind] : "?",
+                 ex->last.line + 1, ex->cur + 1);
+        at = watch_values(ex, buf, n, at, &ex->last);
+    }
+    if (ex->pinned) {
+        int px = ex->pin_x, py = ex->pin_y;
+        size_t i = (size_t)py * (size_t)ex->scene.w + (size_t)px;
+        at = cat(buf, n, at, "\npinned (%d, %d): colour #%06x, covered %u\u00d7", px, py,
+                 (unsigned)(ex->fb.color[i] & 0xffffff), (unsigned)ex->fb.count[i]);
+        if (isfinite(ex->fb.depth[i]))
+            at = cat(buf, n, at, ", z %.5g", ex->fb.depth[i]);
+        at = cat(buf, n, at, "\n");
+        const struct cell *c = cur_cell(ex, px, py);
+        if (c && (c->flags & CELL_TESTED)) {
+            for (int k = 0; k < 3; k++) {
+                char v[24];
+                format_edge(v, sizeof v, c->e[k]);
+                at = cat(buf, n, at, "%s = %lld (%s)%s", edge_names[k], (long long)c->e[k], v,
+                         k < 2 ? ", " : "\n");
+            }
+            at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f: %s\n", c->bary[0], c->bary[1],
+                     c->bary[2], (c->flags & CELL_INSIDE) ? "inside" : "outside");
+        } else if (!c || !(c->flags & CELL_INSIDE)) {
+            at = cat(buf, n, at, "not reached by this triangle yet\n");
+        }
+    }
+    while (at > 0 && at <= n && buf[at - 1] == '\n')
+        buf[--at] = '\0';
+    return draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+}
+
+/* The lesson beside earlier ones on the triangles finished so far: pixels
+ * tested, and arithmetic per tested pixel. */
+static double compare_lines(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    int done = ex->cur < 0 ? 0 : ex->cur;
+    if (ex->cur >= 0 && ex->local + 1 >= ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur])
+        done = ex->cur + 1;     /* the current triangle has finished too */
+    char buf[1024];
+    size_t at = 0, n = sizeof buf;
+    at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
+    for (int i = -1; i < ex->ncompare; i++) {
+        const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        const struct trace_counters *c = &r->sums[done];
+        double px = c->tested ? (double)c->tested : 1;
+        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
+                 (unsigned long long)c->tested, (double)c->mul / px, (double)c->add / px);
+    }
+    while (at > 0 && at <= n && buf[at - 1] == '\n')
+        buf[--at] = '\0';
+    return draw_text(p, x, y, w, buf, 11.5, p->pal->dim, false);
+}
+
+static double counters(struct painter *p, double x, double y, double w)
+{
+    struct explorer *ex = p->ex;
+    struct trace_counters c = { 0 };
+    int before = ex->cur >= 0 ? ex->cur : 0;
+    const struct trace_counters *a = &ex->replay.sums[before];
+    c.tested = a->tested + ex->tri_c.tested;
+    c.covered = a->covered + ex->tri_c.covered;
+    c.written = a->written + ex->tri_c.written;
+    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
+        c.blocks[k] = a->blocks[k] + ex->tri_c.blocks[k];
+    c.rows = a->rows + ex->tri_c.rows;
+    c.spans = a->spans + ex->tri_c.spans;
+    /* the last event carries the arithmetic done before it in its triangle */
+    c.mul = a->mul + (ex->has_last ? ex->last.mul : 0);
+    c.add = a->add + (ex->has_last ? ex->last.add : 0);
+    char buf[1024];
+    size_t at = 0, n = sizeof buf;
+    at = cat(buf, n, at, "pixels tested  %10llu   covered %10llu\n", (unsigned long long)c.tested,
+             (unsigned long long)c.covered);
+    at = cat(buf, n, at, "pixels written %10llu   rows    %10llu\n", (unsigned long long)c.written,
+             (unsigned long long)c.rows);
+    const struct trace_counters *all = &ex->replay.sums[ex->replay.ntris];
+    if (all->blocks[0] + all->blocks[1] + all->blocks[2])
+        at = cat(buf, n, at, "blocks empty %llu  full %llu  partial %llu\n",
+                 (unsigned long long)c.blocks[0], (unsigned long long)c.blocks[1],
+                 (unsigned long long)c.blocks[2]);
+    if (all->spans)
+        at = cat(buf, n, at, "spans %llu\n", (unsigned long long)c.spans);
+    at = cat(buf, n, at, "multiplications %9llu   adds %10llu", (unsigned long long)c.mul,
+             (unsigned long long)c.add);
+    double h = draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+    if (ex->ncompare > 0)
+        h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
+    if (ex->lesson->variants[ex->variant].exhibit) {
+        char e[256];
+        snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
+                 ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
+                 (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        h += 4 * p->s;
+        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing ? p->pal->extra : p->pal->covered, false);
+    }
+    return h;
+}
+
+void paint_panel(struct painter *p)
+{
+    cairo_t *cr = p->cr;
+    struct explorer *ex = p->ex;
+    const struct explorer_layout *L = &p->L;
+    double s = p->s;
+    set_rgb(cr, p->pal->panel);
+    cairo_rectangle(cr, L->px, 0, L->pw, L->h);
+    cairo_fill(cr);
+    set_rgb(cr, p->pal->rule);
+    cairo_rectangle(cr, L->px, 0, 1, L->h);
+    cairo_fill(cr);
+    cairo_save(cr);
+    cairo_rectangle(cr, L->px, 0, L->pw, L->h);
+    cairo_clip(cr);
+    double x = L->px + 16 * s, w = L->pw - 32 * s, y = 12 * s;
+    y += draw_text(p, x, y, w, ex->lesson->id, 15, p->pal->accent, false);
+    y += draw_text(p, x, y, w, ex->lesson->title, 11.5, p->pal->dim, false) + 6 * s;
+
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    char buf[512];
+    if (v->exhibit) {
+        double bw = text_width(p, "EXHIBIT", 11) + 10 * s;
+        set_rgb(cr, p->pal->exhibit);
+        cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
+        cairo_fill(cr);
+        draw_text(p, x + 5 * s, y + 2 * s, 0, "EXHIBIT", 11, p->pal->on_exhibit, false);
+        snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
+        y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
+    } else {
+        snprintf(buf, sizeof buf, "variant %s%s", v->name, ex->variant ? " (faster twin)" : "");
+        y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+    }
+    snprintf(buf, sizeof buf, "scene %s, %dx%d, %d triangle%s", ex->scene_name, ex->scene.w,
+             ex->scene.h, ex->scene.ntris, ex->scene.ntris == 1 ? "" : "s");
+    y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+    unsigned prm = ex->lesson->params;
+    if (prm) {
+        size_t at = 0;
+        buf[0] = '\0';
+        if (prm & LESSON_PARAM_SUBPIXEL)
+            at = cat(buf, sizeof buf, at, "sub-pixel bits %d  ", ex->params.subpixel_bits);
+        if (prm & LESSON_PARAM_BLOCK)
+            at = cat(buf, sizeof buf, at, "block %d  ", ex->params.block_size ? ex->params.block_size : 8);
+        if (prm & LESSON_PARAM_AFFINE)
+            at = cat(buf, sizeof buf, at, "%s", ex->params.affine ? "affine" : "perspective");
+        y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+    }
+    y += 8 * s;
+
+    snprintf(buf, sizeof buf, "VIEW: %s", explorer_view_name(ex, ex->view));
+    y += heading(p, x, y, w, buf);
+    y += legend(p, x, y, w) + 8 * s;
+    y += heading(p, x, y, w, "PSEUDO-CODE");
+    y += pseudocode(p, x, y, w) + 8 * s;
+    y += heading(p, x, y, w, "WATCH");
+    y += watch(p, x, y, w) + 8 * s;
+    if (ex->lesson->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
+        buf[0] = '\0';
+        ex->lesson->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
+            buf[e - 1] = '\0';
+        y += heading(p, x, y, w, "TRIANGLE");
+        y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false) + 8 * s;
+    }
+    y += heading(p, x, y, w, "SO FAR");
+    y += counters(p, x, y, w) + 8 * s;
+    (void)y;
+    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
+    draw_text(p, x, L->h - 24 * s, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11, p->pal->dim, false);
+    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    cairo_restore(cr);
+}
+
+/* --- help ------------------------------------------------------------------------------ */
+
+void paint_help(struct painter *p)
+{
+    cairo_t *cr = p->cr;
+    struct explorer *ex = p->ex;
+    const struct explorer_layout *L = &p->L;
+    double s = p->s;
+    char keys[2048];
+    size_t at = 0, n = sizeof keys;
+    at = cat(keys, n, at,
+        "Right / Left         one event forward / back\n"
+        "Shift+Right / Left   to the next / previous row or block\n"
+        "Ctrl+Right / Left    to the next / previous triangle\n"
+        "Home / End           to the start / the end\n"
+        "PgDn / PgUp          one event (presentation clickers)\n"
+        "Space                play / pause\n"
+        "+ / -                play faster / slower\n"
+        "V / Shift+V          next / previous view\n"
+        "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
+        "N                    numbers in cells: auto, always, off\n");
+    bool exhibits = false, twins = false;
+    for (int i = 1; i < ex->lesson->nvariants; i++)
+        exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;
+    if (exhibits)
+        at = cat(keys, n, at, "X                    next exhibit (against the exact rule)\n");
+    if (twins)
+        at = cat(keys, n, at, "T                    next faster twin\n");
+    if (ex->lesson->params & LESSON_PARAM_SUBPIXEL)
+        at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
+    if (ex->lesson->params & LESSON_PARAM_BLOCK)
+        at = cat(keys, n, at, "B                    block size 4, 8, 16\n");
+    if (ex->lesson->params & LESSON_PARAM_AFFINE)
+        at = cat(keys, n, at, "P                    affine / perspective-correct\n");
+    at = cat(keys, n, at,
+        "E                    export the view (PNG and SVG)\n"
+        "F                    fit the scene to the window\n"
+        "H / F1               this help\n"
+        "Q / Esc              quit\n"
+        "\n"
+        "mouse: drag a vertex A, B, C (snaps to 1/256 px)\n"
+        "       wheel to zoom, drag the background to pan\n"
+        "       click a pixel to pin its values in the watch");
+    double tw = fmin(L->w - 40 * s, 600 * s);
+    double x = (L->w - tw) / 2, y = 40 * s;
+    /* the text first, into a group, so the box can be as tall as it is */
+    cairo_push_group(cr);
+    double h = draw_text(p, x + 20 * s, y + 16 * s, tw - 40 * s, "Keys", 15, p->pal->accent, false);
+    h += draw_text(p, x + 20 * s, y + 24 * s + h, tw - 40 * s, keys, 12, p->pal->text, false);
+    cairo_pattern_t *words = cairo_pop_group(cr);
+    set_rgba(cr, p->pal->shadow, 0.55);
+    cairo_paint(cr);
+    set_rgb(cr, p->pal->panel);
+    cairo_rectangle(cr, x, y, tw, fmin(L->h - 2 * y, h + 44 * s));
+    cairo_fill_preserve(cr);
+    set_rgb(cr, p->pal->accent);
+    cairo_set_line_width(cr, 1.5 * s);
+    cairo_stroke(cr);
+    cairo_set_source(cr, words);
+    cairo_paint(cr);
+    cairo_pattern_destroy(words);
+}
+

@@ -1,0 +1,12 @@
+/* lesson.c - looking things up in a lesson's descriptor (lesson.h). */
+#include "lesson.h"
+
+#include <string.h>
+
+const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)
+{
+    for (int i = 0; i < l->nvariants; i++)
+        if (strcmp(l->variants[i].name, name) == 0)
+            return &l->variants[i];
+    return NULL;
+}
