@@ -205,6 +205,11 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        if (r->counted < done) {        /* a large scene, still being counted */
+            at = cat(buf, n, at, "%-18s counting: %.0f%%\n", ex->compare[i]->id,
+                     100.0 * r->counted / (r->ntris ? r->ntris : 1));
+            continue;
+        }
         const struct trace_counters *c = &r->sums[done];
         double px = c->tested ? (double)c->tested : 1;
         at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
@@ -237,7 +242,7 @@ static double counters(struct painter *p, double x, double y, double w)
              (unsigned long long)c.covered);
     at = cat(buf, n, at, "pixels written %10llu   rows    %10llu\n", (unsigned long long)c.written,
              (unsigned long long)c.rows);
-    const struct trace_counters *all = &ex->replay.sums[ex->replay.ntris];
+    const struct trace_counters *all = &ex->replay.sums[ex->replay.counted];
     if (all->blocks[0] + all->blocks[1] + all->blocks[2])
         at = cat(buf, n, at, "blocks empty %llu  full %llu  partial %llu\n",
                  (unsigned long long)c.blocks[0], (unsigned long long)c.blocks[1],

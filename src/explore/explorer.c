@@ -2,10 +2,12 @@
  * the cells of the current triangle, stepping, variants, dragging, layout. */
 #include "explorer.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* --- replaying a step ------------------------------------------------------- */
 
@@ -219,10 +221,10 @@ static void find_marks(struct explorer *ex, int i)
     ex->marks_tri = i;
 }
 
-/* Largest i with start[i] <= step (strict: start[i] < step). */
+/* Largest counted i with start[i] <= step (strict: start[i] < step). */
 static int tri_at(const struct replay *r, uint64_t step, bool strict)
 {
-    int lo = 0, hi = r->ntris - 1;
+    int lo = 0, hi = r->counted - 1;
     while (lo < hi) {
         int mid = lo + (hi - lo + 1) / 2;
         if (strict ? r->start[mid] < step : r->start[mid] <= step)
@@ -241,7 +243,7 @@ uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
         return r->total;
     if (dir < 0 && s == 0)
         return 0;
-    if (unit == STEP_EVENT || r->ntris == 0)
+    if (unit == STEP_EVENT || r->counted == 0)
         return dir > 0 ? s + 1 : s - 1;
     if (dir > 0) {
         int i = tri_at(r, s, false);
@@ -277,8 +279,9 @@ static bool compare_init(struct explorer *ex)
     for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
-                if (!replay_init(&ex->compare_replay[ex->ncompare], &ex->scene,
-                                 &all_lessons[k]->variants[0], &ex->params)) {
+                if (!(ex->count_later ? replay_begin : replay_init)(
+                        &ex->compare_replay[ex->ncompare], &ex->scene,
+                        &all_lessons[k]->variants[0], &ex->params)) {
                     replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
                 }
@@ -292,9 +295,59 @@ static bool compare_recount(struct explorer *ex)
     for (int i = 0; i < ex->ncompare; i++) {
         ex->compare_replay[i].params = ex->params;
         ex->compare_replay[i].scene = &ex->scene;
-        if (!replay_recount(&ex->compare_replay[i]))
+        if (!(ex->count_later ? replay_restart(&ex->compare_replay[i])
+                              : replay_recount(&ex->compare_replay[i])))
             return false;
     }
+    return true;
+}
+
+/* --- counting a part at a time ------------------------------------------------- */
+
+static double now_ms(void)
+{
+    struct timespec t;
+    timespec_get(&t, TIME_UTC);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+/* Triangles counted between two looks at the clock. */
+#define COUNT_BATCH 256
+
+bool explorer_counting(const struct explorer *ex)
+{
+    if (!replay_counted(&ex->replay))
+        return true;
+    for (int i = 0; i < ex->ncompare; i++)
+        if (!replay_counted(&ex->compare_replay[i]))
+            return true;
+    return false;
+}
+
+bool explorer_count(struct explorer *ex, double ms)
+{
+    double until = now_ms() + ms;
+    for (int i = -1; i < ex->ncompare; i++) {
+        struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        while (!replay_counted(r)) {
+            if (!replay_count(r, COUNT_BATCH))
+                return false;
+            if (now_ms() >= until)
+                return true;
+        }
+    }
+    return true;
+}
+
+/* Count the lesson's own run at least as far as `step` (all of it unless
+ * counting later). */
+static bool count_to(struct explorer *ex, uint64_t step)
+{
+    if (!ex->count_later)
+        return replay_count(&ex->replay, INT_MAX);
+    while (!replay_counted(&ex->replay) && ex->replay.total < step)
+        if (!replay_count(&ex->replay, COUNT_BATCH))
+            return false;
     return true;
 }
 
@@ -303,7 +356,7 @@ static bool rerun(struct explorer *ex, uint64_t step)
     ex->replay.variant = &ex->lesson->variants[ex->variant];
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
-    if (!replay_recount(&ex->replay) || !compare_recount(ex))
+    if (!replay_restart(&ex->replay) || !count_to(ex, step) || !compare_recount(ex))
         return false;
     ex->marks_tri = -1;
     ex->exact_upto = -1;
@@ -420,24 +473,36 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     ex->marks_tri = -1;
     ex->exact_upto = -1;
     ex->hover_vertex = -1;
+    ex->count_later = d->count_later;
     const char *failed = NULL;
-    if (!scene_copy(&ex->scene, d->scene))
+    const struct scene *given = d->give_scene ? d->give_scene : d->scene;
+    int w = given->w, h = given->h, n = given->ntris;
+    if (d->give_scene) {
+        ex->scene = *d->give_scene;             /* handed over: no copy of its triangles */
+        memset(d->give_scene, 0, sizeof *d->give_scene);
+    } else if (!scene_copy(&ex->scene, d->scene)) {
         failed = "copying the scene";
-    else {
+    }
+    if (!failed) {
         ex->params.checker = ex->scene.checker;
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
-        if (!replay_init(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+        uint64_t step = d->step_end ? UINT64_MAX : d->step;
+        bool begun = replay_begin(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
+                                  &ex->params);
+        if (begun)
+            replay_keep_pictures(&ex->replay);
+        if (!begun || !count_to(ex, step))
             failed = "counting the scene's events";
         else if (!compare_init(ex))
             failed = "running the lessons compared with this one";
-        else if (!explorer_set_step(ex, d->step_end ? ex->replay.total : d->step))
+        else if (!explorer_set_step(ex, step))
             failed = "drawing the first step";
     }
     if (!failed)
         return true;
     snprintf(err, errlen, "%s: out of memory %s (%d x %d pixels, %d triangles)", d->lesson->id,
-             failed, d->scene->w, d->scene->h, d->scene->ntris);
+             failed, w, h, n);
     explorer_free(ex);
     return false;
 }

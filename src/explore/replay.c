@@ -1,6 +1,7 @@
 /* replay.c - counting a scene's events and drawing it as of any step. */
 #include "replay.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,72 +27,173 @@ static void add_counters(struct trace_counters *sum, const struct trace_counters
     sum->add = a->add + b->add;
 }
 
-bool replay_recount(struct replay *r)
+/* --- checkpoints ---------------------------------------------------------- */
+
+static size_t target_bytes(const struct target *t)
 {
-    struct target scratch;
-    if (!target_init(&scratch, r->scene->w, r->scene->h, scene_background(r->scene)))
-        return false;
-    uint64_t *start = realloc(r->start, ((size_t)r->scene->ntris + 1) * sizeof *start);
-    if (!start) {
-        target_free(&scratch);
+    return (size_t)t->w * (size_t)t->h * (sizeof *t->color + sizeof *t->depth + 1);
+}
+
+static uint64_t check_step(const struct replay *r, int k)
+{
+    return r->start[r->checks[k].upto];
+}
+
+/* A checkpoint at triangle `counted` (the counting picture). When the
+ * budget is full, the one whose removal leaves the smallest gap makes room,
+ * and checkpoints are taken no closer than that gap from then on. */
+static bool take_checkpoint(struct replay *r)
+{
+    size_t each = target_bytes(&r->counting);
+    int most = each ? (int)(REPLAY_CHECKPOINT_BYTES / each) : 0;
+    if (most < 1)
+        return true;
+    struct target reuse = { 0 };
+    if (r->nchecks >= most) {
+        int drop = -1;
+        uint64_t best = UINT64_MAX;
+        for (int k = 0; k < r->nchecks; k++) {
+            uint64_t lo = k ? check_step(r, k - 1) : 0;
+            uint64_t hi = k + 1 < r->nchecks ? check_step(r, k + 1) : r->total;
+            if (hi - lo < best)
+                best = hi - lo, drop = k;
+        }
+        if (best > r->check_gap)
+            r->check_gap = best;
+        if (r->total - check_step(r, r->nchecks - 1) < best)
+            return true;        /* the new one would be the closest pair: not worth it */
+        reuse = r->checks[drop].t;
+        memmove(&r->checks[drop], &r->checks[drop + 1],
+                (size_t)(r->nchecks - drop - 1) * sizeof *r->checks);
+        r->nchecks--;
+    }
+    if (r->nchecks == r->checks_cap) {
+        int cap = r->checks_cap ? 2 * r->checks_cap : 16;
+        struct replay_checkpoint *c = realloc(r->checks, (size_t)cap * sizeof *c);
+        if (!c) {
+            target_free(&reuse);
+            return false;
+        }
+        r->checks = c;
+        r->checks_cap = cap;
+    }
+    struct replay_checkpoint *c = &r->checks[r->nchecks];
+    c->upto = r->counted;
+    c->t = reuse;
+    if (!target_copy(&c->t, &r->counting)) {
+        target_free(&c->t);
         return false;
     }
-    r->start = start;
-    struct trace_counters *sums = realloc(r->sums, ((size_t)r->scene->ntris + 1) * sizeof *sums);
-    if (!sums) {
-        target_free(&scratch);
-        return false;
-    }
-    r->sums = sums;
-    r->ntris = r->scene->ntris;
-    uint64_t total = 0;
-    memset(&sums[0], 0, sizeof sums[0]);
-    struct trace tr = { 0 };
-    for (int i = 0; i < r->ntris; i++) {
-        struct tri_setup t;
-        replay_setup(r, i, &t);
-        trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-        r->variant->rasterize(&t, &r->params, &scratch, &tr);
-        start[i] = total;
-        total += tr.count;
-        add_counters(&sums[i + 1], &sums[i], &tr.c);
-    }
-    start[r->ntris] = total;
-    r->total = total;
-    target_free(&scratch);
-    target_free(&r->base);      /* the cached picture is stale */
-    r->base_upto = 0;
+    r->nchecks++;
+    r->check_last = r->total;
     return true;
 }
 
-bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
-                 const struct raster_params *p)
+static void free_checkpoints(struct replay *r)
+{
+    for (int k = 0; k < r->nchecks; k++)
+        target_free(&r->checks[k].t);
+    r->nchecks = 0;
+    r->check_gap = REPLAY_CHECKPOINT_EVENTS;
+    r->check_last = 0;
+}
+
+/* --- counting ------------------------------------------------------------- */
+
+bool replay_restart(struct replay *r)
+{
+    r->ntris = r->scene->ntris;
+    uint64_t *start = realloc(r->start, ((size_t)r->ntris + 1) * sizeof *start);
+    if (!start)
+        return false;
+    r->start = start;
+    struct trace_counters *sums = realloc(r->sums, ((size_t)r->ntris + 1) * sizeof *sums);
+    if (!sums)
+        return false;
+    r->sums = sums;
+    r->counted = 0;
+    r->total = 0;
+    start[0] = 0;
+    memset(&sums[0], 0, sizeof sums[0]);
+    target_free(&r->counting);
+    target_free(&r->base);      /* the cached picture is stale */
+    r->base_upto = 0;
+    free_checkpoints(r);
+    return true;
+}
+
+bool replay_count(struct replay *r, int n)
+{
+    if (r->counted < r->ntris && !r->counting.color
+        && !target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene)))
+        return false;
+    struct trace tr = { 0 };
+    for (; n > 0 && r->counted < r->ntris; n--) {
+        int i = r->counted;
+        struct tri_setup t;
+        replay_setup(r, i, &t);
+        trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+        r->variant->rasterize(&t, &r->params, &r->counting, &tr);
+        r->total += tr.count;
+        r->start[i + 1] = r->total;
+        add_counters(&r->sums[i + 1], &r->sums[i], &tr.c);
+        r->counted = i + 1;
+        if (r->keep_pictures && r->counted < r->ntris
+            && r->total - r->check_last >= r->check_gap && !take_checkpoint(r))
+            return false;
+    }
+    if (r->counted == r->ntris)
+        target_free(&r->counting);  /* every step is known: its picture is not needed */
+    return true;
+}
+
+bool replay_recount(struct replay *r)
+{
+    return replay_restart(r) && replay_count(r, INT_MAX);
+}
+
+bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                  const struct raster_params *p)
 {
     memset(r, 0, sizeof *r);
     r->scene = s;
     r->variant = v;
     r->params = *p;
-    return replay_recount(r);
+    return replay_restart(r);
+}
+
+bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                 const struct raster_params *p)
+{
+    return replay_begin(r, s, v, p) && replay_count(r, INT_MAX);
+}
+
+void replay_keep_pictures(struct replay *r)
+{
+    r->keep_pictures = true;
 }
 
 void replay_free(struct replay *r)
 {
+    free_checkpoints(r);
+    free(r->checks);
     free(r->start);
     free(r->sums);
+    target_free(&r->counting);
     target_free(&r->base);
     memset(r, 0, sizeof *r);
 }
 
 int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
 {
-    if (step == 0 || r->ntris == 0) {
+    if (step == 0 || r->counted == 0) {
         *local = 0;
         return -1;
     }
     if (step > r->total)
         step = r->total;
     uint64_t last = step - 1;           /* the last event that happened */
-    int lo = 0, hi = r->ntris - 1;      /* largest i with start[i] <= last */
+    int lo = 0, hi = r->counted - 1;    /* largest i with start[i] <= last */
     while (lo < hi) {
         int mid = lo + (hi - lo + 1) / 2;
         if (r->start[mid] <= last)
@@ -103,10 +205,23 @@ int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
     return lo;
 }
 
-/* Bring the cached base picture to "triangles [0, upto) drawn". */
+/* Events worth redrawing rather than copying a whole picture. */
+#define REDRAW_RATHER_THAN_COPY ((uint64_t)1 << 17)
+
+/* Bring the cached base picture to "triangles [0, upto) drawn", from
+ * itself, the nearest checkpoint before upto, or the background. */
 static bool advance_base(struct replay *r, int upto)
 {
-    if (!r->base.color || upto < r->base_upto) {
+    const struct replay_checkpoint *from = NULL;
+    for (int k = 0; k < r->nchecks && r->checks[k].upto <= upto; k++)
+        from = &r->checks[k];
+    bool base_ok = r->base.color && r->base_upto <= upto;
+    if (from && (!base_ok || (r->base_upto < from->upto
+                              && r->start[from->upto] - r->start[r->base_upto] > REDRAW_RATHER_THAN_COPY))) {
+        if (!target_copy(&r->base, &from->t))
+            return false;
+        r->base_upto = from->upto;
+    } else if (!base_ok) {
         target_free(&r->base);
         if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene)))
             return false;

@@ -14,30 +14,68 @@
 
 #include "lesson.h"
 
+/* The picture of the scene with triangles [0, upto) drawn, kept so that a
+ * step far back needs only the triangles since the nearest one. */
+struct replay_checkpoint {
+    int upto;
+    struct target t;
+};
+
 struct replay {
     const struct lesson_variant *variant;
     const struct scene *scene;
     struct raster_params params;
     int ntris;
-    uint64_t *start;        /* ntris + 1 entries; start[ntris] = total */
-    uint64_t total;         /* events in the whole scene */
-    struct trace_counters *sums;    /* ntris + 1 entries: counters of triangles [0, i) */
+    int counted;            /* triangles whose events are counted so far */
+    uint64_t *start;        /* ntris + 1 entries, known for [0, counted]; start[counted] = total */
+    uint64_t total;         /* events of the counted triangles (the whole scene once counted) */
+    struct trace_counters *sums;    /* ntris + 1 entries, [0, counted]: counters of triangles [0, i) */
+    struct target counting; /* the picture of triangles [0, counted), where counting goes on */
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
+
+    /* checkpoints, taken while counting (replay_keep_pictures): at most
+     * REPLAY_CHECKPOINT_BYTES of them, spaced by at least check_gap events
+     * (doubled, and every other one dropped, when they would exceed it) */
+    bool keep_pictures;
+    struct replay_checkpoint *checks;
+    int nchecks, checks_cap;
+    uint64_t check_gap, check_last;     /* events apart; step of the last one */
 };
+
+#define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
+/* Events a step may have to redraw past the nearest checkpoint, when memory allows. */
+#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 20)
 
 /* Count every triangle's events (runs the whole scene once). */
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                  const struct raster_params *p);
+/* The same, but nothing counted yet: replay_count does it a part at a time
+ * (a window stays responsive while a scene of millions of triangles is
+ * counted, and steps through what is counted already). */
+bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                  const struct raster_params *p);
+/* Count up to n more triangles (all of them: INT_MAX). False when out of memory. */
+bool replay_count(struct replay *r, int n);
+static inline bool replay_counted(const struct replay *r)
+{
+    return r->counted == r->ntris;
+}
+/* Keep checkpoints of the picture while counting (the explorer's own run;
+ * call before counting). */
+void replay_keep_pictures(struct replay *r);
 void replay_free(struct replay *r);
 /* Count again after the scene or params changed (a vertex was dragged). */
 bool replay_recount(struct replay *r);
+/* Forget every count (the scene or params changed); counting starts over. */
+bool replay_restart(struct replay *r);
 
 /* Set up triangle i of the scene with the run's precision. */
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t);
 
 /* The triangle that the last happened event of step `step` belongs to
- * (-1 at step 0), and that event's number inside it via *local. */
+ * (-1 at step 0), and that event's number inside it via *local. Steps
+ * past the counted ones are taken as the last counted step. */
 int replay_locate(const struct replay *r, uint64_t step, uint64_t *local);
 
 /* Draw the scene as it is after `step` events into fb (allocated as needed),
