@@ -41,6 +41,8 @@ struct app {
     double drop_x, drop_y;      /* scene position the dragged vertex goes to */
     bool drop_pending;
 
+    Uint64 count_shown;         /* when the counting progress was last shown */
+
     /* playing: events owed to the clock */
     double play_debt;
     Uint64 play_last;
@@ -504,6 +506,25 @@ static int play_wait(const struct app *a)
     return ms < FRAME_MS ? FRAME_MS : ms > 1000 ? 1000 : (int)ms;
 }
 
+/* A large scene's steps are counted while nothing else happens, a slice at
+ * a time, so keys and the mouse still answer; the scrub bar shows the
+ * progress a few times a second. */
+#define COUNT_SLICE_MS 20
+#define COUNT_SHOW_MS 250
+
+static void count_some(struct app *a)
+{
+    if (!explorer_count(&a->ex, COUNT_SLICE_MS)) {
+        out_of_memory(a);
+        return;
+    }
+    Uint64 now = SDL_GetTicks64();
+    if (now - a->count_shown >= COUNT_SHOW_MS || !explorer_counting(&a->ex)) {
+        a->count_shown = now;
+        a->dirty = true;
+    }
+}
+
 static void run(struct app *a)
 {
     SDL_Event ev;
@@ -511,6 +532,10 @@ static void run(struct app *a)
         if (a->dirty && !present(a))
             return;
         bool got;
+        if (explorer_counting(&a->ex) && !SDL_PollEvent(NULL)) {
+            count_some(a);      /* before a script's next line: scripts see every step */
+            continue;
+        }
         if (a->at < a->nscript && !SDL_PollEvent(NULL)) {
             next_script_line(a);
             continue;

@@ -27,6 +27,8 @@ static void add_counters(struct trace_counters *sum, const struct trace_counters
     sum->add = a->add + b->add;
 }
 
+static void undo_clear(struct replay *r);
+
 /* --- checkpoints ---------------------------------------------------------- */
 
 static size_t target_bytes(const struct target *t)
@@ -40,12 +42,13 @@ static uint64_t check_step(const struct replay *r, int k)
 }
 
 /* A checkpoint at triangle `counted` (the counting picture). When the
- * budget is full, the one whose removal leaves the smallest gap makes room,
- * and checkpoints are taken no closer than that gap from then on. */
-static bool take_checkpoint(struct replay *r)
+ * budget is full, the one whose removal leaves the smallest gap makes room
+ * (unless the new one would be the closest: then none is taken, unless
+ * forced), and checkpoints are taken no closer than that gap from then on. */
+static bool take_checkpoint(struct replay *r, bool force)
 {
     size_t each = target_bytes(&r->counting);
-    int most = each ? (int)(REPLAY_CHECKPOINT_BYTES / each) : 0;
+    int most = each ? (int)(r->check_bytes / each) : 0;
     if (most < 1)
         return true;
     struct target reuse = { 0 };
@@ -60,7 +63,7 @@ static bool take_checkpoint(struct replay *r)
         }
         if (best > r->check_gap)
             r->check_gap = best;
-        if (r->total - check_step(r, r->nchecks - 1) < best)
+        if (!force && r->total - check_step(r, r->nchecks - 1) < best)
             return true;        /* the new one would be the closest pair: not worth it */
         reuse = r->checks[drop].t;
         memmove(&r->checks[drop], &r->checks[drop + 1],
@@ -118,6 +121,7 @@ bool replay_restart(struct replay *r)
     target_free(&r->counting);
     target_free(&r->base);      /* the cached picture is stale */
     r->base_upto = 0;
+    undo_clear(r);
     free_checkpoints(r);
     return true;
 }
@@ -138,8 +142,10 @@ bool replay_count(struct replay *r, int n)
         r->start[i + 1] = r->total;
         add_counters(&r->sums[i + 1], &r->sums[i], &tr.c);
         r->counted = i + 1;
+        /* one just before the last triangle too: End is a step often taken */
+        bool end = r->counted == r->ntris - 1;
         if (r->keep_pictures && r->counted < r->ntris
-            && r->total - r->check_last >= r->check_gap && !take_checkpoint(r))
+            && (r->total - r->check_last >= r->check_gap || end) && !take_checkpoint(r, end))
             return false;
     }
     if (r->counted == r->ntris)
@@ -159,6 +165,8 @@ bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_v
     r->scene = s;
     r->variant = v;
     r->params = *p;
+    r->check_bytes = REPLAY_CHECKPOINT_BYTES;
+    r->undo_bytes = REPLAY_UNDO_BYTES;
     return replay_restart(r);
 }
 
@@ -177,6 +185,8 @@ void replay_free(struct replay *r)
 {
     free_checkpoints(r);
     free(r->checks);
+    free(r->undo);
+    free(r->undo_data);
     free(r->start);
     free(r->sums);
     target_free(&r->counting);
@@ -205,6 +215,99 @@ int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
     return lo;
 }
 
+/* --- stepping back a triangle: what it overwrote ---------------------------- */
+
+static void undo_clear(struct replay *r)
+{
+    r->nundo = 0;
+    r->undo_used = 0;
+}
+
+/* Copy a box of the target's pixels to or from saved bytes (colour rows,
+ * then depth rows, then count rows). */
+static void box_pixels(struct target *t, const struct replay_undo *u, unsigned char *bytes,
+                       bool save)
+{
+    size_t n = (size_t)u->w * (size_t)u->h;
+    unsigned char *colour = bytes, *depth = colour + 4 * n, *count = depth + 4 * n;
+    for (int y = 0; y < u->h; y++) {
+        size_t i = (size_t)(u->y0 + y) * (size_t)t->w + (size_t)u->x0, k = (size_t)y * (size_t)u->w;
+        size_t w = (size_t)u->w;
+        if (save) {
+            memcpy(colour + 4 * k, t->color + i, 4 * w);
+            memcpy(depth + 4 * k, t->depth + i, 4 * w);
+            memcpy(count + k, t->count + i, w);
+        } else {
+            memcpy(t->color + i, colour + 4 * k, 4 * w);
+            memcpy(t->depth + i, depth + 4 * k, 4 * w);
+            memcpy(t->count + i, count + k, w);
+        }
+    }
+}
+
+/* Before triangle base_upto is drawn into base: keep what its box holds.
+ * An exact variant writes only the pixels the reference covers (the tests
+ * hold every one to that), all inside the box that setup computed; an
+ * exhibit may stray outside it, so its steps back redraw instead. When the
+ * room is full the older half goes; a box too large for it ends the history
+ * (stepping back then starts from a checkpoint). */
+static void undo_save(struct replay *r, const struct tri_setup *t)
+{
+    if (r->variant->exhibit) {
+        undo_clear(r);
+        return;
+    }
+    struct replay_undo u = { .x0 = t->minx, .y0 = t->miny, .at = r->undo_used };
+    if (t->minx <= t->maxx && t->miny <= t->maxy) {
+        u.w = t->maxx - t->minx + 1;
+        u.h = t->maxy - t->miny + 1;
+    }
+    size_t bytes = (size_t)u.w * (size_t)u.h * 9;
+    if (bytes > r->undo_bytes / 4) {
+        undo_clear(r);
+        return;
+    }
+    if (!r->undo_data && !(r->undo_data = malloc(r->undo_bytes))) {
+        undo_clear(r);
+        return;
+    }
+    if (r->undo_used + bytes > r->undo_bytes) {
+        int keep = r->nundo / 2;                /* the newer half */
+        size_t from = r->undo[r->nundo - keep].at;
+        if (keep == 0)
+            from = r->undo_used;
+        memmove(r->undo_data, r->undo_data + from, r->undo_used - from);
+        memmove(r->undo, r->undo + (r->nundo - keep), (size_t)keep * sizeof *r->undo);
+        for (int k = 0; k < keep; k++)
+            r->undo[k].at -= from;
+        r->nundo = keep;
+        r->undo_used -= from;
+        u.at = r->undo_used;
+    }
+    if (r->nundo == r->undo_cap) {
+        int cap = r->undo_cap ? 2 * r->undo_cap : 1024;
+        struct replay_undo *n = realloc(r->undo, (size_t)cap * sizeof *n);
+        if (!n) {
+            undo_clear(r);
+            return;
+        }
+        r->undo = n;
+        r->undo_cap = cap;
+    }
+    box_pixels(&r->base, &u, r->undo_data + u.at, true);
+    r->undo[r->nundo++] = u;
+    r->undo_used += bytes;
+}
+
+/* Take the last triangle drawn into base out again. */
+static void undo_last(struct replay *r)
+{
+    struct replay_undo *u = &r->undo[--r->nundo];
+    box_pixels(&r->base, u, r->undo_data + u->at, false);
+    r->undo_used = u->at;
+    r->base_upto--;
+}
+
 /* Events worth redrawing rather than copying a whole picture. */
 #define REDRAW_RATHER_THAN_COPY ((uint64_t)1 << 17)
 
@@ -212,6 +315,9 @@ int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
  * itself, the nearest checkpoint before upto, or the background. */
 static bool advance_base(struct replay *r, int upto)
 {
+    if (r->base.color && upto < r->base_upto && r->base_upto - upto <= r->nundo)
+        while (r->base_upto > upto)
+            undo_last(r);
     const struct replay_checkpoint *from = NULL;
     for (int k = 0; k < r->nchecks && r->checks[k].upto <= upto; k++)
         from = &r->checks[k];
@@ -221,15 +327,18 @@ static bool advance_base(struct replay *r, int upto)
         if (!target_copy(&r->base, &from->t))
             return false;
         r->base_upto = from->upto;
+        undo_clear(r);
     } else if (!base_ok) {
         target_free(&r->base);
         if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene)))
             return false;
         r->base_upto = 0;
+        undo_clear(r);
     }
     for (; r->base_upto < upto; r->base_upto++) {
         struct tri_setup t;
         replay_setup(r, r->base_upto, &t);
+        undo_save(r, &t);
         r->variant->rasterize(&t, &r->params, &r->base, NULL);
     }
     return true;

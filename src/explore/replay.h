@@ -34,17 +34,35 @@ struct replay {
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
 
-    /* checkpoints, taken while counting (replay_keep_pictures): at most
-     * REPLAY_CHECKPOINT_BYTES of them, spaced by at least check_gap events
-     * (doubled, and every other one dropped, when they would exceed it) */
+    /* checkpoints, taken while counting (replay_keep_pictures) every
+     * check_gap events, at most check_bytes of them; when they would exceed
+     * it, the one whose removal leaves the smallest gap goes, and the gap
+     * grows to that */
     bool keep_pictures;
     struct replay_checkpoint *checks;
     int nchecks, checks_cap;
     uint64_t check_gap, check_last;     /* events apart; step of the last one */
+    size_t check_bytes;                 /* REPLAY_CHECKPOINT_BYTES (a test may lower it) */
+
+    /* what the last triangles drawn into base overwrote (their boxes), for
+     * stepping back a triangle without a redraw: records of triangles
+     * [base_upto - nundo, base_upto), at most undo_bytes of pixels */
+    struct replay_undo *undo;
+    int nundo, undo_cap;
+    unsigned char *undo_data;
+    size_t undo_used, undo_bytes;       /* REPLAY_UNDO_BYTES (a test may lower it) */
 };
 
+struct replay_undo {
+    int x0, y0, w, h;       /* the box of pixels the triangle may write (w = 0: none) */
+    size_t at;              /* its saved colour, depth and count in undo_data */
+};
+
+#define REPLAY_UNDO_BYTES ((size_t)32 << 20)
+
+/* Checkpoints: at most this much memory, and this many events apart when
+ * it allows (about 25 ms of redrawing a scene of small triangles). */
 #define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
-/* Events a step may have to redraw past the nearest checkpoint, when memory allows. */
 #define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 20)
 
 /* Count every triangle's events (runs the whole scene once). */
