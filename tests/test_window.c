@@ -16,6 +16,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -430,6 +431,145 @@ static const char *start_xvfb(void)
     }
     cr_assert_fail("no display number for Xvfb in :91..:139");
     return NULL;
+}
+
+/* The window's pixels at the screen's top-left corner equal a figure's. */
+static long differing_from_figure(cairo_surface_t *shot, const char *name, const char *size,
+                                  const char *scale, int w, int h)
+{
+    char *argv[] = { (char *)program(), "--figure", (char *)name, "--size", (char *)size,
+                     "--scale", (char *)scale, NULL };
+    cr_assert_eq(run(argv, NULL, NULL, "figure.err", 30000), 0, "--figure %s failed", name);
+    cairo_surface_t *want = load_png(in_dir(name));
+    cr_assert_eq(cairo_image_surface_get_width(want), w);
+    long n = differing(shot, want, 0, 0, w, h);
+    cairo_surface_destroy(want);
+    return n;
+}
+
+/* A HiDPI desktop on X11 (windows count in pixels; GDK_SCALE=2, as such
+ * desktops set it, since SDL cannot read Xvfb's dots per inch): the
+ * interface is drawn at scale 2. The window is resized with xdotool: the
+ * canvas and panel lay themselves out again, and each screenshot is the
+ * figure of that size, pixel for pixel. */
+Test(window, xvfb_high_dpi_and_resize, .fini = cleanup, .timeout = 120)
+{
+    make_dir();
+    const char *version[] = { "--version", NULL };
+    cr_assert_eq(xdotool(":0", version), 0, "xdotool is not installed (make test installs it)");
+    const char *display = start_xvfb();
+    char denv[32];
+    snprintf(denv, sizeof denv, "DISPLAY=%s", display);
+    const char *const env[] = { denv, "SDL_RENDER_VSYNC=0", "SDL_VIDEODRIVER=x11", "GDK_SCALE=2",
+                                "ASAN_OPTIONS=detect_leaks=0", NULL };
+    char *argv[] = { (char *)program(), "--size", "1280x800", NULL };
+    app_pid = start(argv, env, "app.out", "app.err");
+    char *search[] = { "timeout", "15", "xdotool", "search", "--sync", "--onlyvisible",
+                       "--name", "^tristep " PROGRAM, NULL };
+    cr_assert_eq(run(search, env, "search.out", "search.err", 20000), 0,
+                 "the window did not appear within 15 s");
+    char *ids = read_all(in_dir("search.out"), NULL);
+    cr_assert(ids && ids[0], "no window id");
+    char id[32];
+    snprintf(id, sizeof id, "%.*s", (int)strcspn(ids, "\n"), ids);
+    free(ids);
+    sleep_ms(700);
+
+    cairo_surface_t *big = screenshot(display, "dpi.png");
+    long d = differing_from_figure(big, "scale2.png", "1280x800", "2", 1280, 800);
+    cr_assert_eq(d, 0, "at GDK_SCALE=2 the window differs from --figure --scale 2 in %ld pixels", d);
+
+    static const int sizes[][2] = { { 900, 600 }, { 1200, 420 }, { 520, 760 } };
+    for (int i = 0; i < 3; i++) {
+        char w[16], h[16], size[32];
+        snprintf(w, sizeof w, "%d", sizes[i][0]);
+        snprintf(h, sizeof h, "%d", sizes[i][1]);
+        snprintf(size, sizeof size, "%dx%d", sizes[i][0], sizes[i][1]);
+        const char *resize[] = { "windowsize", id, w, h, "sleep", "0.7", NULL };
+        cr_assert_eq(xdotool(display, resize), 0);
+        cairo_surface_t *shot = screenshot(display, "resized.png");
+        d = differing_from_figure(shot, "resized-want.png", size, "2", sizes[i][0], sizes[i][1]);
+        cr_assert_eq(d, 0, "resized to %s the window differs from --figure --size %s in %ld pixels",
+                     size, size, d);
+        cr_assert_eq(pixel(shot, sizes[i][0] + 5, 5), 0, "nothing drawn right of the window");
+        cairo_surface_destroy(shot);
+    }
+    const char *quit[] = { "key", "q", NULL };
+    cr_assert_eq(xdotool(display, quit), 0);
+    int status = finish(&app_pid, 10000);
+    char *app_err = read_all(in_dir("app.err"), NULL);
+    cr_assert_eq(status, 0, "exit status %d after q; stderr:\n%s", status, app_err ? app_err : "");
+    free(app_err);
+    cairo_surface_destroy(big);
+}
+
+/* Colours within 3 levels a channel: antialiasing of the lines nearby
+ * reaches a sample a little differently at two resolutions; a layout out
+ * of place gives another colour altogether (grid, cell, background). */
+static bool close_colours(uint32_t a, uint32_t b)
+{
+    for (int k = 0; k < 24; k += 8)
+        if (abs((int)(a >> k & 255) - (int)(b >> k & 255)) > 3)
+            return false;
+    return true;
+}
+
+/* Where windows count in points (macOS, Wayland), the frame is painted at
+ * twice the pixels: the same layout, every flat area where it was. */
+Test(window, painted_at_pixel_ratio_2_is_the_same_layout_twice_as_sharp)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
+    const struct lesson *l = NULL;
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
+            l = all_lessons[i];
+    struct explorer ex;
+    struct explorer_desc desc = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle", .step = 40 };
+    cr_assert(explorer_init(&ex, &desc, err, sizeof err), "%s", err);
+    explorer_fonts();
+    enum { W = 640, H = 400 };
+    unsigned char *one = malloc((size_t)W * H * 4), *two = malloc((size_t)W * H * 16);
+    cr_assert_eq(explorer_paint_pixels(&ex, one, W, H, W * 4, 1), CAIRO_STATUS_SUCCESS);
+    cr_assert_eq(explorer_paint_pixels(&ex, two, 2 * W, 2 * H, W * 8, 2), CAIRO_STATUS_SUCCESS);
+    struct explorer_layout L;
+    explorer_layout(&ex, W, H, &L);
+    /* inside every scene pixel away from the edges, the vertex handles and
+     * the current pixel (lines and text are drawn finer at ratio 2), and the
+     * panel's background */
+    int checked = 0;
+    for (int py = 0; py < s.h; py++)
+        for (int px = 0; px < s.w; px++) {
+            double x = L.ox + (px + 0.3) * L.zoom, y = L.oy + (py + 0.3) * L.zoom;
+            if (x < 0 || y < 0 || x >= L.cx + L.cw || y >= L.cy + L.ch)
+                continue;
+            bool near = false;
+            for (int k = 0; k < 3; k++) {
+                double ax = L.ox + L.zoom * ex.tri.x[k] / SUBPIXEL_ONE;
+                double ay = L.oy + L.zoom * ex.tri.y[k] / SUBPIXEL_ONE;
+                double bx = L.ox + L.zoom * ex.tri.x[(k + 1) % 3] / SUBPIXEL_ONE;
+                double by = L.oy + L.zoom * ex.tri.y[(k + 1) % 3] / SUBPIXEL_ONE;
+                double len = hypot(bx - ax, by - ay);
+                double dist = fabs((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / len;
+                near = near || dist < 6 || hypot(x - ax, y - ay) < 24;
+            }
+            if (near || (ex.has_last && abs(px - ex.last.x) <= 1 && abs(py - ex.last.y) <= 1))
+                continue;           /* and the current pixel's marker */
+            uint32_t a = *(uint32_t *)(one + ((size_t)(int)y * W + (size_t)(int)x) * 4);
+            uint32_t b = *(uint32_t *)(two + ((size_t)(int)(2 * y) * 2 * W + (size_t)(int)(2 * x)) * 4);
+            cr_assert(close_colours(a, b), "scene pixel (%d, %d): %08x at ratio 1, %08x at ratio 2",
+                      px, py, a, b);
+            checked++;
+        }
+    cr_assert_gt(checked, 100);
+    uint32_t a = *(uint32_t *)(one + ((size_t)(H - 60) * W + (size_t)(W - 4)) * 4);
+    uint32_t b = *(uint32_t *)(two + ((size_t)(2 * H - 120) * 2 * W + (size_t)(2 * W - 8)) * 4);
+    cr_assert(close_colours(a, b), "panel background: %08x at ratio 1, %08x at ratio 2", a, b);
+    free(one);
+    free(two);
+    explorer_free(&ex);
+    scene_free(&s);
 }
 
 Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)

@@ -31,6 +31,8 @@ struct app {
     SDL_Renderer *ren;
     SDL_Texture *tex;
     int tw, th;                 /* texture (= frame) size in pixels */
+    double ratio;               /* pixels per window unit: 2 on a HiDPI screen that
+                                 * counts windows and the mouse in points */
     bool dirty, quit, failed;
 
     /* the mouse */
@@ -70,11 +72,16 @@ static void out_of_memory(struct app *a)
 
 /* --- painting -------------------------------------------------------------------- */
 
+/* The frame is as large as the window's drawable, in pixels; the layout
+ * and the mouse count in window units (the same on X11 and Windows, points
+ * on macOS and Wayland's scaled outputs). */
 static bool make_texture(struct app *a)
 {
-    int w, h;
+    int w, h, ww, wh;
     if (SDL_GetRendererOutputSize(a->ren, &w, &h) != 0)
         return sdl_failed(a, "SDL_GetRendererOutputSize");
+    SDL_GetWindowSize(a->win, &ww, &wh);
+    a->ratio = ww > 0 && w > ww ? (double)w / ww : 1;
     if (a->tex && w == a->tw && h == a->th)
         return true;
     if (a->tex)
@@ -96,14 +103,8 @@ static bool present(struct app *a)
     int pitch;
     if (SDL_LockTexture(a->tex, NULL, &pixels, &pitch) != 0)
         return sdl_failed(a, "SDL_LockTexture");
-    cairo_surface_t *s = cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_ARGB32,
-                                                             a->tw, a->th, pitch);
-    cairo_t *cr = cairo_create(s);
-    explorer_paint(&a->ex, cr, a->tw, a->th);   /* the lock is write-only: all of it */
-    cairo_status_t st = cairo_status(cr);
-    cairo_destroy(cr);
-    cairo_surface_flush(s);
-    cairo_surface_destroy(s);
+    /* the lock is write-only: all of it */
+    cairo_status_t st = explorer_paint_pixels(&a->ex, pixels, a->tw, a->th, pitch, a->ratio);
     SDL_UnlockTexture(a->tex);
     if (st != CAIRO_STATUS_SUCCESS) {
         fprintf(stderr, "%s: painting failed: %s\n", a->lesson->id, cairo_status_to_string(st));
@@ -117,9 +118,13 @@ static bool present(struct app *a)
     return true;
 }
 
+/* The frame's size in window units. */
+static double frame_w(const struct app *a) { return a->tw / a->ratio; }
+static double frame_h(const struct app *a) { return a->th / a->ratio; }
+
 static void layout(struct app *a, struct explorer_layout *L)
 {
-    explorer_layout(&a->ex, a->tw, a->th, L);
+    explorer_layout(&a->ex, frame_w(a), frame_h(a), L);
 }
 
 /* --- keys ------------------------------------------------------------------------ */
@@ -154,8 +159,9 @@ static void export_view(struct app *a)
     a->ex.message[0] = '\0';            /* the figure shows the view, not the last message */
     bool help = a->ex.help;
     a->ex.help = false;
-    bool ok = explorer_export(&a->ex, png, a->tw, a->th, err, sizeof err)
-              && explorer_export(&a->ex, svg, a->tw, a->th, err, sizeof err);
+    int w = (int)lrint(frame_w(a)), h = (int)lrint(frame_h(a));  /* the window as laid out */
+    bool ok = explorer_export(&a->ex, png, w, h, err, sizeof err)
+              && explorer_export(&a->ex, svg, w, h, err, sizeof err);
     a->ex.help = help;
     if (ok) {
         snprintf(a->ex.message, sizeof a->ex.message, "exported %s and %s", png, svg);
@@ -604,20 +610,55 @@ static bool init_video(struct app *a)
     return true;
 }
 
+/* The interface scale a screen of high density wants where windows count in
+ * pixels: from its dots per inch (192 gives 2, in quarters, 1 up to 120),
+ * or, where SDL cannot tell them (X11 without the monitor's size), from
+ * GDK_SCALE, which HiDPI desktops set for every program. */
+static double screen_scale(int display)
+{
+    float dpi;
+    if (SDL_GetDisplayDPI(display, &dpi, NULL, NULL) == 0 && dpi > 0)
+        return dpi > 120 ? fmin(round(dpi / 96 * 4) / 4, 4) : 1;
+    const char *gdk = SDL_getenv("GDK_SCALE");
+    int n = gdk ? SDL_atoi(gdk) : 0;
+    return n >= 1 && n <= 4 ? n : 1;
+}
+
+/* Resizable, and sharp on HiDPI screens: where windows count in points
+ * (macOS, Wayland) the drawable has more pixels than the window and the
+ * frame is painted at that ratio; where they count in pixels (X11,
+ * Windows) a screen of high density gets a larger interface scale and
+ * window, unless --scale or --size says otherwise. */
 static bool open_window(struct app *a, const struct app_desc *d)
 {
     char title[160];
     snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
     int w = d->width ? d->width : 1280, h = d->height ? d->height : 800;
     a->win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h,
-                              SDL_WINDOW_RESIZABLE);
+                              SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
     if (!a->win)
         return sdl_failed(a, "SDL_CreateWindow");
     SDL_SetWindowMinimumSize(a->win, 320, 240);
     a->ren = SDL_CreateRenderer(a->win, -1, 0);
     if (!a->ren)
         return sdl_failed(a, "SDL_CreateRenderer");
-    return make_texture(a);
+    if (!make_texture(a))
+        return false;
+    int display = SDL_GetWindowDisplayIndex(a->win);
+    if (a->ratio == 1 && d->explorer.scale <= 0 && display >= 0 && screen_scale(display) != 1) {
+        /* pixels, not points: the interface grows instead, and the window with it */
+        a->ex.scale = screen_scale(display);
+        SDL_Rect usable;
+        if (!d->width && SDL_GetDisplayUsableBounds(display, &usable) == 0) {
+            w = (int)fmin(w * a->ex.scale, usable.w);
+            h = (int)fmin(h * a->ex.scale, usable.h);
+            SDL_SetWindowSize(a->win, w, h);
+            SDL_SetWindowPosition(a->win, SDL_WINDOWPOS_CENTERED_DISPLAY(display),
+                                  SDL_WINDOWPOS_CENTERED_DISPLAY(display));
+            return make_texture(a);
+        }
+    }
+    return true;
 }
 
 int explorer_run(const struct app_desc *d)

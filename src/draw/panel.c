@@ -28,7 +28,8 @@ static double heading(struct painter *p, double x, double y, double w, const cha
     return 20 * p->s;
 }
 
-static double swatch(struct painter *p, double x, double y, uint32_t colour, const char *label)
+static double swatch(struct painter *p, double x, double y, double w, uint32_t colour,
+                     const char *label)
 {
     set_rgb(p->cr, colour);
     cairo_rectangle(p->cr, x, y + 3 * p->s, 12 * p->s, 12 * p->s);
@@ -37,7 +38,7 @@ static double swatch(struct painter *p, double x, double y, uint32_t colour, con
     cairo_set_line_width(p->cr, 1);
     cairo_rectangle(p->cr, x + 0.5, y + 3 * p->s + 0.5, 12 * p->s - 1, 12 * p->s - 1);
     cairo_stroke(p->cr);
-    return draw_text(p, x + 18 * p->s, y, 0, label, 11.5, p->pal->text, false);
+    return draw_text(p, x + 18 * p->s, y, w - 18 * p->s, label, 11.5, p->pal->text, false);
 }
 
 static double legend(struct painter *p, double x, double y, double w)
@@ -53,14 +54,14 @@ static double legend(struct painter *p, double x, double y, double w)
     const char *note;
     int n = view_legend(&v, items, &note);
     for (int i = 0; i < n; i++)
-        y += swatch(p, x, y, items[i].colour, items[i].label) + 1 * s;
+        y += swatch(p, x, y, w, items[i].colour, items[i].label) + 1 * s;
     if (note)
         y += draw_text(p, x, y, w, note, 11, p->pal->dim, false);
     if (ex->lesson->variants[ex->variant].exhibit) {
-        y += swatch(p, x, y, p->pal->extra, "extra: more than the exact rule") + s;
-        y += swatch(p, x, y, p->pal->missing, "missing: a crack") + s;
+        y += swatch(p, x, y, w, p->pal->extra, "extra: more than the exact rule") + s;
+        y += swatch(p, x, y, w, p->pal->missing, "missing: a crack") + s;
     }
-    y += swatch(p, x, y, p->pal->accent, "the current step") + s;
+    y += swatch(p, x, y, w, p->pal->accent, "the current step") + s;
     return y - y0;
 }
 
@@ -281,6 +282,7 @@ void paint_panel(struct painter *p)
     cairo_rectangle(cr, L->px, 0, L->pw, L->h);
     cairo_clip(cr);
     double x = L->px + 16 * s, w = L->pw - 32 * s, y = 12 * s;
+    double footer = L->h - 24 * s;
     y += draw_text(p, x, y, w, ex->lesson->id, 15, p->pal->accent, false);
     y += draw_text(p, x, y, w, ex->lesson->title, 11.5, p->pal->dim, false) + 6 * s;
 
@@ -334,7 +336,7 @@ void paint_panel(struct painter *p)
     y += counters(p, x, y, w) + 8 * s;
     (void)y;
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
-    draw_text(p, x, L->h - 24 * s, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11, p->pal->dim, false);
+    draw_text(p, x, footer, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11, p->pal->dim, false);
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
     cairo_restore(cr);
 }
