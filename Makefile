@@ -6,18 +6,25 @@ B        := $(BUILD)$(if $(SANITIZE),/sanitize)
 PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
 LES_SRC  := $(wildcard lessons/*/*.c)
+EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
 TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c)) $(B)/obj/lessons.o
-ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(LES_SRC:%.c=$(B)/fast/%.o)
+ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
+# CFLAGS, LDFLAGS and LDLIBS are the user's (make CFLAGS=-O0 still builds);
+# what tristep needs goes into TS_* beside them.
 CFLAGS   ?= -O2 -g
-CFLAGS   += -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS)
 ifdef SANITIZE
-CFLAGS   += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-LDFLAGS  += -fsanitize=address,undefined
+SAN      := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 endif
+TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN)
+CC_ALL    = $(CC) $(CFLAGS) $(TS_CFLAGS)
+LD_ALL    = $(CC) $(LDFLAGS) $(SAN)
+LIBS      = $(LDLIBS) $(PKG_LIBS)
+# What comes before any compiling (order-only): the library flags, and the
+# packages of make test and make bench (so make -j2 test installs them first).
+FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
 .PHONY: all run test figures bench clean deps-test deps-bench FORCE
@@ -31,42 +38,46 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
-$(B)/obj/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DTRISTEP_NARRATE -c $< -o $@
-$(B)/fast/%.o: %.c | $(B)/config.mk ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
-$(B)/obj/main-%.o: src/cli/main.c ; @mkdir -p $(@D) && $(CC) $(CFLAGS) -DLESSON=lesson_$* -c $< -o $@
+# What the explorer adds for a lesson (NAME_explorer.c) only narrated.
+$(B)/obj/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/main-%.o: src/cli/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
 # The library anew when src/ gains or loses a file (its folders' mtimes):
 # no member left over from a file moved away.
 $(B)/libtristep.a: $(LIB_OBJ) src $(wildcard src/*/) ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
 $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(LD_ALL) $^ $(LIBS) -o $@
 
 # Every lesson, both builds, listed for the tests and the bench (again when
 # a lesson folder appears: that changes the mtime of lessons/).
-$(B)/lessons.c: Makefile lessons | $(B)/config.mk
-	@printf '#include "lesson.h"\n' > $@
+$(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
+	@printf '#include "lesson_explorer.h"\n' > $@
 	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
 	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
-$(B)/obj/lessons.o: $(B)/lessons.c ; $(CC) $(CFLAGS) -c $< -o $@
-$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(CC) $(LDFLAGS) $^ $(LDLIBS) -lcriterion -o $@
+	@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@
+	@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@
+$(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
 # Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
 # changes, so the bench is rebuilt once `make bench` has installed it.
 OSMESA   := $(shell pkg-config --exists osmesa 2>/dev/null && echo -lOSMesa)
 $(B)/osmesa.flag: FORCE ; @echo '$(OSMESA)' | cmp -s - $@ || echo '$(OSMESA)' > $@
-$(B)/obj/tests/bench/%.o: CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
+$(B)/obj/tests/bench/%.o: TS_CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
 $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) $(OSMESA) -o $@
+	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
-	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) figures'
-# Every figure of figures/list, one process each (cairo's SVG ids count per process).
-figures: all ; sh figures/make-figures.sh $(B)
+	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+# Every figure of figures/list into $(FIGURES), one process each (cairo's SVG ids count per process).
+FIGURES  ?= figures
+figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)
 clean: ; rm -rf $(BUILD)
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

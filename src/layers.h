@@ -1,7 +1,7 @@
 /* layers.h - the folders of src/ in their dependency order, lowest first.
  *
  *     util <- raster <- scene <- trace <- (src/ itself: lesson.h, the lesson
- *     interface) <- explore <- draw <- app <- cli
+ *     interface) <- shade <- explore <- draw <- app <- cli
  *
  * A file may include the headers of its own folder and of folders before
  * its own in this list, never of a later one: the narration knows nothing
@@ -19,7 +19,8 @@
     "raster",  /* snapping, triangle setup, the fill rule, the target */ \
     "scene",   /* scene files and the built-in scenes */ \
     "trace",   /* the narration: events, counters, NARRATE */ \
-    ".",       /* the lesson interface: lesson.h */ \
+    ".",       /* the lesson interface: lesson.h, lesson_explorer.h */ \
+    "shade",   /* shared lesson machinery: shading pixels, four at a time */ \
     "explore", /* the explorer's state: replaying a run to any step */ \
     "draw",    /* the painter (cairo, Pango): views, panel, figures */ \
     "app",     /* the SDL window */ \

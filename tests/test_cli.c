@@ -667,3 +667,92 @@ Test(cli, subpixel_bits_0_was_read_as_8, .timeout = 60, .fini = remove_live_dirs
             check_dump_bits(p.path[k], NULL, scenes[5], scenes[5], bits, &d);
     dirs_remove(&d);
 }
+
+/* The same regression through --figure: the explorer read 0 as "the default"
+ * and drew 8 bits, so --figure --subpixel-bits 0 drew the 8-bit picture.
+ * Whole pixels move the triangle's vertices (4.3 -> 4, ...): the figure
+ * must change, and 8 bits must be what no option gives. */
+Test(cli, figure_subpixel_bits_0_was_drawn_with_8, .timeout = 60, .fini = remove_live_dirs)
+{
+    struct programs p;
+    find_programs(&p);
+    static struct dirs d;   /* static: .fini may run after the test returned early */
+    dirs_make(&d);
+    char path[3][300];
+    const char *bits[3] = { "0", "8", NULL };
+    size_t len[3];
+    char *data[3];
+    for (int i = 0; i < 3; i++) {
+        snprintf(path[i], sizeof path[i], "%s/bits-%s.png", d.work, bits[i] ? bits[i] : "default");
+        char *argv[16] = { p.path[0], "--scene", "builtin:triangle", "--figure", path[i], "--step",
+                           "end", "--view", "coverage", "--size", "640x400" };
+        if (bits[i])
+            argv[11] = "--subpixel-bits", argv[12] = (char *)bits[i];
+        struct result r = run(argv, d.scratch);
+        cr_assert_eq(r.status, 0, "%s --subpixel-bits %s: exit %d (%s)", p.name[0],
+                     bits[i] ? bits[i] : "(none)", r.status, r.err);
+        result_free(&r);
+        data[i] = slurp(path[i], &len[i]);
+        cr_assert(data[i] && len[i] > 0);
+    }
+    cr_assert(len[0] != len[1] || memcmp(data[0], data[1], len[0]) != 0,
+              "--figure with --subpixel-bits 0 draws the same picture as 8");
+    cr_assert(len[1] == len[2] && memcmp(data[1], data[2], len[1]) == 0,
+              "--subpixel-bits 8 is not the default picture");
+    for (int i = 0; i < 3; i++)
+        free(data[i]);
+    dirs_remove(&d);
+}
+
+/* The fonts could not be pinned (no writable TMPDIR): a figure would come
+ * out in the system's fonts, so --figure says why and writes nothing. */
+Test(cli, figure_without_pinned_fonts_fails_and_says_so, .timeout = 30, .fini = remove_live_dirs)
+{
+    struct programs p;
+    find_programs(&p);
+    static struct dirs d;   /* static: .fini may run after the test returned early */
+    dirs_make(&d);
+    char out[300], missing[300];
+    snprintf(out, sizeof out, "%s/figure.png", d.work);
+    snprintf(missing, sizeof missing, "%s/no-such-dir", d.work);
+    cr_assert_eq(setenv("TMPDIR", missing, 1), 0);
+    char *argv[] = { p.path[0], "--figure", out, NULL };
+    struct result r = run(argv, d.scratch);
+    unsetenv("TMPDIR");
+    cr_assert_eq(r.status, 1, "exit %d (stderr: %s)", r.status, r.err);
+    cr_assert(strstr(r.err, "fonts") && strstr(r.err, missing), "stderr: %s", r.err);
+    char stray[256] = "";
+    cr_assert_eq(stray_files(d.work, keep_nothing, stray, sizeof stray), 0, "left %s", stray);
+    result_free(&r);
+    dirs_remove(&d);
+}
+
+/* A --keys file is input like a scene: a line too long for a key name is
+ * an error at its line, not cut into two keys; a missing file names itself.
+ * Both are found before any window opens. */
+Test(cli, keys_file_errors_exit_2_at_their_line, .timeout = 30, .fini = remove_live_dirs)
+{
+    struct programs p;
+    find_programs(&p);
+    static struct dirs d;   /* static: .fini may run after the test returned early */
+    dirs_make(&d);
+    char keys[300], text[400];
+    snprintf(keys, sizeof keys, "%s/keys", d.work);
+    int n = snprintf(text, sizeof text, "# a comment\nRight\n%0300d\nLeft\n", 7);
+    write_file(keys, text, (size_t)n);
+    char *argv[] = { p.path[0], "--keys", keys, NULL };
+    struct result r = run(argv, d.scratch);
+    cr_assert_eq(r.status, 2, "exit %d (stderr: %s)", r.status, r.err);
+    char where[320];
+    snprintf(where, sizeof where, "%s:3: line longer than", keys);
+    cr_assert(strstr(r.err, where), "stderr: %s", r.err);
+    result_free(&r);
+
+    remove(keys);
+    r = run(argv, d.scratch);
+    snprintf(where, sizeof where, "%s:0: cannot open", keys);
+    cr_assert_eq(r.status, 2, "exit %d (stderr: %s)", r.status, r.err);
+    cr_assert(strstr(r.err, where), "stderr: %s", r.err);
+    result_free(&r);
+    dirs_remove(&d);
+}

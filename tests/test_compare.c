@@ -11,8 +11,7 @@ static void open_lesson(struct explorer *ex, const struct lesson *l, struct scen
 {
     char err[256];
     cr_assert(scene_builtin(s, l->builtin_scene, err, sizeof err), "%s", err);
-    struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = l->builtin_scene,
-                               .params = { .subpixel_bits = SUBPIXEL_BITS } };
+    struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = l->builtin_scene };
     cr_assert(explorer_init(ex, &d, err, sizeof err), "%s", err);
 }
 

@@ -7,6 +7,7 @@
  * random scene; the scale test builds 200,000 small triangles at 1920x1080.
  */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -521,3 +522,113 @@ Test(explorer, scale_200k_triangles, .timeout = 120)
     explorer_free(&ex);
     scene_free(&s);
 }
+
+/* The explorer and the headless programs agree for every parameter value:
+ * the explorer's picture at the last step is render_scene()'s (what
+ * --dump-coverage and --dump-image write) with the same params. It once
+ * read subpixel_bits 0 as "the default" and snapped to 8 bits. */
+Test(explorer, agrees_with_headless_for_every_parameter_value, .timeout = 120)
+{
+    struct raster_params cases[16];
+    int n = 0;
+    for (int bits = 0; bits <= SUBPIXEL_BITS; bits++)
+        cases[n++] = (struct raster_params){ .subpixel_bits = bits };
+    for (int q = 4; q <= 16; q *= 2)
+        cases[n++] = (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS, .block_size = q };
+    cases[n++] = (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS, .affine = true };
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        for (int kind = SCENE_BUILTIN; kind <= SCENE_EXHIBIT; kind++) {
+            struct scene s;
+            if (!load_scene(l, kind, &s))
+                continue;
+            for (int v = 0; v < l->nvariants; v++)
+                for (int c = 0; c < n; c++) {
+                    struct raster_params p = cases[c];
+                    p.checker = s.checker;
+                    struct explorer ex;
+                    struct explorer_desc d = { .lesson = l, .scene = &s, .variant = &l->variants[v],
+                                               .params = &p, .step_end = true };
+                    char err[256];
+                    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+                    struct target fb;
+                    cr_assert(render_scene(&s, &l->variants[v], &p, &fb));
+                    cr_assert(targets_equal(&ex.fb, &fb),
+                              "%s %s on %s: the explorer differs from the headless run with "
+                              "subpixel_bits %d, block_size %d, affine %d", l->id,
+                              l->variants[v].name, kind ? "the exhibit scene" : "the built-in scene",
+                              p.subpixel_bits, p.block_size, p.affine);
+                    cr_assert_eq(ex.params.subpixel_bits, p.subpixel_bits);
+                    target_free(&fb);
+                    explorer_free(&ex);
+                }
+            scene_free(&s);
+        }
+    }
+}
+
+/* explorer_init has one cleanup path and says why it failed: a description
+ * that does not hold together is refused with its reason, leaving nothing
+ * allocated (LeakSanitizer checks that under make test SANITIZE=1). */
+Test(explorer, init_says_why_it_fails)
+{
+    const struct lesson *l = all_lessons[0], *other = all_lessons[1];
+    cr_assert_not_null(other);
+    struct scene s;
+    cr_assert(load_scene(l, SCENE_BUILTIN, &s));
+    struct explorer ex;
+    char err[256] = "";
+    struct explorer_desc d = { .lesson = l, .scene = &s, .variant = &other->variants[0] };
+    cr_assert_not(explorer_init(&ex, &d, err, sizeof err));
+    cr_assert(strstr(err, l->id) && strstr(err, "variant"), "message: %s", err);
+    cr_assert_null(ex.replay.start, "a failed init kept its replay");
+    d.variant = NULL;
+    d.scene = NULL;
+    cr_assert_not(explorer_init(&ex, &d, err, sizeof err));
+    cr_assert(strstr(err, "no scene"), "message: %s", err);
+    d.scene = &s;
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    explorer_free(&ex);
+    scene_free(&s);
+}
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#endif
+
+#ifndef UNDER_ASAN
+/* Out of memory (the address space of this test's process capped 64 MB above
+ * what it uses, a 4096 x 4096 target needing 150 MB): the message names what
+ * could not be done and the scene's size. ASan reserves terabytes of address
+ * space for its shadow, so this test is left out of make test SANITIZE=1. */
+Test(explorer, init_out_of_memory_says_so)
+{
+    struct scene s = { .w = 4096, .h = 4096 };
+    struct vertex v[3] = { { .x = 1, .y = 1, .z = 1 }, { .x = 4000, .y = 9, .z = 1 },
+                           { .x = 9, .y = 4000, .z = 1 } };
+    cr_assert(scene_add(&s, v));
+    FILE *f = fopen("/proc/self/statm", "r");
+    cr_assert_not_null(f);
+    unsigned long pages = 0;
+    cr_assert_eq(fscanf(f, "%lu", &pages), 1);
+    fclose(f);
+    struct rlimit old, cap;
+    cr_assert_eq(getrlimit(RLIMIT_AS, &old), 0);
+    cap = old;
+    cap.rlim_cur = pages * 4096ul + (64ul << 20);
+    cr_assert_eq(setrlimit(RLIMIT_AS, &cap), 0);
+    struct explorer ex;
+    char err[256] = "";
+    struct explorer_desc d = { .lesson = all_lessons[0], .scene = &s };
+    bool ok = explorer_init(&ex, &d, err, sizeof err);
+    setrlimit(RLIMIT_AS, &old);
+    cr_assert_not(ok, "a 4096 x 4096 explorer fitted into 64 MB");
+    cr_assert(strstr(err, "out of memory") && strstr(err, "4096 x 4096"), "message: %s", err);
+    scene_free(&s);
+}
+#endif

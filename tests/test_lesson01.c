@@ -1,7 +1,8 @@
 /* test_lesson01.c - lesson 01, scanline gradient filling: the exhibit is
  * real (its count is the one the lesson text states), colour and z agree
  * with the double-precision reference within named tolerances, and the
- * narration tells the truth about rows, edge crossings and spans.
+ * narration tells the truth about rows and spans, the watch panel about the
+ * edge crossings it derives from them (scanline_explorer.c).
  * (Coverage against the reference on 100,000 random triangles is
  * test_property.c's job; the named cases here are the geometry the lesson
  * text discusses.) */
@@ -10,10 +11,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lesson_explorer.h"
 #include "testlib.h"
 #include "explore/replay.h"
 
 extern const struct lesson lesson_01, lesson_01_fast;
+extern const struct lesson_explorer lesson_01_explorer;
 
 /* Colour: every value is built from doubles stepped a few hundred times at
  * most; 1e-9 of the [0, 1] range is far above that drift and far below one
@@ -23,7 +26,8 @@ extern const struct lesson lesson_01, lesson_01_fast;
 /* Depth is stored as a float: one float rounding (2^-24 relative) plus the
  * same double drift. */
 #define Z_REL_TOLERANCE 1e-6
-/* Watch values (aux) are floats: edge x within 1/1024 px of the exact value. */
+/* Watch values are printed with 6 significant digits: edge x within 1/1024 px
+ * of the exact value. */
 #define AUX_X_TOLERANCE (1.0 / 1024)
 
 /* --- the exhibit ------------------------------------------------------------- */
@@ -246,6 +250,15 @@ static bool row_crossings(const struct tri_setup *t, int row, double *xl, double
     return lo <= hi;
 }
 
+/* What the watch panel shows about a row or span event: x_left, x_right and
+ * (for a span) the prestep; returns how many of the three it found. */
+static int watch_values(const struct tri_setup *t, const struct trace_event *ev, double v[3])
+{
+    char buf[256];
+    lesson_01_explorer.watch(t, &(struct raster_params){ .subpixel_bits = 8 }, ev, buf, sizeof buf);
+    return sscanf(buf, "x_left %lf, x_right %lf, prestep %lf", &v[0], &v[1], &v[2]);
+}
+
 static void listen(void *ctx, const struct trace_event *ev)
 {
     struct story *s = ctx;
@@ -255,7 +268,7 @@ static void listen(void *ctx, const struct trace_event *ev)
     switch (ev->kind) {
     case TRACE_ROW: {
         s->rows++;
-        double xl, xr;
+        double xl, xr, w[3] = { 0, 0, 0 };
         if (s->last_row >= 0 && ev->y != s->last_row + 1) {
             snprintf(s->why, sizeof s->why, "row %d after row %d", ev->y, s->last_row);
             s->bad = 1;
@@ -266,9 +279,10 @@ static void listen(void *ctx, const struct trace_event *ev)
         } else if (!row_crossings(t, ev->y, &xl, &xr)) {
             snprintf(s->why, sizeof s->why, "row %d: no edge crosses its centre", ev->y);
             s->bad = 1;
-        } else if (fabs(ev->aux[0] - xl) > AUX_X_TOLERANCE || fabs(ev->aux[1] - xr) > AUX_X_TOLERANCE) {
+        } else if (watch_values(t, ev, w) != 2 || fabs(w[0] - xl) > AUX_X_TOLERANCE
+                   || fabs(w[1] - xr) > AUX_X_TOLERANCE) {
             snprintf(s->why, sizeof s->why, "row %d: x_left %.6f x_right %.6f, exact %.6f %.6f",
-                     ev->y, ev->aux[0], ev->aux[1], xl, xr);
+                     ev->y, w[0], w[1], xl, xr);
             s->bad = 1;
         }
         break;
@@ -286,15 +300,18 @@ static void listen(void *ctx, const struct trace_event *ev)
                 last = x;
             }
         }
-        double prestep = ev->x + 0.5 - ev->aux[0];
+        double w[3] = { 0, 0, 0 };
+        int got = watch_values(t, ev, w);
+        double xl, xr;      /* the prestep from the exact left crossing, worked out here */
+        double prestep = row_crossings(t, ev->y, &xl, &xr) ? ev->x + 0.5 - xl : -1;
         if (ev->x != first || ev->x1 != last) {
             snprintf(s->why, sizeof s->why, "row %d: span %d..%d, reference %d..%d",
                      ev->y, ev->x, ev->x1, first, last);
             s->bad = 1;
-        } else if (ev->x > 0 && (ev->aux[2] < 0 || ev->aux[2] >= 1
-                                 || fabs(ev->aux[2] - prestep) > AUX_X_TOLERANCE)) {
+        } else if (got != 3 || (ev->x > 0 && (w[2] < 0 || w[2] >= 1
+                                               || fabs(w[2] - prestep) > AUX_X_TOLERANCE))) {
             snprintf(s->why, sizeof s->why, "row %d: prestep %.6f, expected %.6f",
-                     ev->y, ev->aux[2], prestep);
+                     ev->y, w[2], prestep);
             s->bad = 1;
         }
         break;
@@ -307,7 +324,7 @@ static void listen(void *ctx, const struct trace_event *ev)
     }
 }
 
-Test(lesson01, rows_spans_and_edge_crossings_are_narrated_truly)
+Test(lesson01, rows_spans_and_edge_crossings_are_told_truly)
 {
     const int w = 41, h = 29;
     struct rng r = rng_for(0x1e550102);

@@ -4,28 +4,19 @@
 #include <math.h>
 #include <string.h>
 
-#include "lesson.h"
 #include "explore/replay.h"
+#include "testlib.h"
 
 extern const struct lesson lesson_02;
-
-struct counting { int w; uint8_t *count; };
-
-static void cover(void *ctx, int x, int y)
-{
-    struct counting *c = ctx;
-    c->count[(size_t)y * (size_t)c->w + (size_t)x]++;
-}
 
 /* Coverage counts of a whole scene drawn by the exact reference. */
 static void reference_counts(const struct scene *s, uint8_t *count)
 {
     memset(count, 0, (size_t)s->w * (size_t)s->h);
-    struct counting c = { s->w, count };
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        reference_coverage(&t, cover, &c);
+        reference_mask(&t, count);
     }
 }
 

@@ -528,7 +528,7 @@ Test(window, painted_at_pixel_ratio_2_is_the_same_layout_twice_as_sharp)
     struct explorer ex;
     struct explorer_desc desc = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle", .step = 40 };
     cr_assert(explorer_init(&ex, &desc, err, sizeof err), "%s", err);
-    explorer_fonts();
+    cr_assert(explorer_fonts(err, sizeof err), "%s", err);
     enum { W = 640, H = 400 };
     unsigned char *one = malloc((size_t)W * H * 4), *two = malloc((size_t)W * H * 16);
     cr_assert_eq(explorer_paint_pixels(&ex, one, W, H, W * 4, 1), CAIRO_STATUS_SUCCESS);

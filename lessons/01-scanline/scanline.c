@@ -35,9 +35,7 @@
  * (clockwise on this y-down screen), and a cyclic rotation keeps it so.
  */
 #include "lesson.h"
-
-#include <stdio.h>
-#include <string.h>
+#include "shade/shade.h"     /* shade_scaled: the colour every lesson gives a pixel */
 
 static const char *const pseudocode[] = {
     "snap; rotate so 1 is the top vertex, order kept",       /* 0 */
@@ -54,40 +52,28 @@ static const char *const pseudocode[] = {
 
 enum { L_SORT, L_CASE, L_GRAD, L_EDGES, L_ROWS, L_ROW, L_PRESTEP, L_FILL, L_STEP };
 
-/* Watch values of every ROW and SPAN event, in pixels: the two edge
- * crossings of the row's centre line, the prestep from the left crossing to
- * the first centre, and the colour there (after the prestep). */
-static const char *const aux_names[] = {
-    "x_left", "x_right", "prestep", "red", "green", "blue", NULL,
-};
-
 /* The attributes interpolated: depth, colour, texture coordinates. */
 enum { ATTR_Z, ATTR_R, ATTR_G, ATTR_B, ATTR_S, ATTR_T, ATTR_COUNT };
 
-/* A vertex as the walk needs it: snapped position (1/256 px) and attributes. */
+/* A vertex as the walk needs it: snapped position (1/256 px) and attributes,
+ * the colour already times 255 and s, t times the checker's N, so that a
+ * pixel is written as it is stepped: additions only (shade_scaled). */
 struct point {
     int64_t x, y;
     double c[ATTR_COUNT];
 };
 
-static struct point point_of(const struct tri_setup *t, int i)
+#define POINT_OF_COST { .mul = 5, .add = 0 }
+
+static struct point point_of(const struct tri_setup *t, const struct raster_params *p, int i)
 {
     const struct vertex *v = &t->v[i];
+    double n = shade_scale_st(p);
     return (struct point){
         .x = t->x[i], .y = t->y[i],
-        .c = { v->z, v->r, v->g, v->b, v->s, v->t },
+        .c = { v->z, SHADE_SCALE_RGB * v->r, SHADE_SCALE_RGB * v->g, SHADE_SCALE_RGB * v->b,
+               n * v->s, n * v->t },
     };
-}
-
-/* Floor and ceiling of a / b for b > 0 (C's division truncates toward 0). */
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    return a / b - (a % b < 0);
-}
-
-static int64_t ceil_div(int64_t a, int64_t b)
-{
-    return -floor_div(-a, b);
 }
 
 /* The first pixel row whose centre y + 0.5 is at or below y (1/256 px).
@@ -132,7 +118,11 @@ struct edge {
 };
 
 /* Start walking the edge p -> q on row `row` (whose centre is on the edge's
- * height): the prestep from p down to the row's centre, exactly. */
+ * height): the prestep from p down to the row's centre, exactly. Costs: the
+ * position (num, den, X, err, q, r) and each attribute's Dc and value. */
+#define EDGE_START_COST { .mul = 6, .add = 6 }
+#define EDGE_START_ATTR_COST { .mul = 2, .add = 2 }
+
 static void edge_start(struct edge *e, const struct point *p, const struct point *q, int64_t row)
 {
     int64_t dx = q->x - p->x, dy = q->y - p->y;
@@ -152,7 +142,10 @@ static void edge_start(struct edge *e, const struct point *p, const struct point
     }
 }
 
-/* One row down the edge. */
+/* One row down the edge. Cost: X, err and the carry, then each attribute
+ * (PLANE_STEP_COST). */
+#define EDGE_WALK_STEP_COST { .mul = 0, .add = 3 }
+
 static void edge_step(struct edge *e)
 {
     e->x += e->q;
@@ -163,12 +156,6 @@ static void edge_step(struct edge *e)
     }
     for (int i = 0; i < ATTR_COUNT; i++)
         e->c[i] += e->dc[i];
-}
-
-/* Where the edge crosses the row's centre line, in pixels (for the watch). */
-static inline double edge_x(const struct edge *e)
-{
-    return (double)e->x + 0.5 - (double)e->err / (double)e->den;
 }
 
 /* --- the triangle ---------------------------------------------------------------
@@ -198,6 +185,10 @@ struct gradient {
     double dc[ATTR_COUNT];      /* Dc, formula (1), per pixel in x */
 };
 
+/* Cost of formula (1) for one attribute: two products, the scale to pixels
+ * and the division by area2. */
+#define GRADIENT_COST { .mul = 4, .add = 3 }
+
 static struct gradient gradient_of(const struct tri_setup *t, const struct point *p1,
                                    const struct point *p2, const struct point *p3)
 {
@@ -211,7 +202,12 @@ static struct gradient gradient_of(const struct tri_setup *t, const struct point
     return g;
 }
 
-/* fill(left, right): one span, the pixels whose centres lie in [xl, xr). */
+/* fill(left, right): one span, the pixels whose centres lie in [xl, xr).
+ * Costs of the prestep across: the distance from the edge, then each
+ * attribute's value there. */
+#define PRESTEP_COST { .mul = 1, .add = 2 }
+#define PRESTEP_ATTR_COST { .mul = 1, .add = 1 }
+
 static void fill(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
                  struct trace *tr, int64_t row, const struct edge *left,
                  const struct edge *right, const struct gradient *g)
@@ -225,26 +221,20 @@ static void fill(const struct tri_setup *t, const struct raster_params *p, struc
     double c[ATTR_COUNT];
     for (int i = 0; i < ATTR_COUNT; i++)
         c[i] = left->c[i] + g->dc[i] * across;
-    COUNT_OPS(tr, ATTR_COUNT, ATTR_COUNT + 2);
+    COUNT(tr, 1, PRESTEP_COST);
+    COUNT(tr, ATTR_COUNT, PRESTEP_ATTR_COST);
 
-    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)x0, .y = y, .x1 = (int32_t)x1,
-            .y1 = y, .aux = { (float)edge_x(left), (float)edge_x(right),
-                              (float)((double)left->err / (double)left->den),
-                              (float)c[ATTR_R], (float)c[ATTR_G], (float)c[ATTR_B] });
+    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)x0, .y = y, .x1 = (int32_t)x1, .y1 = y);
     if (x0 > x1)
         return;
-    NARRATE(tr, .kind = TRACE_SPAN, .line = L_PRESTEP, .x = (int32_t)x0, .y = y,
-            .x1 = (int32_t)x1, .y1 = y, .z = (float)c[ATTR_Z],
-            .aux = { (float)edge_x(left), (float)edge_x(right),
-                     (float)((double)left->err / (double)left->den),
-                     (float)c[ATTR_R], (float)c[ATTR_G], (float)c[ATTR_B] });
+    NARRATE(tr, .kind = TRACE_SPAN, .line = L_PRESTEP, .x = (int32_t)x0, .y = y, .x1 = (int32_t)x1, .y1 = y);
 
     for (int x = (int)x0; x <= (int)x1; x++) {
-        uint32_t color = shade_pixel(p, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]);
+        uint32_t color = shade_scaled(p, tr, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]);
         PLOT(fb, tr, L_FILL, x, y, (float)c[ATTR_Z], color);
         for (int i = 0; i < ATTR_COUNT; i++)
             c[i] += g->dc[i];
-        COUNT_OPS(tr, 0, ATTR_COUNT);
+        COUNT(tr, ATTR_COUNT, PLANE_STEP_COST);
     }
 }
 
@@ -262,15 +252,16 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
         top = 1;
     if (t->y[2] < t->y[top])
         top = 2;
-    struct point p1 = point_of(t, top);
-    struct point p2 = point_of(t, (top + 1) % 3);
-    struct point p3 = point_of(t, (top + 2) % 3);
+    struct point p1 = point_of(t, p, top);
+    struct point p2 = point_of(t, p, (top + 1) % 3);
+    struct point p3 = point_of(t, p, (top + 2) % 3);
+    COUNT(tr, 3, POINT_OF_COST);
 
     bool case_a = p2.y > p3.y;                  /* [A]: 3 is the middle vertex, on the left */
     const struct point *mid = case_a ? &p3 : &p2;
     const struct point *bottom = case_a ? &p2 : &p3;
     struct gradient g = gradient_of(t, &p1, &p2, &p3);
-    COUNT_OPS(tr, 2 * ATTR_COUNT + 2 * ATTR_COUNT, 3 * ATTR_COUNT);
+    COUNT(tr, ATTR_COUNT, GRADIENT_COST);
 
     /* rows [first, middle) use the upper short edge, [middle, end) the lower */
     int64_t first = row_at(p1.y), middle = row_at(mid->y), end = row_at(bottom->y);
@@ -283,7 +274,8 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
     struct edge long_edge;
     edge_start(&long_edge, &p1, bottom, first);
-    COUNT_OPS(tr, 6 + ATTR_COUNT * 2, 6 + ATTR_COUNT * 2);
+    COUNT(tr, 1, EDGE_START_COST);
+    COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
 
     for (int half = 0; half < 2; half++) {
         int64_t from = half == 0 ? first : (middle > first ? middle : first);
@@ -295,7 +287,8 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             edge_start(&short_edge, &p1, mid, from);
         else
             edge_start(&short_edge, mid, bottom, from);
-        COUNT_OPS(tr, 6 + ATTR_COUNT * 2, 6 + ATTR_COUNT * 2);
+        COUNT(tr, 1, EDGE_START_COST);
+        COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
         struct edge *left = case_a ? &short_edge : &long_edge;
         struct edge *right = case_a ? &long_edge : &short_edge;
 
@@ -303,7 +296,8 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             fill(t, p, fb, tr, row, left, right, &g);
             edge_step(left);
             edge_step(right);
-            COUNT_OPS(tr, 0, 2 * (3 + ATTR_COUNT));
+            COUNT(tr, 2, EDGE_WALK_STEP_COST);
+            COUNT(tr, 2 * ATTR_COUNT, PLANE_STEP_COST);
         }
     }
 }
@@ -365,9 +359,7 @@ static void fill_float(const struct tri_setup *t, const struct raster_params *p,
 {
     int y = (int)floorf(Ya);
     NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)floorf(g->Xa), .y = y,
-            .x1 = (int32_t)floorf(d->Xa), .y1 = y,
-            .aux = { g->Xa, d->Xa, 0.0f, (float)g->c[ATTR_R], (float)g->c[ATTR_G],
-                     (float)g->c[ATTR_B] });
+            .x1 = (int32_t)floorf(d->Xa), .y1 = y);
     if (y < 0 || y >= t->target_h || !(g->Xa < d->Xa))
         return;
     float x = g->Xa;
@@ -377,7 +369,7 @@ static void fill_float(const struct tri_setup *t, const struct raster_params *p,
     for (int i = 0; i < ATTR_COUNT; i++)
         c[i] = g->c[i] + grad->dc[i] * (double)(x - g->Xa);
     for (; x < d->Xa && x < (float)t->target_w; x += 1.0f) {
-        uint32_t color = shade_pixel(p, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]);
+        uint32_t color = shade_scaled(p, tr, c[ATTR_R], c[ATTR_G], c[ATTR_B], c[ATTR_S], c[ATTR_T]);
         PLOT(fb, tr, L_FILL, (int)x, y, (float)c[ATTR_Z], color);
         for (int i = 0; i < ATTR_COUNT; i++)
             c[i] += grad->dc[i];
@@ -396,8 +388,8 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
         top = 1;
     if (t->y[2] < t->y[top])
         top = 2;
-    struct point p1 = point_of(t, top), p2 = point_of(t, (top + 1) % 3),
-                 p3 = point_of(t, (top + 2) % 3);
+    struct point p1 = point_of(t, p, top), p2 = point_of(t, p, (top + 1) % 3),
+                 p3 = point_of(t, p, (top + 2) % 3);
     struct gradient grad = gradient_of(t, &p1, &p2, &p3);
     struct fpoint a = fpoint_of(&p1), b = fpoint_of(&p2), c = fpoint_of(&p3);
     struct fpoint g = a, d = a;                 /* g: left ("gauche"), d: right ("droite") */
@@ -434,169 +426,6 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
     }
 }
 
-/* --- what the explorer draws ----------------------------------------------------
- *
- * The watch panel's TRIANGLE section: the per-row x increments of the three
- * edges (formulas (2)-(4) with c = x), the per-pixel colour and depth
- * increments across a span (formula (1)), and the case. The canvas: in the
- * spans view the upper and lower halves of the triangle in two tints, the
- * gradients of luminance and z as arrows from the centroid, and in every view
- * but the colour view the current scanline with its two edge crossings. */
-
-/* Vertices 1, 2, 3 as the walk names them: 1 on top, the order kept. */
-static void walk_order(const struct tri_setup *t, struct point *p1, struct point *p2,
-                       struct point *p3)
-{
-    int top = 0;
-    if (t->y[1] < t->y[top])
-        top = 1;
-    if (t->y[2] < t->y[top])
-        top = 2;
-    *p1 = point_of(t, top);
-    *p2 = point_of(t, (top + 1) % 3);
-    *p3 = point_of(t, (top + 2) % 3);
-}
-
-/* x per row along p -> q, in pixels; false for a horizontal edge. */
-static bool dx_per_row(const struct point *p, const struct point *q, double *out)
-{
-    if (p->y == q->y)
-        return false;
-    *out = (double)(q->x - p->x) / (double)(q->y - p->y);
-    return true;
-}
-
-static size_t put(char *buf, size_t n, size_t at, const char *name, const struct point *p,
-                  const struct point *q)
-{
-    if (at >= n)
-        return at;
-    double d;
-    int k = dx_per_row(p, q, &d) ? snprintf(buf + at, n - at, "%s = %.4g", name, d)
-                                  : snprintf(buf + at, n - at, "%s = flat", name);
-    return k < 0 ? at : at + (size_t)k;
-}
-
-static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf,
-                      size_t n)
-{
-    (void)p;
-    struct point p1, p2, p3;
-    walk_order(t, &p1, &p2, &p3);
-    struct gradient g = gradient_of(t, &p1, &p2, &p3);
-    size_t at = 0;
-    buf[0] = '\0';
-    at = put(buf, n, at, "Dc12", &p1, &p2);
-    at = put(buf, n, at, ", Dc13", &p1, &p3);
-    at = put(buf, n, at, ", Dc23", &p2, &p3);
-    if (at < n)
-        snprintf(buf + at, n - at,
-                 " px/row\n"
-                 "Dc r = %.4g, g = %.4g, b = %.4g, z = %.4g /px\n"
-                 "case = %s\n",
-                 g.dc[ATTR_R], g.dc[ATTR_G], g.dc[ATTR_B], g.dc[ATTR_Z],
-                 p2.y > p3.y ? "[A] (3 is the middle vertex, on the left)"
-                             : "[B] (2 is the middle vertex, on the right)");
-}
-
-/* The change of an attribute per pixel in y, from the plane through the
- * three vertices (the companion of formula (1)). */
-static double per_row(const struct tri_setup *t, const struct point *p1, const struct point *p2,
-                      const struct point *p3, int i)
-{
-    double x21 = (double)(p2->x - p1->x), x31 = (double)(p3->x - p1->x);
-    double num = (p3->c[i] - p1->c[i]) * x21 - (p2->c[i] - p1->c[i]) * x31;
-    return num * SUBPIXEL_ONE / (double)t->area2;
-}
-
-static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
-                    const struct raster_params *p, const struct trace_event *last)
-{
-    (void)p;
-    if (t->area2 <= 0)
-        return;
-    cairo_t *cr = c->cr;
-    bool spans = strcmp(c->view, "spans") == 0;
-    struct point p1, p2, p3;
-    walk_order(t, &p1, &p2, &p3);
-    bool case_a = p2.y > p3.y;
-    const struct point *mid = case_a ? &p3 : &p2, *bottom = case_a ? &p2 : &p3;
-    double s = 1.0 / SUBPIXEL_ONE;
-    double x1 = p1.x * s, y1 = p1.y * s, xm = mid->x * s, ym = mid->y * s;
-    double xb = bottom->x * s, yb = bottom->y * s;
-    /* point A of "Draw X": the long edge 1 -> bottom at the middle vertex's height */
-    double xa = yb > y1 ? x1 + (xb - x1) * (ym - y1) / (yb - y1) : xm;
-
-    if (spans) {
-        cairo_move_to(cr, x1, y1);
-        cairo_line_to(cr, xm, ym);
-        cairo_line_to(cr, xa, ym);
-        cairo_close_path(cr);
-        cairo_set_source_rgba(cr, 0.62, 0.45, 1.00, 0.30);    /* upper half */
-        cairo_fill(cr);
-        cairo_move_to(cr, xm, ym);
-        cairo_line_to(cr, xa, ym);
-        cairo_line_to(cr, xb, yb);
-        cairo_close_path(cr);
-        cairo_set_source_rgba(cr, 1.00, 0.60, 0.20, 0.28);    /* lower half */
-        cairo_fill(cr);
-        cairo_set_line_width(cr, 1.5 * c->unit);
-        double dash[] = { 6 * c->unit, 4 * c->unit };
-        cairo_set_dash(cr, dash, 2, 0);
-        cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
-        cairo_move_to(cr, xm, ym);
-        cairo_line_to(cr, xa, ym);
-        cairo_stroke(cr);
-        cairo_set_dash(cr, NULL, 0, 0);
-        c->label(c, fmin(xm, xa) - 2.5, ym - 1.2, "upper", 10, 0xa070ff);
-        c->label(c, fmin(xm, xa) - 2.5, ym + 0.2, "lower", 10, 0xff9933);
-
-        /* gradients: luminance (from formula (1) and its y companion) and z */
-        double gx = (x1 + xm + xb) / 3, gy = (y1 + ym + yb) / 3;
-        struct gradient g = gradient_of(t, &p1, &p2, &p3);
-        double lx = 0.299 * g.dc[ATTR_R] + 0.587 * g.dc[ATTR_G] + 0.114 * g.dc[ATTR_B];
-        double ly = 0.299 * per_row(t, &p1, &p2, &p3, ATTR_R)
-                    + 0.587 * per_row(t, &p1, &p2, &p3, ATTR_G)
-                    + 0.114 * per_row(t, &p1, &p2, &p3, ATTR_B);
-        double zx = g.dc[ATTR_Z], zy = per_row(t, &p1, &p2, &p3, ATTR_Z);
-        double len = 70 * c->unit;
-        double n;
-        if ((n = hypot(lx, ly)) > 0)
-            c->arrow(c, gx, gy, gx + lx / n * len, gy + ly / n * len, 0xffff8c);
-        if ((n = hypot(zx, zy)) > 0)
-            c->arrow(c, gx, gy, gx + zx / n * len, gy + zy / n * len, 0x8cffbf);
-        if ((n = hypot(lx, ly)) > 0)
-            c->label(c, gx + lx / n * len + 6 * c->unit, gy + ly / n * len + 4 * c->unit, "brighter", 10, 0xffff8c);
-        if ((n = hypot(zx, zy)) > 0)
-            c->label(c, gx + zx / n * len + 6 * c->unit, gy + zy / n * len + 4 * c->unit, "z grows", 10, 0x8cffbf);
-    }
-
-    /* the current scanline and where its centre line crosses the two edges */
-    if (!last || strcmp(c->view, "color") == 0)
-        return;
-    if (last->kind != TRACE_ROW && last->kind != TRACE_SPAN)
-        return;
-    double yc = last->y + 0.5, xl = last->aux[0], xr = last->aux[1];
-    cairo_set_line_width(cr, 1.5 * c->unit);
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-    cairo_move_to(cr, t->minx, yc);
-    cairo_line_to(cr, t->maxx + 1, yc);
-    cairo_stroke(cr);
-    double xs[2] = { xl, xr };
-    const char *names[2] = { "xl", "xr" };
-    for (int k = 0; k < 2; k++) {
-        cairo_arc(cr, xs[k], yc, 5 * c->unit, 0, 6.283185307179586);
-        cairo_set_source_rgb(cr, 1, 0.3, 0.5);
-        cairo_fill_preserve(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        cairo_stroke(cr);
-        char buf[32];
-        snprintf(buf, sizeof buf, "%s %.3f", names[k], xs[k]);
-        double lx = k ? xs[k] + 8 * c->unit : xs[k] - 68 * c->unit;
-        c->label(c, lx, yc + 6 * c->unit, buf, 10, 0xff5080);
-    }
-}
-
 static const struct lesson_variant variants[] = {
     { "exact", "fixed-point edges, exact presteps, top-left rule: equal to the reference",
       rasterize, false },
@@ -612,7 +441,6 @@ const struct lesson lesson_01 = {
     .exhibit_scene = "offgrid-strip",
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
-    .aux_names = aux_names,
-    .overlay = overlay,
-    .constants = constants,
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, PACK_SCALED_COST), COST_TERM(ATTR_COUNT, PLANE_STEP_COST), { 0 } },
 };

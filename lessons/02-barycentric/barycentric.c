@@ -28,6 +28,7 @@
  * and F_bc(a) = F_ca(b) = F_ab(c) = twice the triangle's area (area2).
  */
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 static const char *const pseudocode[] = {
     "snap a, b, c to 1/256 px; if area < 0: swap b, c",  /* 0 */
@@ -84,25 +85,26 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
                 edge_value(t, EDGE_BC, x, y),   /* F_bc */
                 edge_value(t, EDGE_CA, x, y),   /* F_ca */
             };
-            COUNT_OPS(tr, 6, 6);
             bool in = inside(t, F, rule);
-            double alpha = (double)F[1] * inv_area2;
-            double beta = (double)F[2] * inv_area2;
-            double gamma = (double)F[0] * inv_area2;
+            COUNT(tr, 3, EDGE_VALUE_COST);
+            COUNT(tr, 3, FILL_RULE_COST);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { F[0], F[1], F[2] }, .bary = { (float)alpha, (float)beta, (float)gamma },
-                    .flags = in ? TRACE_INSIDE : 0);
+                    .e = { F[0], F[1], F[2] }, .flags = in ? TRACE_INSIDE : 0);
             if (!in)
                 continue;
 
-            COUNT_OPS(tr, 3 + 4 * 3 + 2 * 3, 4 * 2 + 2 * 2);
+            double alpha = (double)F[1] * inv_area2;
+            double beta = (double)F[2] * inv_area2;
+            double gamma = (double)F[0] * inv_area2;
+            COUNT(tr, 1, BARYCENTRIC_COST);
             double z = alpha * a->z + beta * b->z + gamma * c->z;
-            uint32_t color = shade_pixel(p,
+            uint32_t color = shade_pixel(p, tr,
                 alpha * a->r + beta * b->r + gamma * c->r,
                 alpha * a->g + beta * b->g + gamma * c->g,
                 alpha * a->b + beta * b->b + gamma * c->b,
                 alpha * a->s + beta * b->s + gamma * c->s,
                 alpha * a->t + beta * b->t + gamma * c->t);
+            COUNT(tr, 6, INTERPOLATE_COST);     /* z, r, g, b, s, t */
             PLOT(fb, tr, L_DRAW, x, y, (float)z, color);
         }
     }
@@ -140,4 +142,9 @@ const struct lesson lesson_02 = {
     .exhibit_scene = "shared-edge",
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
+    .cost_tested = (const struct cost_term[]){
+        COST_TERM(3, EDGE_VALUE_COST), COST_TERM(3, FILL_RULE_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, BARYCENTRIC_COST), COST_TERM(6, INTERPOLATE_COST),
+        COST_TERM(1, PACK_RGB_COST), { 0 } },
 };

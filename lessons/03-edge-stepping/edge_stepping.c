@@ -41,9 +41,7 @@
  * the edge functions lesson 02 explains), here called by the seed's names.
  */
 #include "lesson.h"
-
-#include <stdio.h>
-#include <string.h>
+#include "shade/shade.h"     /* shade_scaled: the colour every lesson gives a pixel */
 
 static const char *const pseudocode[] = {
     "snap A, B, C; I0k, J0k, K0k of edges 01, 02, 03 (6)-(8)",  /* 0 */
@@ -63,8 +61,9 @@ static const char *const pseudocode[] = {
 enum { L_SETUP, L_BIAS, L_FIRST, L_CY, L_LOOP_Y, L_ROW, L_LOOP_X, L_TEST, L_RENDER,
        L_STEP_X, L_STEP_Y };
 
-/* The watch panel's values: what is being stepped besides the edge values. */
-static const char *const aux_names[] = { "z", "r", "g", "b", "s", "t", NULL };
+/* The watch panel's values: what is being stepped besides the edge values
+ * (colours scaled to 0..255 and s, t by the checker's N: see attrs_of). */
+static const char *const aux_names[] = { "z", "255r", "255g", "255b", "Ns", "Nt", NULL };
 
 /* --- the attributes: z, r, g, b, s, t, stepped like the edge values ------------ */
 
@@ -78,7 +77,10 @@ static const char *const aux_names[] = { "z", "r", "g", "b", "s", "t", NULL };
  *     dP/dx = (256 I02 P_A + 256 I03 P_B + 256 I01 P_C) / area2
  *
  * a constant of the triangle. Stepping P itself (one addition) is cheaper
- * than stepping u, v, w and mixing them (three multiplications).
+ * than stepping u, v, w and mixing them (three multiplications). The colour
+ * channels are stepped already multiplied by 255, and s, t by the checker's
+ * N (attrs_of), so the pixel writes them as they are: the loop over a row
+ * adds and never multiplies, shading included.
  *
  * The sums are in double precision and drift by a rounding error per step;
  * every row restarts them exactly from the integer edge values of its first
@@ -110,9 +112,14 @@ static inline struct attrs attrs_step(struct attrs P, struct attrs d)
     return (struct attrs){ P.z + d.z, P.r + d.r, P.g + d.g, P.b + d.b, P.s + d.s, P.t + d.t };
 }
 
-static inline struct attrs attrs_of(const struct vertex *v)
+/* A vertex's values, scaled once per triangle for shade_scaled(). */
+#define ATTRS_OF_COST { .mul = 5, .add = 0 }
+
+static inline struct attrs attrs_of(const struct vertex *v, const struct raster_params *p)
 {
-    return (struct attrs){ v->z, v->r, v->g, v->b, v->s, v->t };
+    double n = shade_scale_st(p);
+    return (struct attrs){ v->z, SHADE_SCALE_RGB * v->r, SHADE_SCALE_RGB * v->g,
+                           SHADE_SCALE_RGB * v->b, n * v->s, n * v->t };
 }
 
 /* What a triangle's attributes need once: the vertices' values, 1 / area2
@@ -123,18 +130,22 @@ struct attributes {
     struct attrs dPdx;
 };
 
-static void attributes_setup(struct attributes *a, const struct tri_setup *t, struct trace *tr)
+static void attributes_setup(struct attributes *a, const struct tri_setup *t,
+                             const struct raster_params *p, struct trace *tr)
 {
-    a->A = attrs_of(&t->v[0]);
-    a->B = attrs_of(&t->v[1]);
-    a->C = attrs_of(&t->v[2]);
+    a->A = attrs_of(&t->v[0], p);
+    a->B = attrs_of(&t->v[1], p);
+    a->C = attrs_of(&t->v[2], p);
+    COUNT(tr, 3, ATTRS_OF_COST);
     a->inv_area2 = 1.0 / (double)t->area2;
+    COUNT(tr, 1, RECIPROCAL_COST);
     /* change of u, v, w per pixel to the right: (13)-(15) with F += 256 I */
     double du = (double)(t->I[EDGE_BC] * SUBPIXEL_ONE) * a->inv_area2;
     double dv = (double)(t->I[EDGE_CA] * SUBPIXEL_ONE) * a->inv_area2;
     double dw = (double)(t->I[EDGE_AB] * SUBPIXEL_ONE) * a->inv_area2;
     a->dPdx = attrs_mix(du, a->A, dv, a->B, dw, a->C);
-    COUNT_OPS(tr, 1 + 3 * 2 + 3 * NATTR, 2 * NATTR);
+    COUNT(tr, 3, EDGE_INCREMENTS_COST);     /* 256 I times 1 / area2: 2 products each */
+    COUNT(tr, NATTR, INTERPOLATE_COST);
 }
 
 /* The values at the first pixel of a row, from its exact edge values. */
@@ -144,13 +155,15 @@ static inline struct attrs attributes_restart(const struct attributes *a, int64_
     double u = (double)F02 * a->inv_area2;     /* (13) */
     double v = (double)F03 * a->inv_area2;     /* (14) */
     double w = (double)F01 * a->inv_area2;     /* (15) */
-    COUNT_OPS(tr, 3 + 3 * NATTR, 2 * NATTR);
+    COUNT(tr, 1, BARYCENTRIC_COST);
+    COUNT(tr, NATTR, INTERPOLATE_COST);
     return attrs_mix(u, a->A, v, a->B, w, a->C);
 }
 
-static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *p)
+static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *p,
+                                    struct trace *tr)
 {
-    return shade_pixel(p, P.r, P.g, P.b, P.s, P.t);
+    return shade_scaled(p, tr, P.r, P.g, P.b, P.s, P.t);
 }
 
 /* --- the algorithm ---------------------------------------------------------------- */
@@ -182,54 +195,50 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
     const int64_t K01 = t->K[EDGE_AB] + b01;
     const int64_t K02 = t->K[EDGE_BC] + b02;
     const int64_t K03 = t->K[EDGE_CA] + b03;
-    COUNT_OPS(tr, 0, 3);
+    COUNT(tr, 3, FILL_RULE_COST);
 
     /* Steps of one pixel, in 1/256 units: (9) and (10) times 256. */
     const int64_t dx01 = I01 * SUBPIXEL_ONE, dy01 = J01 * SUBPIXEL_ONE;
     const int64_t dx02 = I02 * SUBPIXEL_ONE, dy02 = J02 * SUBPIXEL_ONE;
     const int64_t dx03 = I03 * SUBPIXEL_ONE, dy03 = J03 * SUBPIXEL_ONE;
-    COUNT_OPS(tr, 6, 0);
+    COUNT(tr, 3, EDGE_INCREMENTS_COST);
 
     /* The only evaluation of the edge functions: the first pixel centre. */
     const int64_t X = pixel_centre(t->minx), Y = pixel_centre(t->miny);
     int64_t Cy01 = I01 * X + J01 * Y + K01;
     int64_t Cy02 = I02 * X + J02 * Y + K02;
     int64_t Cy03 = I03 * X + J03 * Y + K03;
-    COUNT_OPS(tr, 6, 6);
+    COUNT(tr, 3, EDGE_VALUE_COST);
 
     struct attributes at;
-    attributes_setup(&at, t, tr);
+    attributes_setup(&at, t, p, tr);
 
     for (int y = t->miny; y <= t->maxy; y++) {
         int64_t Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
         struct attrs P = attributes_restart(&at, Cx01 - b01, Cx02 - b02, Cx03 - b03, tr);
-        COUNT_OPS(tr, 0, 3);
+        COUNT(tr, 3, FILL_RULE_COST);           /* the bias taken off again */
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
 
         for (int x = t->minx; x <= t->maxx; x++) {
             bool inside = Cx01 >= 0 && Cx02 >= 0 && Cx03 >= 0;
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 },
-                    .bary = { (float)((double)(Cx02 - b02) * at.inv_area2),
-                              (float)((double)(Cx03 - b03) * at.inv_area2),
-                              (float)((double)(Cx01 - b01) * at.inv_area2) },
-                    .aux = { (float)P.z, (float)P.r, (float)P.g,
-                             (float)P.b, (float)P.s, (float)P.t },
-                    .flags = inside ? TRACE_INSIDE : 0);
+                    .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 }, .flags = inside ? TRACE_INSIDE : 0,
+                    .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t });
             if (inside)
-                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p));
+                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
 
             Cx01 += dx01;
             Cx02 += dx02;
             Cx03 += dx03;
             P = attrs_step(P, at.dPdx);
-            COUNT_OPS(tr, 0, 3 + NATTR);
+            COUNT(tr, 3, EDGE_STEP_COST);
+            COUNT(tr, NATTR, PLANE_STEP_COST);
         }
         Cy01 += dy01;
         Cy02 += dy02;
         Cy03 += dy03;
-        COUNT_OPS(tr, 0, 3);
+        COUNT(tr, 3, EDGE_STEP_COST);
     }
 }
 
@@ -256,16 +265,17 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
     const float dy01 = (float)(t->J[EDGE_AB] * SUBPIXEL_ONE);
     const float dy02 = (float)(t->J[EDGE_BC] * SUBPIXEL_ONE);
     const float dy03 = (float)(t->J[EDGE_CA] * SUBPIXEL_ONE);
-    COUNT_OPS(tr, 6, 0);
+    COUNT(tr, 3, EDGE_INCREMENTS_COST);
 
     /* the first centre exactly, bias included, then rounded once to float */
     float Cy01 = (float)(edge_value(t, EDGE_AB, t->minx, t->miny) + t->bias[EDGE_AB]);
     float Cy02 = (float)(edge_value(t, EDGE_BC, t->minx, t->miny) + t->bias[EDGE_BC]);
     float Cy03 = (float)(edge_value(t, EDGE_CA, t->minx, t->miny) + t->bias[EDGE_CA]);
-    COUNT_OPS(tr, 6, 9);
+    COUNT(tr, 3, EDGE_VALUE_COST);
+    COUNT(tr, 3, FILL_RULE_COST);
 
     struct attributes at;
-    attributes_setup(&at, t, tr);
+    attributes_setup(&at, t, p, tr);
 
     for (int y = t->miny; y <= t->maxy; y++) {
         float Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
@@ -274,7 +284,7 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
         struct attrs P = attributes_restart(&at, edge_value(t, EDGE_AB, t->minx, y),
                                             edge_value(t, EDGE_BC, t->minx, y),
                                             edge_value(t, EDGE_CA, t->minx, y), tr);
-        COUNT_OPS(tr, 6, 6);
+        COUNT(tr, 3, EDGE_VALUE_COST);
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
                        (int64_t)Cx03 - t->bias[EDGE_CA] });
@@ -284,84 +294,23 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
                            (int64_t)Cx03 - t->bias[EDGE_CA] },
-                    .aux = { (float)P.z, (float)P.r, (float)P.g,
-                             (float)P.b, (float)P.s, (float)P.t },
+                    .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t },
                     .flags = inside ? TRACE_INSIDE : 0);
             if (inside)
-                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p));
+                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
 
             Cx01 += dx01;
             Cx02 += dx02;
             Cx03 += dx03;
             P = attrs_step(P, at.dPdx);
-            COUNT_OPS(tr, 0, 3 + NATTR);
+            COUNT(tr, 3, EDGE_STEP_COST);
+            COUNT(tr, NATTR, PLANE_STEP_COST);
         }
         Cy01 += dy01;
         Cy02 += dy02;
         Cy03 += dy03;
-        COUNT_OPS(tr, 0, 3);
+        COUNT(tr, 3, EDGE_STEP_COST);
     }
-}
-
-/* --- what the explorer draws ----------------------------------------------------
- *
- * The watch panel's TRIANGLE section: I0k and J0k of each edge, raw (1/256
- * px) and in pixels, and the two steps the loop adds, 256 I0k to the right
- * and 256 J0k down. The canvas, in every view but the colour view: at the
- * current pixel, the two steps as arrows to the next centre right ("+I") and
- * below ("+J"); in the edges view also each edge's normal (I, J), the
- * direction in which its F grows, at the edge's middle in the edge's colour. */
-static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf,
-                      size_t n)
-{
-    /* the overflow budget of the bits in use (README, "The overflow budget"):
-     * |F| <= 8 R^2 keeps R below 2^14 units in 32 bits, 2^30 units in 64 */
-    int bits = p->subpixel_bits;
-    int w = snprintf(buf, n, "%d sub-pixel bits: |coordinates| < %ld px in 32-bit, "
-                     "%ld px in 64-bit edges\n", bits, (1L << 14) >> bits, (1L << 30) >> bits);
-    size_t at = w < 0 ? n : (size_t)w;
-    for (int k = 0; k < 3 && at < n; k++) {
-        int w = snprintf(buf + at, n - at, "I0%d = %lld (%.5g px), J0%d = %lld (%.5g px)\n", k + 1,
-                         (long long)t->I[k], (double)t->I[k] / SUBPIXEL_ONE, k + 1,
-                         (long long)t->J[k], (double)t->J[k] / SUBPIXEL_ONE);
-        at = w < 0 ? n : at + (size_t)w;
-    }
-    if (at < n)
-        snprintf(buf + at, n - at, "right: F0k += 256 I0k = %lld, %lld, %lld\n"
-                 "down:  F0k += 256 J0k = %lld, %lld, %lld\n",
-                 (long long)(t->I[0] * SUBPIXEL_ONE), (long long)(t->I[1] * SUBPIXEL_ONE),
-                 (long long)(t->I[2] * SUBPIXEL_ONE), (long long)(t->J[0] * SUBPIXEL_ONE),
-                 (long long)(t->J[1] * SUBPIXEL_ONE), (long long)(t->J[2] * SUBPIXEL_ONE));
-}
-
-static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
-                    const struct raster_params *p, const struct trace_event *last)
-{
-    (void)p;
-    if (t->area2 <= 0 || strcmp(c->view, "color") == 0)
-        return;
-    cairo_set_line_width(c->cr, 2.5 * c->unit);
-    if (strcmp(c->view, "edges") == 0) {
-        for (int k = 0; k < 3; k++) {
-            int b = (k + 1) % 3;
-            double mx = (t->x[k] + t->x[b]) / 2.0 / SUBPIXEL_ONE;
-            double my = (t->y[k] + t->y[b]) / 2.0 / SUBPIXEL_ONE;
-            double nx = (double)t->I[k], ny = (double)t->J[k], d = hypot(nx, ny);
-            double len = 45 * c->unit;
-            c->arrow(c, mx, my, mx + nx / d * len, my + ny / d * len, c->edge_rgb[k]);
-            char buf[40];
-            snprintf(buf, sizeof buf, "(I0%d, J0%d)", k + 1, k + 1);
-            c->label(c, mx + nx / d * len + 4 * c->unit, my + ny / d * len, buf, 10, c->edge_rgb[k]);
-        }
-    }
-    if (!last || (last->kind != TRACE_PIXEL_TEST && last->kind != TRACE_PIXEL_WRITE
-                  && last->kind != TRACE_ROW))
-        return;
-    double x = last->x + 0.5, y = last->y + 0.5;
-    c->arrow(c, x, y, x + 1, y, 0xffffff);
-    c->arrow(c, x, y, x, y + 1, 0xffffff);
-    c->label(c, x + 1 + 3 * c->unit, y - 8 * c->unit, "+I", 11, 0xffffff);
-    c->label(c, x + 3 * c->unit, y + 1 + 1 * c->unit, "+J", 11, 0xffffff);
 }
 
 static const struct lesson_variant variants[] = {
@@ -383,6 +332,7 @@ const struct lesson lesson_03 = {
     .aux_names = aux_names,
     .params = LESSON_PARAM_SUBPIXEL,
     .compare = compare,
-    .overlay = overlay,
-    .constants = constants,
+    .cost_tested = (const struct cost_term[]){
+        COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){ COST_TERM(1, PACK_SCALED_COST), { 0 } },
 };

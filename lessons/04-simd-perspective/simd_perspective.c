@@ -28,9 +28,8 @@
  * Lanes as the text names them: w = F01 / Area2 is the weight of C (edge AB
  * is opposite C), u = F02 / Area2 the weight of A, v = F03 / Area2 that of B.
  */
-#include <string.h>
-
 #include "lesson.h"
+#include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
 static const char *const pseudocode[] = {
     "bounding box; I0k, J0k, K0k of the 3 edges",        /* 0 */
@@ -135,6 +134,10 @@ static void persp_setup(const struct tri_setup *t, const struct raster_params *p
     }
 }
 
+/* Cost of formula (23) for one attribute, the weights given:
+ * (u a_A/Z_A + v a_B/Z_B + w a_C/Z_C) * Depth. */
+#define PERSPECTIVE_COST { .mul = 4, .add = 2 }
+
 static bool covered(const struct tri_setup *t, const int64_t e[3])
 {
     return edge_inside(t, EDGE_AB, e[0]) && edge_inside(t, EDGE_BC, e[1])
@@ -182,39 +185,42 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
         int64_t e[3] = { ey[0], ey[1], ey[2] };
         for (int x = t->minx; x <= t->maxx; x++) {
             bool in = covered(t, e);
+            COUNT(tr, 3, FILL_RULE_COST);
             float attr[ATTR_COUNT] = { 0 };
             float depth = 0;
-            if (in)
+            if (in) {
                 depth = 1.0f / Cx[LANE_INV_Z];
+                COUNT(tr, 1, RECIPROCAL_COST);
+            }
             bool shows = in && target_depth_pass(fb, x, y, depth);
             if (shows) {                                /* shade only what will show */
                 float u = Cx[LANE_U], v = Cx[LANE_V], w = Cx[LANE_W];
                 float m = p->affine ? 1.0f : depth;
                 for (int i = 0; i < ATTR_COUNT; i++)
                     attr[i] = (u * QA[i] + v * QB[i] + w * QC[i]) * m;   /* (23) */
-                COUNT_OPS(tr, 5 * 4, 5 * 2);
+                COUNT(tr, 5, PERSPECTIVE_COST);         /* r, g, b, s, t */
             }
-            COUNT_OPS(tr, in, 0);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
-                    .bary = { Cx[LANE_U], Cx[LANE_V], Cx[LANE_W] }, .z = depth,
+                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0, .z = depth,
                     .aux = { Cx[0], Cx[1], Cx[2], Cx[3], attr[ATTR_S], attr[ATTR_T] });
             /* a hidden fragment is still counted (PLOT), its colour never written */
             if (in)
                 PLOT(fb, tr, L_WRITE, x, y, depth,
-                     shows ? shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                     shows ? shade_pixel(p, tr, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
                                          attr[ATTR_S], attr[ATTR_T]) : 0);
             for (int lane = 0; lane < 4; lane++)      /* Cx += I */
                 Cx[lane] += I[lane];
             for (int k = 0; k < 3; k++)
                 e[k] += s.ex[k];
-            COUNT_OPS(tr, 0, 4 + 3);
+            COUNT(tr, 4, PLANE_STEP_COST);
+            COUNT(tr, 3, EDGE_STEP_COST);
         }
         for (int lane = 0; lane < 4; lane++)          /* Cy += J */
             Cy[lane] += J[lane];
         for (int k = 0; k < 3; k++)
             ey[k] += s.ey[k];
-        COUNT_OPS(tr, 0, 4 + 3);
+        COUNT(tr, 4, PLANE_STEP_COST);
+        COUNT(tr, 3, EDGE_STEP_COST);
     }
 }
 
@@ -223,7 +229,7 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
  * One #if chooses what the SIMD variants run: SSE2 on x86 (the baseline of
  * every x86-64 compiler), their scalar twins elsewhere. */
 #if defined(__SSE2__)
-#include <immintrin.h>   /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
+#include "simd.h"        /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
 
 /* The lanes of one register, broadcast: lane i copied into all four. */
 #define BROADCAST(r, i) _mm_shuffle_ps((r), (r), _MM_SHUFFLE(i, i, i, i))
@@ -261,10 +267,13 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
         int64_t e[3] = { ey[0], ey[1], ey[2] };
         for (int x = t->minx; x <= t->maxx; x++) {
             bool in = covered(t, e);
+            COUNT(tr, 3, FILL_RULE_COST);
             float attr[ATTR_COUNT] = { 0 }, lane[4] = { 0 };
             float depth = 0;
-            if (in)
+            if (in) {
                 depth = _mm_cvtss_f32(_mm_div_ss(one, Cx));       /* 1 / Cx[0] */
+                COUNT(tr, 1, RECIPROCAL_COST);
+            }
             bool shows = in && target_depth_pass(fb, x, y, depth);
             if (shows) {                                /* shade only what will show */
                 __m128 u = BROADCAST(Cx, LANE_U), v = BROADCAST(Cx, LANE_V);
@@ -276,29 +285,29 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
                                        _mm_mul_ps(w, QC1));        /* (23): t */
                 _mm_storeu_ps(attr, _mm_mul_ps(P0, m));
                 _mm_storeu_ps(attr + 4, _mm_mul_ps(P1, m));
-                COUNT_OPS(tr, 5 * 4, 5 * 2);
+                COUNT(tr, 5, PERSPECTIVE_COST);         /* r, g, b, s, t */
             }
-            COUNT_OPS(tr, in, 0);
             if (NARRATING)
                 _mm_storeu_ps(lane, Cx);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0,
-                    .bary = { lane[LANE_U], lane[LANE_V], lane[LANE_W] }, .z = depth,
+                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0, .z = depth,
                     .aux = { lane[0], lane[1], lane[2], lane[3], attr[ATTR_S], attr[ATTR_T] });
             /* a hidden fragment is still counted (PLOT), its colour never written */
             if (in)
                 PLOT(fb, tr, L_WRITE, x, y, depth,
-                     shows ? shade_pixel(p, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
+                     shows ? shade_pixel(p, tr, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
                                          attr[ATTR_S], attr[ATTR_T]) : 0);
             Cx = _mm_add_ps(Cx, I);                               /* Cx += I */
             for (int k = 0; k < 3; k++)
                 e[k] += s.ex[k];
-            COUNT_OPS(tr, 0, 4 + 3);
+            COUNT(tr, 4, PLANE_STEP_COST);
+            COUNT(tr, 3, EDGE_STEP_COST);
         }
         Cy = _mm_add_ps(Cy, J);                                   /* Cy += J */
         for (int k = 0; k < 3; k++)
             ey[k] += s.ey[k];
-        COUNT_OPS(tr, 0, 4 + 3);
+        COUNT(tr, 4, PLANE_STEP_COST);
+        COUNT(tr, 3, EDGE_STEP_COST);
     }
 }
 
@@ -369,7 +378,7 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                         | _mm_movemask_pd(_mm_castsi128_pd(out_hi)) << 2;
             int valid = t->maxx - x >= 3 ? 4 : t->maxx - x + 1;  /* lanes inside the box */
             int inside = ~outside & ((1 << valid) - 1);
-            COUNT_OPS(tr, 0, 6 * 2);
+            COUNT(tr, 4 * 3, FILL_RULE_COST);
 
             float depth[4] = { 0 }, attr[ATTR_T + 1][4] = { { 0 } };
             int shows = 0;                      /* inside and nearer than the buffer */
@@ -379,14 +388,14 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                 for (int i = 0; i < valid; i++)
                     if (inside >> i & 1 && target_depth_pass(fb, x + i, y, depth[i]))
                         shows |= 1 << i;
-                COUNT_OPS(tr, 4, 0);
+                COUNT(tr, 4, RECIPROCAL_COST);
             }
             if (shows) {
                 __m128 M = p->affine ? one : _mm_loadu_ps(depth);
                 for (int i = 0; i <= ATTR_T; i++)                  /* (23), four pixels */
                     _mm_storeu_ps(attr[i], _mm_mul_ps(_mm_add_ps(_mm_add_ps(
                         _mm_mul_ps(U, QA[i]), _mm_mul_ps(V, QB[i])), _mm_mul_ps(W, QC[i])), M));
-                COUNT_OPS(tr, 4 * 5 * 4, 4 * 5 * 2);
+                COUNT(tr, 4 * 5, PERSPECTIVE_COST);     /* four pixels: r, g, b, s, t */
             }
             float lanes[4][4] = { { 0 } };
             int64_t e[3][4] = { { 0 } };
@@ -404,13 +413,12 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                 bool in = inside >> i & 1;
                 NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x + i, .y = y,
                         .e = { e[0][i], e[1][i], e[2][i] }, .flags = in ? TRACE_INSIDE : 0,
-                        .bary = { lanes[LANE_U][i], lanes[LANE_V][i], lanes[LANE_W][i] },
                         .z = depth[i],
                         .aux = { lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i],
                                  attr[ATTR_S][i], attr[ATTR_T][i] });
                 if (in)
                     PLOT(fb, tr, L_WRITE, x + i, y, depth[i],
-                         shows >> i & 1 ? shade_pixel(p, attr[ATTR_R][i], attr[ATTR_G][i],
+                         shows >> i & 1 ? shade_pixel(p, tr, attr[ATTR_R][i], attr[ATTR_G][i],
                                                       attr[ATTR_B][i], attr[ATTR_S][i],
                                                       attr[ATTR_T][i]) : 0);
             }
@@ -422,7 +430,8 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                 E_lo[k] = _mm_add_epi64(E_lo[k], EX4[k]);
                 E_hi[k] = _mm_add_epi64(E_hi[k], EX4[k]);
             }
-            COUNT_OPS(tr, 0, 4 * 4 + 4 * 3);
+            COUNT(tr, 4 * 4, PLANE_STEP_COST);
+            COUNT(tr, 4 * 3, EDGE_STEP_COST);
         }
         for (int q = 0; q < 4; q++)
             Cy[q] = _mm_add_ps(Cy[q], J[q]);
@@ -430,7 +439,8 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
             Ey_lo[k] = _mm_add_epi64(Ey_lo[k], EY[k]);
             Ey_hi[k] = _mm_add_epi64(Ey_hi[k], EY[k]);
         }
-        COUNT_OPS(tr, 0, 4 * 4 + 6);
+        COUNT(tr, 4 * 4, PLANE_STEP_COST);
+        COUNT(tr, 4 * 3, EDGE_STEP_COST);
     }
 }
 #else
@@ -438,140 +448,6 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 #define rasterize_sse rasterize_scalar
 #define rasterize_row4_sse rasterize_scalar
 #endif
-
-/* --- the lesson's own views in the explorer ------------------------------------------ */
-
-/* "st": the texture coordinates (s, t) of each shown pixel as red and green.
- * On the floor the green rows crowd towards the horizon when perspective-
- * correct and spread evenly when affine. */
-static bool st_cell(const struct tri_setup *t, const struct trace_event *test,
-                    const struct trace_event *write, double rgb[3])
-{
-    (void)t;
-    (void)write;
-    if (!test || !(test->flags & TRACE_INSIDE))
-        return false;
-    rgb[0] = test->aux[4] < 0 ? 0 : test->aux[4] > 1 ? 1 : test->aux[4];
-    rgb[1] = test->aux[5] < 0 ? 0 : test->aux[5] > 1 ? 1 : test->aux[5];
-    rgb[2] = 0.3;
-    return true;
-}
-
-/* "inv-z": lane 0 as brightness, 1 - exp(-2 / z): near is bright, and the
- * steps between rows are equal in 1/z, not in z. */
-static bool inv_z_cell(const struct tri_setup *t, const struct trace_event *test,
-                       const struct trace_event *write, double rgb[3])
-{
-    (void)t;
-    (void)write;
-    if (!test)
-        return false;
-    double g = test->aux[0] > 0 ? 1 - exp(-2.0 * test->aux[0]) : 0;
-    bool in = test->flags & TRACE_INSIDE;
-    rgb[0] = rgb[1] = rgb[2] = in ? g : 0.4 * g;
-    return true;
-}
-
-/* "affine-error": how far affine texturing lands from the correct (s, t) at
- * each covered pixel, from the lanes (w, u, v are the screen-space weights):
- *
- *     affine  s = u sA + v sB + w sC
- *     correct s = (u sA/ZA + v sB/ZB + w sC/ZC) / (u/ZA + v/ZB + w/ZC)    (23)
- *
- * black where they agree, through red to yellow at AFFINE_ERROR_FULL or more
- * (texture units: the whole texture is 1 wide). */
-#define AFFINE_ERROR_FULL 0.25
-
-static bool affine_error_cell(const struct tri_setup *t, const struct trace_event *test,
-                              const struct trace_event *write, double rgb[3])
-{
-    (void)write;
-    if (!test || !(test->flags & TRACE_INSIDE))
-        return false;
-    const struct vertex *A = &t->v[0], *B = &t->v[1], *C = &t->v[2];
-    double w = test->aux[1], u = test->aux[2], v = test->aux[3];
-    double qa = u / A->z, qb = v / B->z, qc = w / C->z, inv_z = qa + qb + qc;
-    double ds = (u * A->s + v * B->s + w * C->s) - (qa * A->s + qb * B->s + qc * C->s) / inv_z;
-    double dt = (u * A->t + v * B->t + w * C->t) - (qa * A->t + qb * B->t + qc * C->t) / inv_z;
-    double e = sqrt(ds * ds + dt * dt) / AFFINE_ERROR_FULL;
-    e = e > 1 ? 1 : e;
-    rgb[0] = e < 0.5 ? 2 * e : 1;
-    rgb[1] = e < 0.5 ? 0 : 2 * e - 1;
-    rgb[2] = 0.1;
-    return true;
-}
-
-/* "lanes": the register of the pixel being tested, drawn lane by lane beside
- * it, each lane a labelled bar with the scalar it stands for:
- *
- *     +--------+--------+--------+--------+
- *     |  1/z   |   w    |   u    |   v    |    one __m128: Cx
- *     +--------+--------+--------+--------+
- *      depth     weight   weight   weight
- *      z = 1/lane0  of C   of A     of B
- *
- * w, u, v run from 0 to 1 inside the triangle; the 1/z bar is drawn against
- * the largest 1/z of the three vertices (the nearest one). The cells show
- * w, u, v as blue, red, green, like the vertices they weigh. */
-static bool lanes_cell(const struct tri_setup *t, const struct trace_event *test,
-                       const struct trace_event *write, double rgb[3])
-{
-    (void)t;
-    (void)write;
-    if (!test)
-        return false;
-    double k = test->flags & TRACE_INSIDE ? 0.8 : 0.25;
-    rgb[0] = k * fmin(fmax(test->aux[LANE_U], 0), 1);
-    rgb[1] = k * fmin(fmax(test->aux[LANE_V], 0), 1);
-    rgb[2] = k * fmin(fmax(test->aux[LANE_W], 0), 1);
-    return true;
-}
-
-static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
-                    const struct raster_params *p, const struct trace_event *last)
-{
-    (void)p;
-    if (strcmp(c->view, "lanes") != 0 || !last || last->kind != TRACE_PIXEL_TEST
-        || t->area2 <= 0)
-        return;
-    static const char *const name[4] = { "1/z", "w", "u", "v" };
-    static const uint32_t rgb[4] = { 0xdddddd, 0x5b8def, 0xef5b5b, 0x5bd16a };
-    double max_inv_z = fmax(fmax(1 / t->v[0].z, 1 / t->v[1].z), 1 / t->v[2].z);
-    double u = c->unit, bw = 46 * u, bh = 70 * u;
-    double x0 = last->x + 1.5, base = last->y + 0.5 + bh / 2;
-    cairo_t *cr = c->cr;
-    cairo_set_source_rgba(cr, 0.08, 0.09, 0.11, 0.9);
-    cairo_rectangle(cr, x0 - 6 * u, base - bh - 30 * u, 4 * bw + 12 * u, bh + 58 * u);
-    cairo_fill(cr);
-    for (int i = 0; i < 4; i++) {
-        double v = last->aux[i], full = i == LANE_INV_Z ? max_inv_z : 1;
-        double f = fmin(fmax(v / full, 0), 1);
-        double x = x0 + i * bw;
-        cairo_set_source_rgb(cr, (rgb[i] >> 16) / 255.0, (rgb[i] >> 8 & 255) / 255.0,
-                             (rgb[i] & 255) / 255.0);
-        cairo_rectangle(cr, x + 6 * u, base - f * bh, bw - 12 * u, f * bh);
-        cairo_fill(cr);
-        cairo_set_line_width(cr, 1 * u);
-        cairo_rectangle(cr, x + 6 * u, base - bh, bw - 12 * u, bh);
-        cairo_stroke(cr);
-        char buf[32];
-        snprintf(buf, sizeof buf, "%.2f", v);
-        c->label(c, x + 4 * u, base - bh - 24 * u, buf, 10, rgb[i]);
-        c->label(c, x + 10 * u, base + 4 * u, name[i], 11, rgb[i]);
-    }
-    char z[48];
-    snprintf(z, sizeof z, "z = 1/lane 0 = %.4g", last->aux[LANE_INV_Z] > 0 ? 1 / last->aux[LANE_INV_Z] : 0);
-    c->label(c, x0, base + 18 * u, z, 10, 0xdddddd);
-}
-
-static const struct lesson_view views[] = {
-    { "lanes", "the register (1/z, w, u, v) of the pixel tested, as bars; cells: u, v, w as "
-               "red, green, blue", lanes_cell },
-    { "st", "texture coordinates s (red), t (green) of the pixels that show", st_cell },
-    { "inv-z", "lane 0, 1/z, as brightness: brighter is nearer; dim outside", inv_z_cell },
-    { "affine-error", "|affine - correct| of (s, t): black 0, red, yellow 0.25 or more",
-      affine_error_cell },
-};
 
 static const struct lesson_variant variants[] = {
     { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
@@ -592,7 +468,10 @@ const struct lesson lesson_04 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_AFFINE,
-    .views = views,
-    .overlay = overlay,
-    .nviews = sizeof views / sizeof views[0],
+    .cost_tested = (const struct cost_term[]){
+        COST_TERM(3, FILL_RULE_COST), COST_TERM(4, PLANE_STEP_COST), COST_TERM(3, EDGE_STEP_COST),
+        { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, RECIPROCAL_COST), COST_TERM(5, PERSPECTIVE_COST), COST_TERM(1, PACK_RGB_COST),
+        { 0 } },
 };

@@ -29,12 +29,10 @@
  * steps through), and four pixels per register (what the benchmark times).
  * Both shade a pixel with the same function, so they write the same bytes.
  */
-#include <emmintrin.h>      /* SSE2: four floats or four int32 per register */
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "lesson.h"
+#include "shade/quad.h"      /* four pixels shaded and written per SSE register */
 
 static const char *const pseudocode[] = {
     "setup: F0k = I0k x + J0k y + K0k + bias_k, k = 1, 2, 3",         /* 0 */
@@ -91,234 +89,12 @@ static int64_t edge_at(const struct edges *e, int k, int x, int y)
     return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
 }
 
-/* --- shading: lesson 04's planes, four pixels per register -------------- */
-
-/* Formula (23) needs, at every pixel, 1/z and a/z for each attribute a; all of
- * them are linear in screen space, so each is a plane
+/* --- shading -------------------------------------------------------------
  *
- *     P(x, y) = P0 + Px (x - x0) + Py (y - y0)       (x0, y0) = the box's corner
- *
- * built as lesson 04 builds D (formulas 18 to 22): the plane of a weight u, v
- * or w is F02, F03 or F01 over Area2. Colours are scaled by 255 and texture
- * coordinates by the checker's N in advance, so the pixel loop only
- * multiplies by z = 1 / (1/z). */
-enum { PL_INV_Z, PL_R, PL_G, PL_B, PL_S, PL_T, PL_COUNT };
-
-struct planes {
-    int x0, y0;
-    double p0[PL_COUNT], px[PL_COUNT], py[PL_COUNT];
-    __m128d pair0[PL_COUNT / 2], pair_x[PL_COUNT / 2], pair_y[PL_COUNT / 2];  /* the same, two planes a register */
-    __m128 lanes[PL_COUNT];     /* Px * (0, 1, 2, 3): the four pixels of a quad */
-    __m128 step[PL_COUNT];      /* Px * 4: from one quad to the next */
-    bool checker;
-};
-
-static void planes_setup(struct planes *pl, const struct tri_setup *t,
-                         const struct raster_params *p)
-{
-    int N = p->checker > 0 ? p->checker : 1;
-    pl->x0 = t->minx;
-    pl->y0 = t->miny;
-    pl->checker = p->checker > 0;
-    /* vertex values a / Z of each plane, for A, B, C */
-    double val[PL_COUNT][3];
-    for (int i = 0; i < 3; i++) {
-        const struct vertex *v = &t->v[i];
-        double inv_z = 1.0 / v->z;
-        val[PL_INV_Z][i] = inv_z;
-        val[PL_R][i] = 255.0 * v->r * inv_z;
-        val[PL_G][i] = 255.0 * v->g * inv_z;
-        val[PL_B][i] = 255.0 * v->b * inv_z;
-        val[PL_S][i] = N * v->s * inv_z;
-        val[PL_T][i] = N * v->t * inv_z;
-    }
-    /* u (of A) = F02 / Area2, v (of B) = F03 / Area2, w (of C) = F01 / Area2 */
-    double inv_area2 = 1.0 / (double)t->area2;
-    double f[3];
-    for (int k = 0; k < 3; k++)
-        f[k] = (double)edge_value(t, k, pl->x0, pl->y0);
-    for (int q = 0; q < PL_COUNT; q++) {
-        const double *a = val[q];   /* A, B, C */
-        pl->p0[q] = (f[EDGE_BC] * a[0] + f[EDGE_CA] * a[1] + f[EDGE_AB] * a[2]) * inv_area2;
-        pl->px[q] = ((double)t->I[EDGE_BC] * a[0] + (double)t->I[EDGE_CA] * a[1]
-                     + (double)t->I[EDGE_AB] * a[2]) * SUBPIXEL_ONE * inv_area2;
-        pl->py[q] = ((double)t->J[EDGE_BC] * a[0] + (double)t->J[EDGE_CA] * a[1]
-                     + (double)t->J[EDGE_AB] * a[2]) * SUBPIXEL_ONE * inv_area2;
-        float s = (float)pl->px[q];
-        pl->lanes[q] = _mm_setr_ps(0.0f, s, 2.0f * s, 3.0f * s);
-        pl->step[q] = _mm_set1_ps(4.0f * s);
-    }
-    for (int q = 0; q < PL_COUNT; q += 2) {
-        pl->pair0[q / 2] = _mm_setr_pd(pl->p0[q], pl->p0[q + 1]);
-        pl->pair_x[q / 2] = _mm_setr_pd(pl->px[q], pl->px[q + 1]);
-        pl->pair_y[q / 2] = _mm_setr_pd(pl->py[q], pl->py[q + 1]);
-    }
-}
-
-/* The planes at the four pixels of one quad: (xq .. xq + 3, y), xq a
- * multiple of 4. A run along a row starts with quad_at() (exact, in double,
- * once per row of a block) and moves right with quad_next() (four float
- * adds). Both partial-block loops walk the same quads in the same way, so
- * they write the same bytes. */
-struct quad {
-    __m128 inv_z, r, g, b, s, t;
-};
-
-static inline struct quad quad_at(const struct planes *pl, int xq, int y)
-{
-    /* P0 + Px dx + Py dy in double, two planes per register: (1/z, r), (g, b), (s, t) */
-    __m128d dx = _mm_set1_pd((double)(xq - pl->x0)), dy = _mm_set1_pd((double)(y - pl->y0));
-    __m128 v[PL_COUNT / 2];
-    int used = pl->checker ? PL_COUNT / 2 : PL_S / 2;   /* s and t only for the checker */
-    for (int q = 0; q < PL_COUNT / 2; q++)
-        v[q] = q < used ? _mm_cvtpd_ps(_mm_add_pd(_mm_add_pd(pl->pair0[q], _mm_mul_pd(pl->pair_x[q], dx)),
-                                                  _mm_mul_pd(pl->pair_y[q], dy)))
-                        : _mm_setzero_ps();
-    /* each value spread to the four lanes, plus Px * (0, 1, 2, 3) */
-    return (struct quad){
-        .inv_z = _mm_add_ps(_mm_shuffle_ps(v[0], v[0], 0x00), pl->lanes[PL_INV_Z]),
-        .r = _mm_add_ps(_mm_shuffle_ps(v[0], v[0], 0x55), pl->lanes[PL_R]),
-        .g = _mm_add_ps(_mm_shuffle_ps(v[1], v[1], 0x00), pl->lanes[PL_G]),
-        .b = _mm_add_ps(_mm_shuffle_ps(v[1], v[1], 0x55), pl->lanes[PL_B]),
-        .s = _mm_add_ps(_mm_shuffle_ps(v[2], v[2], 0x00), pl->lanes[PL_S]),
-        .t = _mm_add_ps(_mm_shuffle_ps(v[2], v[2], 0x55), pl->lanes[PL_T]),
-    };
-}
-
-/* The step from one quad to the next, Px * 4 for every plane, as a quad of
- * its own: loops keep it in registers. */
-static inline struct quad quad_step(const struct planes *pl)
-{
-    return (struct quad){ pl->step[PL_INV_Z], pl->step[PL_R], pl->step[PL_G],
-                          pl->step[PL_B], pl->step[PL_S], pl->step[PL_T] };
-}
-
-static inline void quad_next(struct quad *qd, const struct quad *step, bool checker)
-{
-    qd->inv_z = _mm_add_ps(qd->inv_z, step->inv_z);
-    qd->r = _mm_add_ps(qd->r, step->r);
-    qd->g = _mm_add_ps(qd->g, step->g);
-    qd->b = _mm_add_ps(qd->b, step->b);
-    if (checker) {
-        qd->s = _mm_add_ps(qd->s, step->s);
-        qd->t = _mm_add_ps(qd->t, step->t);
-    }
-}
-
-/* floor() of four floats, as int32 (truncation rounds towards zero). */
-static __m128i floor_epi32(__m128 v)
-{
-    __m128i i = _mm_cvttps_epi32(v);
-    __m128 too_big = _mm_cmpgt_ps(_mm_cvtepi32_ps(i), v);
-    return _mm_add_epi32(i, _mm_castps_si128(too_big));    /* -1 where truncation went up */
-}
-
-/* Depth of the four pixels of a quad: z = 1 / (1/z), by a reciprocal
- * estimate and one Newton step (no division). */
-static inline __m128 quad_depth(const struct quad *qd)
-{
-    __m128 z = _mm_rcp_ps(qd->inv_z);                   /* about 12 bits */
-    return _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(qd->inv_z, z)));  /* about 22 */
-}
-
-/* Colour of the four pixels of a quad at depth z: (255 a / z) * z, darkened
- * on the checker's dark squares, packed as four 0xAARRGGBB. */
-static inline __m128i quad_colour(const struct quad *qd, __m128 z, bool checker)
-{
-    __m128 r = _mm_mul_ps(qd->r, z);
-    __m128 g = _mm_mul_ps(qd->g, z);
-    __m128 b = _mm_mul_ps(qd->b, z);
-
-    if (checker) {
-        __m128i square = _mm_add_epi32(floor_epi32(_mm_mul_ps(qd->s, z)),
-                                       floor_epi32(_mm_mul_ps(qd->t, z)));
-        __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
-                                                       _mm_set1_epi32(1)));
-        __m128 scale = _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
-                                 _mm_andnot_ps(dark, _mm_set1_ps(1.0f)));
-        r = _mm_mul_ps(r, scale);
-        g = _mm_mul_ps(g, scale);
-        b = _mm_mul_ps(b, scale);
-    }
-
-    /* Round to integers, then saturate to 0..255 while packing: bytes
-     * b0 b1 b2 b3 r0 r1 r2 r3 g0 g1 g2 g3 a0 a1 a2 a3, interleaved twice into
-     * b0 g0 r0 a0 b1 g1 r1 a1 ..., the bytes of 0xAARRGGBB in memory. */
-    __m128i br = _mm_packs_epi32(_mm_cvtps_epi32(b), _mm_cvtps_epi32(r));
-    __m128i ga = _mm_packs_epi32(_mm_cvtps_epi32(g), _mm_set1_epi32(255));
-    __m128i planar = _mm_packus_epi16(br, ga);
-    __m128i bgbg = _mm_unpacklo_epi8(planar, _mm_srli_si128(planar, 8));
-    return _mm_unpacklo_epi16(bgbg, _mm_srli_si128(bgbg, 8));
-}
-
-/* Depth and colour of the four pixels of a quad, for the one-pixel loop. */
-static inline void shade_quad(const struct planes *pl, const struct quad *qd,
-                              __m128 *z_out, __m128i *rgba_out)
-{
-    *z_out = quad_depth(qd);
-    *rgba_out = quad_colour(qd, *z_out, pl->checker);
-}
-
-/* target_write() for the lanes of a quad that `mask` keeps (all ones = keep),
- * one pixel at a time: count, depth test (nearer wins), write. */
-static void write_quad_pixels(struct target *fb, int xq, int y, __m128i mask,
-                              const struct quad *qd, bool checker)
-{
-    __m128 z4 = quad_depth(qd);
-    __m128i c4 = quad_colour(qd, z4, checker);
-    int keep = _mm_movemask_ps(_mm_castsi128_ps(mask));
-    float zs[4];
-    uint32_t cs[4];
-    _mm_storeu_ps(zs, z4);
-    _mm_storeu_si128((__m128i *)cs, c4);
-    for (int i = 0; i < 4; i++)
-        if (keep & (1 << i))
-            target_write(fb, xq + i, y, zs[i], cs[i]);
-}
-
-/* The same for a whole quad at once, at depth row `dp` and colour row `cp`
- * (the quad's first pixel). The depth test comes first: where no lane is
- * nearer than what the target holds, the colour is never computed, and
- * where every lane is, the old colours are not read. Same bytes as
- * target_write() pixel by pixel. */
-static inline void write_quad(float *dp, uint32_t *cp, __m128i mask,
-                              const struct quad *qd, bool checker)
-{
-    __m128 z = quad_depth(qd);
-    __m128 old_z = _mm_loadu_ps(dp);
-    __m128 pass = _mm_and_ps(_mm_cmplt_ps(z, old_z), _mm_castsi128_ps(mask));
-    int passed = _mm_movemask_ps(pass);
-    if (passed == 0)
-        return;
-    __m128i rgba = quad_colour(qd, z, checker);
-    if (passed == 0xF) {
-        _mm_storeu_ps(dp, z);
-        _mm_storeu_si128((__m128i *)cp, rgba);
-        return;
-    }
-    _mm_storeu_ps(dp, _mm_or_ps(_mm_and_ps(pass, z), _mm_andnot_ps(pass, old_z)));
-    __m128i old_c = _mm_loadu_si128((const __m128i *)cp);
-    __m128i pass_i = _mm_castps_si128(pass);
-    _mm_storeu_si128((__m128i *)cp, _mm_or_si128(_mm_and_si128(pass_i, rgba),
-                                                 _mm_andnot_si128(pass_i, old_c)));
-}
-
-/* Whole quads may be written at once when nobody counts coverage and the
- * quads xq0 .. xq1 lie on the row; otherwise pixel by pixel. */
-static bool quads_fit(const struct target *fb, int xq1)
-{
-    return !fb->count && xq1 + 4 <= fb->w;
-}
-
-/* The lanes of the quad at xq whose pixel lies in [x0, x1]. */
-static __m128i lanes_within(int xq, int x0, int x1)
-{
-    __m128i x = _mm_add_epi32(_mm_set1_epi32(xq), _mm_setr_epi32(0, 1, 2, 3));
-    return _mm_and_si128(_mm_cmpgt_epi32(x, _mm_set1_epi32(x0 - 1)),
-                         _mm_cmplt_epi32(x, _mm_set1_epi32(x1 + 1)));
-}
-
-/* --- the three cases ------------------------------------------------------ */
+ * Covered pixels are shaded four at a time by src/shade/quad.h: lesson 04's
+ * planes of 1/z and a/z (struct planes), evaluated for a quad of four pixels
+ * of a row (struct quad), their depth, colour and write (write_quad). That is
+ * shared machinery, not this lesson's idea: read it there. */
 
 /* Everything one triangle's blocks share. */
 struct run {
@@ -339,6 +115,66 @@ static bool frozen(const struct trace *tr)
     return NARRATING && tr && tr->frozen;
 }
 
+/* --- classifying a block by its corners ---------------------------------- */
+
+/* The source's checkw, checku, checkv: one bit per corner, set when that
+ * corner is inside the edge. The corners are the CENTRES of the block's
+ * corner pixels (the samples the pixel test uses), not the block's outline:
+ *
+ *      (x0, y0) bit 3  o---------o  bit 2 (x1, y0)
+ *                      |  block  |
+ *                      |  pixels |
+ *      (x0, y1) bit 1  o---------o  bit 0 (x1, y1)
+ *
+ * A linear F is >= 0 on all four corners exactly when it is >= 0 on every
+ * pixel centre between them; it is < 0 on all four exactly when it is < 0 on
+ * every one of them. */
+#define CORNERS_COST { .mul = 4, .add = 6 }     /* one edge: tl, then tr, bl, br from it */
+
+static void corner_masks(struct run *r, int x0, int y0, int x1, int y1, unsigned mask[3])
+{
+    const struct edges *e = &r->e;
+    for (int k = 0; k < 3; k++) {
+        int64_t tl = edge_at(e, k, x0, y0);
+        int64_t tr = tl + e->dx[k] * (x1 - x0);
+        int64_t bl = tl + e->dy[k] * (y1 - y0);
+        int64_t br = tr + (bl - tl);
+        mask[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
+                | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
+    }
+    COUNT(r->tr, 3, CORNERS_COST);
+}
+
+/* How the masks are read. Only the first is right. */
+enum block_rule {
+    RULE_PER_EDGE,          /* empty: all corners outside ONE edge; full: inside ALL edges */
+    RULE_CORNERS_OUTSIDE,   /* exhibit: empty when no corner is inside the triangle */
+    RULE_OR_INSIDE,         /* exhibit: the pseudo-code's || in the fully-inside test */
+};
+
+static enum block_class classify(const unsigned m[3], enum block_rule rule)
+{
+    switch (rule) {
+    case RULE_CORNERS_OUTSIDE:
+        /* "every corner of the block is outside the triangle", read literally:
+         * a corner is inside the triangle when it is inside all three edges */
+        if ((m[0] & m[1] & m[2]) == 0)
+            return BLOCK_EMPTY;
+        break;
+    case RULE_OR_INSIDE:
+        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
+            return BLOCK_EMPTY;
+        return m[0] == 0xF || m[1] == 0xF || m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
+    case RULE_PER_EDGE:
+        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
+            return BLOCK_EMPTY;
+        break;
+    }
+    return m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
+}
+
+/* --- the three cases ------------------------------------------------------ */
+
 /* FULL: RenderBlock. Every pixel of the block is covered, so there is no
  * test at all: shade four pixels at a time and write them. Only the first
  * and the last quad of a row may stick out of the block. */
@@ -350,8 +186,10 @@ static void render_block(struct run *r, int x0, int y0, int x1, int y1)
     struct target *fb = r->fb;
     bool checker = r->pl.checker, whole = quads_fit(fb, xq1);
     struct quad step = quad_step(&r->pl);
-    COUNT_OPS(r->tr, 5 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1),
-              4 * (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1));
+    uint64_t pixels = (uint64_t)(x1 - x0 + 1) * (uint64_t)(y1 - y0 + 1);
+    COUNT(r->tr, pixels, QUAD_DEPTH_COST);
+    COUNT(r->tr, pixels, QUAD_COLOUR_COST);
+    COUNT(r->tr, pixels * QUAD_PLANES, PLANE_STEP_COST);
     for (int y = y0; y <= y1; y++) {
         struct quad qd = quad_at(&r->pl, xq0, y);
         size_t row = (size_t)y * (size_t)fb->w;
@@ -379,15 +217,13 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
         struct quad qd = quad_at(&r->pl, x0 & ~3, y);
         int64_t cx[3] = { cy[0], cy[1], cy[2] };
         for (int x = x0; x <= x1; x++) {
-            if (x > x0 && (x & 3) == 0)     /* the next quad of four pixels */
+            if (x > x0 && (x & 3) == 0) {   /* the next quad of four pixels */
                 quad_next(&qd, &step, r->pl.checker);
+                COUNT(r->tr, 4 * QUAD_PLANES, PLANE_STEP_COST);
+            }
             bool in = cx[0] >= 0 && cx[1] >= 0 && cx[2] >= 0;
-            COUNT_OPS(r->tr, 0, 3);
             NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_PIXEL, .x = x, .y = y,
                     .e = { cx[0] - e->bias[0], cx[1] - e->bias[1], cx[2] - e->bias[2] },
-                    .bary = { (float)((double)(cx[1] - e->bias[1]) / (double)r->t->area2),
-                              (float)((double)(cx[2] - e->bias[2]) / (double)r->t->area2),
-                              (float)((double)(cx[0] - e->bias[0]) / (double)r->t->area2) },
                     .flags = in ? TRACE_INSIDE : 0);
             if (in) {
                 __m128 z4;
@@ -397,11 +233,13 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
                 shade_quad(&r->pl, &qd, &z4, &c4);
                 _mm_storeu_ps(z, z4);
                 _mm_storeu_si128((__m128i *)rgba, c4);
-                COUNT_OPS(r->tr, 5, 4);
+                COUNT(r->tr, 1, QUAD_DEPTH_COST);
+                COUNT(r->tr, 1, QUAD_COLOUR_COST);
                 PLOT(r->fb, r->tr, L_PIXEL, x, y, z[x & 3], rgba[x & 3]);
             }
             for (int k = 0; k < 3; k++)
                 cx[k] += e->dx[k];
+            COUNT(r->tr, 3, EDGE_STEP_COST);
         }
         for (int k = 0; k < 3; k++)
             cy[k] += e->dy[k];
@@ -461,61 +299,7 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
     }
 }
 
-/* --- classifying a block by its corners ---------------------------------- */
-
-/* The source's checkw, checku, checkv: one bit per corner, set when that
- * corner is inside the edge. The corners are the CENTRES of the block's
- * corner pixels (the samples the pixel test uses), not the block's outline:
- *
- *      (x0, y0) bit 3  o---------o  bit 2 (x1, y0)
- *                      |  block  |
- *                      |  pixels |
- *      (x0, y1) bit 1  o---------o  bit 0 (x1, y1)
- *
- * A linear F is >= 0 on all four corners exactly when it is >= 0 on every
- * pixel centre between them; it is < 0 on all four exactly when it is < 0 on
- * every one of them. */
-static void corner_masks(struct run *r, int x0, int y0, int x1, int y1, unsigned mask[3])
-{
-    const struct edges *e = &r->e;
-    for (int k = 0; k < 3; k++) {
-        int64_t tl = edge_at(e, k, x0, y0);
-        int64_t tr = tl + e->dx[k] * (x1 - x0);
-        int64_t bl = tl + e->dy[k] * (y1 - y0);
-        int64_t br = tr + (bl - tl);
-        mask[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
-                | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
-    }
-    COUNT_OPS(r->tr, 12, 18);
-}
-
-/* How the masks are read. Only the first is right. */
-enum block_rule {
-    RULE_PER_EDGE,          /* empty: all corners outside ONE edge; full: inside ALL edges */
-    RULE_CORNERS_OUTSIDE,   /* exhibit: empty when no corner is inside the triangle */
-    RULE_OR_INSIDE,         /* exhibit: the pseudo-code's || in the fully-inside test */
-};
-
-static enum block_class classify(const unsigned m[3], enum block_rule rule)
-{
-    switch (rule) {
-    case RULE_CORNERS_OUTSIDE:
-        /* "every corner of the block is outside the triangle", read literally:
-         * a corner is inside the triangle when it is inside all three edges */
-        if ((m[0] & m[1] & m[2]) == 0)
-            return BLOCK_EMPTY;
-        break;
-    case RULE_OR_INSIDE:
-        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
-            return BLOCK_EMPTY;
-        return m[0] == 0xF || m[1] == 0xF || m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
-    case RULE_PER_EDGE:
-        if (m[0] == 0 || m[1] == 0 || m[2] == 0)
-            return BLOCK_EMPTY;
-        break;
-    }
-    return m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL : BLOCK_PARTIAL;
-}
+/* --- blocks ----------------------------------------------------------------- */
 
 /* Classify one block (pixels x0..x1, y0..y1), narrate it, and act. */
 static enum block_class block(struct run *r, enum block_rule rule, int x0, int y0, int x1, int y1,
@@ -665,59 +449,6 @@ static void rasterize_or_inside(const struct tri_setup *t, const struct raster_p
     rasterize_blocks(t, p, fb, tr, (struct block_options){ .rule = RULE_OR_INSIDE });
 }
 
-/* --- what the explorer draws ----------------------------------------------------
- *
- * In the blocks and coverage views, at each of the four corner pixel centres
- * of the block just classified, three small discs, one per edge in the
- * edge's colour from left to right (F01, F02, F03): filled with a "+" when the
- * corner is inside that edge (its bit of the mask is set), hollow with a "-"
- * when it is outside. The class follows from the twelve signs: one edge all
- * "-" is empty, all twelve "+" is full, anything else partial. */
-static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
-                    const struct raster_params *p, const struct trace_event *last)
-{
-    (void)t, (void)p;
-    if (!last || last->kind != TRACE_BLOCK)
-        return;
-    if (strcmp(c->view, "blocks") != 0 && strcmp(c->view, "coverage") != 0)
-        return;
-    cairo_t *cr = c->cr;
-    const double u = c->unit, r = 4.5 * u, gap = 10.5 * u;
-    /* corners as corner_masks() numbers them: bit 3 top-left ... bit 0 bottom-right */
-    const int cx[4] = { last->x1, last->x, last->x1, last->x };
-    const int cy[4] = { last->y1, last->y1, last->y, last->y };
-    for (int bit = 0; bit < 4; bit++) {
-        double x = cx[bit] + 0.5, y = cy[bit] + 0.5;
-        cairo_set_source_rgba(cr, 0, 0, 0, 0.75);
-        cairo_rectangle(cr, x - 1.5 * gap, y - gap * 0.6, 3 * gap, 1.2 * gap);
-        cairo_fill(cr);
-        for (int k = 0; k < 3; k++) {
-            uint32_t h = c->edge_rgb[k];
-            double er = (h >> 16 & 255) / 255.0, eg = (h >> 8 & 255) / 255.0, eb = (h & 255) / 255.0;
-            double dx = x + (k - 1) * gap;
-            bool in = (last->mask[k] >> bit) & 1;
-            cairo_arc(cr, dx, y, r, 0, 6.283185307179586);
-            cairo_set_source_rgb(cr, er, eg, eb);
-            if (in)
-                cairo_fill(cr);
-            else {
-                cairo_set_line_width(cr, 1.5 * u);
-                cairo_stroke(cr);
-            }
-            cairo_set_line_width(cr, 1.5 * u);
-            if (in)
-                cairo_set_source_rgb(cr, 0, 0, 0);
-            cairo_move_to(cr, dx - r * 0.6, y);
-            cairo_line_to(cr, dx + r * 0.6, y);
-            if (in) {
-                cairo_move_to(cr, dx, y - r * 0.6);
-                cairo_line_to(cr, dx, y + r * 0.6);
-            }
-            cairo_stroke(cr);
-        }
-    }
-}
-
 static const struct lesson_variant variants[] = {
     { "q8", "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time",
       rasterize_q8, false },
@@ -745,6 +476,8 @@ const struct lesson lesson_05 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
     .params = LESSON_PARAM_BLOCK,
+    .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, QUAD_DEPTH_COST), COST_TERM(1, QUAD_COLOUR_COST), { 0 } },
     .compare = compare,
-    .overlay = overlay,
 };

@@ -15,6 +15,7 @@
 #include <SDL.h>
 #include <cairo.h>
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -354,16 +355,28 @@ static void wheel(struct app *a, int dy)
 
 static void play(struct app *a);
 
-static bool read_script(struct app *a, const char *path)
+#define SCRIPT_LINE_MAX 255     /* a key name, "wait" or a drag: short */
+
+/* Read the --keys file into a->script, one step a line (blank lines and
+ * "#" comments skipped). Returns -1, or the exit status after saying why:
+ * the file is input like a scene, so nothing in it is cut short silently. */
+static int read_script(struct app *a, const char *path)
 {
     FILE *f = fopen(path, "r");
     if (!f) {
-        fprintf(stderr, "%s: --keys '%s': cannot open\n", a->lesson->id, path);
-        return false;
+        fprintf(stderr, "%s:0: cannot open the --keys file: %s\n", path, strerror(errno));
+        return EXIT_USAGE;
     }
-    char line[256];
+    char line[SCRIPT_LINE_MAX + 2];     /* the line, its newline, the NUL */
     size_t cap = 0;
-    while (fgets(line, sizeof line, f)) {
+    int status = -1;
+    for (int no = 1; status < 0 && fgets(line, sizeof line, f); no++) {
+        size_t len = strlen(line);
+        if (len == sizeof line - 1 && line[len - 1] != '\n' && !feof(f)) {
+            fprintf(stderr, "%s:%d: line longer than %d characters\n", path, no, SCRIPT_LINE_MAX);
+            status = EXIT_USAGE;
+            break;
+        }
         char *s = line, *e = line + strcspn(line, "\r\n");
         *e = '\0';
         while (isspace((unsigned char)*s))
@@ -375,16 +388,33 @@ static bool read_script(struct app *a, const char *path)
         if (a->nscript == cap) {
             cap = cap ? 2 * cap : 32;
             char **n = realloc(a->script, cap * sizeof *n);
-            if (!n)
+            if (!n) {
+                status = EXIT_RUN;
                 break;
+            }
             a->script = n;
         }
-        if (!(a->script[a->nscript] = SDL_strdup(s)))
+        if (!(a->script[a->nscript] = SDL_strdup(s))) {
+            status = EXIT_RUN;
             break;
+        }
         a->nscript++;
     }
+    if (status == EXIT_RUN)
+        fprintf(stderr, "%s: out of memory reading the --keys file\n", path);
+    if (status < 0 && ferror(f)) {
+        fprintf(stderr, "%s:0: cannot read the --keys file: %s\n", path, strerror(errno));
+        status = EXIT_USAGE;
+    }
     fclose(f);
-    return true;
+    return status;
+}
+
+static void free_script(struct app *a)
+{
+    for (size_t i = 0; i < a->nscript; i++)
+        SDL_free(a->script[i]);
+    free(a->script);
 }
 
 static bool push_key(SDL_Keycode k, Uint16 mod)
@@ -665,11 +695,15 @@ int explorer_run(const struct app_desc *d)
 {
     const struct lesson *l = d->explorer.lesson;
     struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
-    if (d->keys && !read_script(&a, d->keys))
-        return EXIT_USAGE;
-    explorer_fonts();
-    int status = EXIT_OK;
+    int status = d->keys ? read_script(&a, d->keys) : -1;
+    if (status >= 0) {
+        free_script(&a);
+        return status;
+    }
+    status = EXIT_OK;
     char err[512];
+    if (!explorer_fonts(err, sizeof err))
+        fprintf(stderr, "%s: %s; the text will not look as in the figures\n", l->id, err);
     if (!init_video(&a)) {
         status = EXIT_RUN;             /* no display, or SDL could not start */
     } else if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
@@ -691,8 +725,6 @@ int explorer_run(const struct app_desc *d)
     if (a.win)
         SDL_DestroyWindow(a.win);
     SDL_Quit();
-    for (size_t i = 0; i < a.nscript; i++)
-        SDL_free(a.script[i]);
-    free(a.script);
+    free_script(&a);
     return status;
 }

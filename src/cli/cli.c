@@ -243,12 +243,12 @@ static int explorer_desc_from_cli(const struct lesson *l, const struct cli_optio
         snprintf(name, n, "builtin:%s", l->builtin_scene);
     *d = (struct explorer_desc){
         .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
-        .variant = o->variant, .params = o->params, .step = o->step, .step_end = o->step_end,
+        .variant = o->variant, .params = &o->params, .step = o->step, .step_end = o->step_end,
         .zoom = o->zoom, .scale = o->scale,
     };
     if (o->view) {
         /* check the name first: a bad view is a usage error */
-        struct explorer probe = { .lesson = l, .edge = -1 };
+        struct explorer probe = { .lesson = l, .side = lesson_explorer_of(l), .edge = -1 };
         if (!explorer_set_view_name(&probe, o->view)) {
             fprintf(stderr, "%s: --view '%s': no such view; views:", l->id, o->view);
             for (int i = 0; i < explorer_view_count(&probe); i++)
@@ -272,7 +272,10 @@ static int figure_export(const struct lesson *l, const struct cli_options *o, st
         return status;
     d.scene = NULL;
     d.give_scene = s;
-    explorer_fonts();
+    if (!explorer_fonts(err, sizeof err)) {
+        fprintf(stderr, "%s: %s\n", l->id, err);     /* the figure would not be the figure */
+        return EXIT_RUN;
+    }
     if (!explorer_init(&ex, &d, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         return EXIT_RUN;

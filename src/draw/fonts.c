@@ -4,6 +4,7 @@
 
 #include "painter.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,7 +33,7 @@ static const char fonts_conf[] =
     "  </match>\n"
     "</fontconfig>\n";
 
-static char fonts_path[64];
+static char fonts_path[4096];
 
 static void remove_fonts_conf(void)
 {
@@ -40,30 +41,84 @@ static void remove_fonts_conf(void)
         unlink(fonts_path);
 }
 
-void explorer_fonts(void)
+/* Point fontconfig at fonts_conf, in a file of our own under $TMPDIR. */
+static bool pin_fonts(char *err, size_t errlen)
 {
-    static bool done;
-    if (done)
-        return;
-    done = true;
     const char *dir = getenv("TMPDIR");
-    snprintf(fonts_path, sizeof fonts_path, "%s/tristep-fonts-XXXXXX",
-             dir && *dir && strlen(dir) < 32 ? dir : "/tmp");
+    if (!dir || !*dir)
+        dir = "/tmp";
+    if (snprintf(fonts_path, sizeof fonts_path, "%s/tristep-fonts-XXXXXX", dir)
+        >= (int)sizeof fonts_path) {
+        snprintf(err, errlen, "cannot pin the fonts: TMPDIR is too long");
+        fonts_path[0] = '\0';
+        return false;
+    }
     int fd = mkstemp(fonts_path);
     if (fd < 0) {
+        snprintf(err, errlen, "cannot pin the fonts: cannot create a file in %.400s: %s", dir,
+                 strerror(errno));
         fonts_path[0] = '\0';
-        return;
+        return false;
     }
     size_t n = sizeof fonts_conf - 1;
     bool ok = write(fd, fonts_conf, n) == (ssize_t)n;
-    close(fd);
+    int saved = errno;
+    if (close(fd) != 0)
+        ok = false;
     if (!ok) {
+        snprintf(err, errlen, "cannot pin the fonts: cannot write %.400s: %s", fonts_path,
+                 strerror(saved));
         unlink(fonts_path);
         fonts_path[0] = '\0';
-        return;
+        return false;
     }
     setenv("FONTCONFIG_FILE", fonts_path, 1);
     atexit(remove_fonts_conf);
+    return true;
+}
+
+static cairo_font_face_t *face;     /* DejaVu Sans Mono, once found */
+
+/* Find DejaVu Sans Mono through Pango, as every label will. */
+static bool find_mono(char *err, size_t errlen)
+{
+    PangoFontMap *fm = pango_cairo_font_map_get_default();
+    PangoContext *ctx = pango_font_map_create_context(fm);
+    pango_cairo_context_set_font_options(ctx, font_options());
+    PangoFontDescription *d = pango_font_description_from_string("DejaVu Sans Mono 10");
+    PangoFont *f = pango_font_map_load_font(fm, ctx, d);
+    const char *family = "no font at all";
+    PangoFontDescription *got = NULL;
+    if (f) {
+        got = pango_font_describe(f);
+        family = pango_font_description_get_family(got);
+        cairo_scaled_font_t *sf = pango_cairo_font_get_scaled_font(PANGO_CAIRO_FONT(f));
+        if (family && strcmp(family, "DejaVu Sans Mono") == 0 && sf)
+            face = cairo_font_face_reference(cairo_scaled_font_get_font_face(sf));
+    }
+    if (!face)
+        snprintf(err, errlen, "DejaVu Sans Mono not found (fontconfig gave %s): install the "
+                 "DejaVu fonts (Debian: fonts-dejavu-core)", family ? family : "a nameless font");
+    if (got)
+        pango_font_description_free(got);
+    if (f)
+        g_object_unref(f);
+    pango_font_description_free(d);
+    g_object_unref(ctx);
+    return face != NULL;
+}
+
+bool explorer_fonts(char *err, size_t errlen)
+{
+    static bool done, ok;
+    static char why[512];
+    if (!done) {
+        done = true;
+        ok = pin_fonts(why, sizeof why) && find_mono(why, sizeof why);
+    }
+    if (!ok && err)
+        snprintf(err, errlen, "%s", why);
+    return ok;
 }
 
 cairo_font_options_t *font_options(void)
@@ -79,27 +134,11 @@ cairo_font_options_t *font_options(void)
     return o;
 }
 
-/* The DejaVu Sans Mono face as Pango finds it, for the numbers in cells
- * (drawn as one batch of glyphs: thousands of labels per frame). */
+/* The DejaVu Sans Mono face, for the numbers in cells (drawn as one batch
+ * of glyphs: thousands of labels per frame); NULL when it is missing. */
 cairo_font_face_t *mono_face(void)
 {
-    static cairo_font_face_t *face;
-    if (!face) {
-        explorer_fonts();
-        PangoFontMap *fm = pango_cairo_font_map_get_default();
-        PangoContext *ctx = pango_font_map_create_context(fm);
-        pango_cairo_context_set_font_options(ctx, font_options());
-        PangoFontDescription *d = pango_font_description_from_string("DejaVu Sans Mono 10");
-        PangoFont *f = pango_font_map_load_font(fm, ctx, d);
-        if (f) {
-            cairo_scaled_font_t *sf = pango_cairo_font_get_scaled_font(PANGO_CAIRO_FONT(f));
-            if (sf)
-                face = cairo_font_face_reference(cairo_scaled_font_get_font_face(sf));
-            g_object_unref(f);
-        }
-        pango_font_description_free(d);
-        g_object_unref(ctx);
-    }
+    explorer_fonts(NULL, 0);
     return face;
 }
 

@@ -19,8 +19,11 @@ void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h);
  * drawn twice as sharp). Returns cairo's status after drawing. */
 cairo_status_t explorer_paint_pixels(struct explorer *ex, unsigned char *pixels, int pw, int ph,
                                      int stride, double ratio);
-/* Pin fontconfig to DejaVu only; call before anything touches Pango. */
-void explorer_fonts(void);
+/* Pin fontconfig to DejaVu only and find DejaVu Sans Mono; call before
+ * anything touches Pango. False, with the reason in err, when that failed:
+ * text would then come out in whatever fonts the system has, so figures
+ * must not be drawn. Once per process; later calls give the same answer. */
+bool explorer_fonts(char *err, size_t errlen);
 /* Milliseconds per frame, averaged over n frames painted into a w x h image
  * surface (what `make bench` reports as the explorer's frame time). */
 double explorer_frame_ms(struct explorer *ex, int w, int h, int n);

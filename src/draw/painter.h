@@ -41,6 +41,12 @@ struct palette {
     uint32_t partial_inside, partial_outside;       /* tested pixels of a partial block */
     uint32_t span, row;
     uint32_t extra, missing, exhibit, on_exhibit;   /* an exhibit against the exact rule */
+    /* what lessons draw with (enum ink in lesson_explorer.h), beside the
+     * edges, vertices, text and shadow above */
+    uint32_t mark;                                  /* a mark over any cell */
+    uint32_t probe;                                 /* a point a lesson computes */
+    uint32_t upper, lower;                          /* two parts of one triangle */
+    uint32_t brighter, deeper;                      /* gradients of luminance, of depth */
 };
 
 extern const struct palette palette_dark;

@@ -19,6 +19,8 @@ const struct palette palette_dark = {
     .partial_inside = 0xf0c674, .partial_outside = 0x8a6d2c,
     .span = 0x4fb3bf, .row = 0x39404e,
     .extra = 0xff4fd8, .missing = 0x00e5ff, .exhibit = 0xe0565b, .on_exhibit = 0xffffff,
+    .mark = 0xffffff, .probe = 0xff5080, .upper = 0x9e73ff, .lower = 0xff9933,
+    .brighter = 0xffff8c, .deeper = 0x8cffbf,
 };
 
 uint32_t mix(uint32_t a, uint32_t b, double t)

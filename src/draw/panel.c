@@ -46,7 +46,7 @@ static double legend(struct painter *p, double x, double y, double w)
     struct explorer *ex = p->ex;
     double y0 = y, s = p->s;
     if (ex->view >= VIEW_BUILTIN_COUNT)
-        y += draw_text(p, x, y, w, ex->lesson->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
+        y += draw_text(p, x, y, w, ex->side->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
                        p->pal->text, false);
     struct view_ctx v;
     view_ctx_init(&v, ex, p->pal);
@@ -131,7 +131,12 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             format_edge(v, sizeof v, ev->e[k]);
             at = cat(buf, n, at, "%s = %lld (%s px\u00b2)\n", edge_names[k], (long long)ev->e[k], v);
         }
-        at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f\n", ev->bary[0], ev->bary[1], ev->bary[2]);
+        if (ex->tri.area2 > 0) {       /* the weights follow from the edge values */
+            double b[3];
+            barycentric(&ex->tri, ev->e, b);
+            at = cat(buf, n, at, "alpha %.4f beta %.4f gamma %.4f\n", (float)b[0], (float)b[1],
+                     (float)b[2]);
+        }
         break;
     case TRACE_PIXEL_WRITE:
         at = cat(buf, n, at, "write (%d, %d): z %.5g, depth %s\n", ev->x, ev->y, ev->z,
@@ -147,6 +152,10 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "%s%s %.6g", k ? ", " : "", ex->lesson->aux_names[k], ev->aux[k]);
         if (ex->lesson->aux_names[0])
             at = cat(buf, n, at, "\n");
+    }
+    if (ex->side && ex->side->watch && ex->tri.area2 > 0 && at < n) {
+        ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
+        at += strlen(buf + at);
     }
     return at;
 }
@@ -197,9 +206,7 @@ static double watch(struct painter *p, double x, double y, double w)
 static double compare_lines(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    int done = ex->cur < 0 ? 0 : ex->cur;
-    if (ex->cur >= 0 && ex->local + 1 >= ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur])
-        done = ex->cur + 1;     /* the current triangle has finished too */
+    int done = explorer_finished(ex);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
@@ -224,19 +231,8 @@ static double compare_lines(struct painter *p, double x, double y, double w)
 static double counters(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    struct trace_counters c = { 0 };
-    int before = ex->cur >= 0 ? ex->cur : 0;
-    const struct trace_counters *a = &ex->replay.sums[before];
-    c.tested = a->tested + ex->tri_c.tested;
-    c.covered = a->covered + ex->tri_c.covered;
-    c.written = a->written + ex->tri_c.written;
-    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
-        c.blocks[k] = a->blocks[k] + ex->tri_c.blocks[k];
-    c.rows = a->rows + ex->tri_c.rows;
-    c.spans = a->spans + ex->tri_c.spans;
-    /* the last event carries the arithmetic done before it in its triangle */
-    c.mul = a->mul + (ex->has_last ? ex->last.mul : 0);
-    c.add = a->add + (ex->has_last ? ex->last.add : 0);
+    struct trace_counters c;
+    explorer_counters(ex, &c);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     at = cat(buf, n, at, "pixels tested  %10llu   covered %10llu\n", (unsigned long long)c.tested,
@@ -324,9 +320,9 @@ void paint_panel(struct painter *p)
     y += pseudocode(p, x, y, w) + 8 * s;
     y += heading(p, x, y, w, "WATCH");
     y += watch(p, x, y, w) + 8 * s;
-    if (ex->lesson->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
+    if (ex->side && ex->side->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
         buf[0] = '\0';
-        ex->lesson->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        ex->side->constants(&ex->tri, &ex->params, buf, sizeof buf);
         for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
             buf[e - 1] = '\0';
         y += heading(p, x, y, w, "TRIANGLE");

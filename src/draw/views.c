@@ -296,7 +296,7 @@ static const struct builtin_view builtin_views[VIEW_BUILTIN_COUNT] = {
 static uint32_t lesson_cell(const struct view_ctx *v, int x, int y)
 {
     const struct explorer *ex = v->ex;
-    const struct lesson_view *lv = &ex->lesson->views[ex->view - VIEW_BUILTIN_COUNT];
+    const struct lesson_view *lv = &ex->side->views[ex->view - VIEW_BUILTIN_COUNT];
     const struct cell *c = cur_cell(ex, x, y);
     int f = c ? c->flags : 0;
     if (!(f & (CELL_TESTED | CELL_WRITTEN)))
@@ -304,7 +304,6 @@ static uint32_t lesson_cell(const struct view_ctx *v, int x, int y)
     struct trace_event test = { .kind = TRACE_PIXEL_TEST, .x = x, .y = y,
                                 .flags = (f & CELL_INSIDE) ? TRACE_INSIDE : 0 };
     memcpy(test.e, c->e, sizeof test.e);
-    memcpy(test.bary, c->bary, sizeof test.bary);
     memcpy(test.aux, c->aux, sizeof test.aux);
     struct trace_event write = { .kind = TRACE_PIXEL_WRITE, .x = x, .y = y, .z = c->z,
                                  .rgba = c->rgba,
@@ -366,7 +365,7 @@ int view_legend(const struct view_ctx *v, struct swatch out[VIEW_LEGEND_MAX], co
 
 int explorer_view_count(const struct explorer *ex)
 {
-    return VIEW_BUILTIN_COUNT + (ex->lesson->views ? ex->lesson->nviews : 0);
+    return VIEW_BUILTIN_COUNT + (ex->side && ex->side->views ? ex->side->nviews : 0);
 }
 
 const char *explorer_view_name(const struct explorer *ex, int view)
@@ -374,7 +373,7 @@ const char *explorer_view_name(const struct explorer *ex, int view)
     if (view < VIEW_BUILTIN_COUNT)
         return view == VIEW_EDGES && ex->edge >= 0 ? edge_view_names[ex->edge]
                                                    : builtin_views[view].name;
-    return ex->lesson->views[view - VIEW_BUILTIN_COUNT].name;
+    return ex->side->views[view - VIEW_BUILTIN_COUNT].name;
 }
 
 bool explorer_set_view_name(struct explorer *ex, const char *name)
@@ -387,7 +386,7 @@ bool explorer_set_view_name(struct explorer *ex, const char *name)
         }
     for (int i = 0; i < explorer_view_count(ex); i++) {
         const char *n = i < VIEW_BUILTIN_COUNT ? builtin_views[i].name
-                                               : ex->lesson->views[i - VIEW_BUILTIN_COUNT].name;
+                                               : ex->side->views[i - VIEW_BUILTIN_COUNT].name;
         if (strcmp(name, n) == 0) {
             ex->view = i;
             if (i == VIEW_EDGES)

@@ -1,5 +1,6 @@
 /* views.h - the explorer's views by name: the built-in ones (their table is
- * in views.c), then the lesson's own (lesson->views). */
+ * in views.c), then the lesson's own (its
+ * lesson_explorer's views). */
 #ifndef TRISTEP_VIEWS_H
 #define TRISTEP_VIEWS_H
 

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "lesson.h"
+#include "lesson_explorer.h"
 #include "explore/replay.h"
 
 enum step_unit {
@@ -63,6 +64,7 @@ struct explorer_layout {
 /* How to start: zero-initialise and set what you need. */
 struct explorer_desc {
     const struct lesson *lesson;
+    const struct lesson_explorer *side;     /* NULL: the lesson's own (lesson_explorer_of) */
     const struct scene *scene;      /* copied: the explorer owns its own copy */
     struct scene *give_scene;       /* or this one, handed over, not copied (it is left
                                      * empty): a scene of millions of triangles */
@@ -71,7 +73,9 @@ struct explorer_desc {
     bool scene_is_default;          /* the lesson's built-in scene (X may switch scenes) */
     const char *scene_name;         /* as shown in the panel */
     const struct lesson_variant *variant;   /* NULL: variants[0] */
-    struct raster_params params;
+    /* taken as given (subpixel_bits 0 is whole pixels, as in --dump-coverage);
+     * NULL: the defaults, SUBPIXEL_BITS and nothing else set */
+    const struct raster_params *params;
     uint64_t step;
     bool step_end;
     double zoom;                    /* 0: fit the scene into the canvas */
@@ -80,6 +84,7 @@ struct explorer_desc {
 
 struct explorer {
     const struct lesson *lesson;
+    const struct lesson_explorer *side;     /* what the explorer adds for it, or NULL */
     struct scene scene;
     bool scene_is_default;
     char scene_name[128];
@@ -167,6 +172,13 @@ bool explorer_cycle_twin(struct explorer *ex);
  * triangle to (x, y) snapped to 1/256 pixel; vertices of other triangles at
  * the same place move with it. The lesson re-runs; the step is kept. */
 bool explorer_move_vertex(struct explorer *ex, int k, double x, double y);
+
+/* Triangles finished at this step: those before the current one, and the
+ * current one too once its last event has happened. */
+int explorer_finished(const struct explorer *ex);
+/* What the algorithm did up to this step: the counters of the triangles
+ * before the current one plus the current one's so far. */
+void explorer_counters(const struct explorer *ex, struct trace_counters *c);
 
 /* The cell of the current triangle at pixel (x, y), or NULL. */
 const struct cell *explorer_cell(const struct explorer *ex, int x, int y);

@@ -11,22 +11,6 @@ bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
     return tri_setup_bits(t, r->scene->tris[i].v, r->scene->w, r->scene->h, bits);
 }
 
-/* sum = a + b, field by field */
-static void add_counters(struct trace_counters *sum, const struct trace_counters *a,
-                         const struct trace_counters *b)
-{
-    sum->events = a->events + b->events;
-    sum->tested = a->tested + b->tested;
-    sum->covered = a->covered + b->covered;
-    sum->written = a->written + b->written;
-    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
-        sum->blocks[k] = a->blocks[k] + b->blocks[k];
-    sum->rows = a->rows + b->rows;
-    sum->spans = a->spans + b->spans;
-    sum->mul = a->mul + b->mul;
-    sum->add = a->add + b->add;
-}
-
 static void undo_clear(struct replay *r);
 
 /* --- checkpoints ---------------------------------------------------------- */
@@ -140,7 +124,7 @@ bool replay_count(struct replay *r, int n)
         r->variant->rasterize(&t, &r->params, &r->counting, &tr);
         r->total += tr.count;
         r->start[i + 1] = r->total;
-        add_counters(&r->sums[i + 1], &r->sums[i], &tr.c);
+        trace_counters_add(&r->sums[i + 1], &r->sums[i], &tr.c);
         r->counted = i + 1;
         /* one just before the last triangle too: End is a step often taken */
         bool end = r->counted == r->ntris - 1;
@@ -203,16 +187,22 @@ int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
     if (step > r->total)
         step = r->total;
     uint64_t last = step - 1;           /* the last event that happened */
-    int lo = 0, hi = r->counted - 1;    /* largest i with start[i] <= last */
+    int i = replay_triangle_of(r, last);
+    *local = last - r->start[i];
+    return i;
+}
+
+int replay_triangle_of(const struct replay *r, uint64_t event)
+{
+    int lo = 0, hi = r->counted - 1;    /* binary search: largest i with start[i] <= event */
     while (lo < hi) {
         int mid = lo + (hi - lo + 1) / 2;
-        if (r->start[mid] <= last)
+        if (r->start[mid] <= event)
             lo = mid;
         else
             hi = mid - 1;
     }
-    *local = last - r->start[lo];
-    return lo;
+    return lo < 0 ? 0 : lo;
 }
 
 /* --- stepping back a triangle: what it overwrote ---------------------------- */

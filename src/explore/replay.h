@@ -91,6 +91,10 @@ bool replay_restart(struct replay *r);
 /* Set up triangle i of the scene with the run's precision. */
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t);
 
+/* The triangle that global event number `event` belongs to: the last i
+ * with start[i] <= event (0 for a scene without triangles). */
+int replay_triangle_of(const struct replay *r, uint64_t event);
+
 /* The triangle that the last happened event of step `step` belongs to
  * (-1 at step 0), and that event's number inside it via *local. Steps
  * past the counted ones are taken as the last counted step. */

@@ -37,17 +37,6 @@ int32_t snap_coord(double v, int bits)
     return (int32_t)coarse * (1 << (SUBPIXEL_BITS - bits));
 }
 
-/* Floor and ceiling of a / b for b > 0, correct for negative a. */
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-static int64_t ceil_div(int64_t a, int64_t b)
-{
-    return -floor_div(-a, b);
-}
-
 static int64_t min3(int64_t a, int64_t b, int64_t c)
 {
     int64_t m = a < b ? a : b;

@@ -93,25 +93,49 @@ static inline bool is_top_left(int64_t I, int64_t J)
     return left || top;
 }
 
+/* Floor and ceiling of a / b for b > 0, also for negative a (C's division
+ * truncates toward 0: -3 / 2 is -1, floor_div(-3, 2) is -2). */
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+    return a / b - (a % b < 0);
+}
+
+static inline int64_t ceil_div(int64_t a, int64_t b)
+{
+    return -floor_div(-a, b);
+}
+
 /* Fixed-point coordinate of the centre of pixel column/row p. */
 static inline int64_t pixel_centre(int p)
 {
     return (int64_t)p * SUBPIXEL_ONE + SUBPIXEL_HALF;
 }
 
-/* Edge value of edge k at the centre of pixel (px, py): exact. */
+/* Edge value of edge k at the centre of pixel (px, py): exact. Costs (for
+ * the operation counters, trace/trace.h): I x + J y + K, and the step of one
+ * edge value to the next pixel or row, F += 256 I or F += 256 J. */
+#define EDGE_VALUE_COST { .mul = 2, .add = 2 }
+#define EDGE_STEP_COST { .mul = 0, .add = 1 }
+#define EDGE_INCREMENTS_COST { .mul = 2, .add = 0 }    /* 256 I and 256 J, once */
+
 static inline int64_t edge_value(const struct tri_setup *t, int k, int px, int py)
 {
     return t->I[k] * pixel_centre(px) + t->J[k] * pixel_centre(py) + t->K[k];
 }
 
-/* The fill-rule test on one edge value: inside, or on a top-left edge. */
+/* The fill-rule test on one edge value: inside, or on a top-left edge.
+ * Cost: the bias added (a lesson may add it once to K instead). */
+#define FILL_RULE_COST { .mul = 0, .add = 1 }
+
 static inline bool edge_inside(const struct tri_setup *t, int k, int64_t f)
 {
     return f + t->bias[k] >= 0;
 }
 
-/* Barycentric weights (u, v, w) of A, B, C from the three edge values. */
+/* Barycentric weights (u, v, w) of A, B, C from the three edge values. Cost:
+ * three products with 1 / area2, which a lesson computes once per triangle. */
+#define BARYCENTRIC_COST { .mul = 3, .add = 0 }
+
 static inline void barycentric(const struct tri_setup *t, const int64_t f[3], double out[3])
 {
     double inv = 1.0 / (double)t->area2;
@@ -140,6 +164,9 @@ bool target_init(struct target *fb, int w, int h, uint32_t background);
 void target_clear(struct target *fb);
 void target_free(struct target *fb);
 bool target_copy(struct target *dst, const struct target *src); /* same size or fresh dst */
+
+/* A colour in [0, 1] as 0xAARRGGBB. Cost: v * 255 + 0.5 per channel. */
+#define PACK_RGB_COST { .mul = 3, .add = 3 }
 
 static inline uint32_t pack_rgb(double r, double g, double b)
 {

@@ -43,6 +43,21 @@ static void count(struct trace_counters *c, const struct trace_event *ev)
     }
 }
 
+void trace_counters_add(struct trace_counters *sum, const struct trace_counters *a,
+                        const struct trace_counters *b)
+{
+    sum->events = a->events + b->events;
+    sum->tested = a->tested + b->tested;
+    sum->covered = a->covered + b->covered;
+    sum->written = a->written + b->written;
+    for (int k = 0; k < BLOCK_CLASS_COUNT; k++)
+        sum->blocks[k] = a->blocks[k] + b->blocks[k];
+    sum->rows = a->rows + b->rows;
+    sum->spans = a->spans + b->spans;
+    sum->mul = a->mul + b->mul;
+    sum->add = a->add + b->add;
+}
+
 void trace_emit(struct trace *tr, struct trace_event *ev)
 {
     uint64_t index = tr->count++;

@@ -5,6 +5,10 @@
  *     NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = 4, .x = x, .y = y,
  *             .e = { f01, f02, f03 }, .flags = inside ? TRACE_INSIDE : 0);
  *
+ * One line where it can: what the explorer can work out from the event and
+ * the triangle (the barycentric weights from e and area2, the colour from
+ * the write) is not narrated.
+ *
  * The explorer never re-implements an algorithm: it replays the narration.
  * "Step N" means the first N events of the run have happened and the rest
  * have not: the trace delivers those N events to a sink and, from event N on,
@@ -44,6 +48,15 @@ enum trace_flags {
 
 enum block_class { BLOCK_EMPTY, BLOCK_FULL, BLOCK_PARTIAL, BLOCK_CLASS_COUNT };
 
+/* What one operation costs: multiplications (a division or a reciprocal
+ * counts as one) and additions or subtractions. Each operation names its
+ * cost once, beside its code, as OPERATION_COST (EDGE_VALUE_COST beside
+ * edge_value() in raster/raster.h, PACK_RGB_COST beside pack_rgb(), ...);
+ * lessons count with those names, never with hand-typed sums. */
+struct op_cost {
+    unsigned mul, add;
+};
+
 /* Running counts of what the algorithm did, as llvmpipe's LP_COUNT does. */
 struct trace_counters {
     uint64_t events;
@@ -53,6 +66,10 @@ struct trace_counters {
     uint64_t mul, add;                      /* arithmetic the lesson declared */
 };
 
+/* sum = a + b, field by field (sum may be a or b). */
+void trace_counters_add(struct trace_counters *sum, const struct trace_counters *a,
+                        const struct trace_counters *b);
+
 struct trace_event {
     uint8_t kind;       /* enum trace_kind */
     uint8_t line;       /* line of the lesson's pseudo-code, 0-based */
@@ -61,7 +78,6 @@ struct trace_event {
     int32_t x, y;       /* pixel; row start; span start; block origin */
     int32_t x1, y1;     /* span end; block's last pixel (inclusive) */
     int64_t e[3];       /* edge values F01, F02, F03 (1/65536 px^2) */
-    float bary[3];      /* u, v, w: the weights of A, B, C */
     float z;            /* depth (z, not 1/z) */
     uint32_t rgba;      /* 0xAARRGGBB */
     uint16_t mask[3];   /* block corner masks per edge (checkw, checku, checkv) */
@@ -97,9 +113,11 @@ void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
 /* Say what happens; the fields are a designated initializer list. */
 #define NARRATE(tr, ...) \
     do { if (tr) trace_emit((tr), &(struct trace_event){ __VA_ARGS__ }); } while (0)
-/* Declare arithmetic done: m multiplications, a additions or subtractions. */
-#define COUNT_OPS(tr, m, a) \
-    do { if ((tr) && !(tr)->frozen) { (tr)->c.mul += (m); (tr)->c.add += (a); } } while (0)
+/* Count n operations of a named cost: COUNT(tr, 3, EDGE_VALUE_COST). */
+#define COUNT(tr, n, cost) \
+    do { if ((tr) && !(tr)->frozen) { \
+        (tr)->c.mul += (uint64_t)(n) * ((struct op_cost)cost).mul; \
+        (tr)->c.add += (uint64_t)(n) * ((struct op_cost)cost).add; } } while (0)
 /* Write a covered pixel as a step of its own. */
 #define PLOT(fb, tr, line, x, y, z, rgba) \
     do { if (tr) trace_plot((tr), (fb), (line), (x), (y), (z), (rgba)); \
@@ -111,7 +129,7 @@ void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
 #define NARRATING 1
 #else
 #define NARRATE(tr, ...) ((void)(tr))
-#define COUNT_OPS(tr, m, a) ((void)(tr))
+#define COUNT(tr, n, cost) ((void)(tr), (void)(n))
 #define PLOT(fb, tr, line, x, y, z, rgba) target_write((fb), (x), (y), (z), (rgba))
 #define FILL(fb, tr, x, y, z, rgba) target_write((fb), (x), (y), (z), (rgba))
 #define NARRATING 0

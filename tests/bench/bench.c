@@ -197,10 +197,13 @@ static double explorer_frame(int frames)
     char err[256];
     if (!scene_parse(&s, "frame", text, sizeof text - 1, err, sizeof err))
         return -1;
-    explorer_fonts();
+    if (!explorer_fonts(err, sizeof err)) {
+        fprintf(stderr, "explorer frame: %s\n", err);
+        scene_free(&s);
+        return -1;
+    }
     struct explorer ex;
-    struct explorer_desc d = { .lesson = all_lessons[0], .scene = &s, .scene_name = "frame",
-                               .params = { .subpixel_bits = SUBPIXEL_BITS } };
+    struct explorer_desc d = { .lesson = all_lessons[0], .scene = &s, .scene_name = "frame" };
     for (int i = 0; all_lessons[i]; i++)
         if (strncmp(all_lessons[i]->id, "02", 2) == 0)
             d.lesson = all_lessons[i];
