@@ -22,6 +22,17 @@
 
 #include "draw/paint.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define TRISTEP_LSAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TRISTEP_LSAN 1
+#endif
+#endif
+#ifdef TRISTEP_LSAN
+#include <sanitizer/lsan_interface.h>
+#endif
+
 #define SPEED_MAX 40        /* 2^20 events per second */
 #define FRAME_MS 16         /* at most one frame this often while playing */
 
@@ -45,6 +56,11 @@ struct app {
     bool drop_pending;
 
     Uint64 count_shown;         /* when the counting progress was last shown */
+
+    /* TRISTEP_FRAME_TIMES=FILE: every frame's milliseconds (paint, upload,
+     * present), written there at exit (the soak test reads them) */
+    float *frame_ms;
+    size_t nframes, frames_cap;
 
     /* playing: events owed to the clock */
     double play_debt;
@@ -96,8 +112,39 @@ static bool make_texture(struct app *a)
     return true;
 }
 
+static void record_frame(struct app *a, Uint64 t0)
+{
+    if (!SDL_getenv("TRISTEP_FRAME_TIMES"))
+        return;
+    if (a->nframes == a->frames_cap) {
+        size_t cap = a->frames_cap ? 2 * a->frames_cap : 1024;
+        float *f = cap < ((size_t)1 << 24) ? realloc(a->frame_ms, cap * sizeof *f) : NULL;
+        if (!f)
+            return;
+        a->frame_ms = f;
+        a->frames_cap = cap;
+    }
+    a->frame_ms[a->nframes++] = (float)((double)(SDL_GetPerformanceCounter() - t0) * 1e3
+                                        / (double)SDL_GetPerformanceFrequency());
+}
+
+static void write_frame_times(struct app *a)
+{
+    const char *path = SDL_getenv("TRISTEP_FRAME_TIMES");
+    FILE *f = path ? fopen(path, "w") : NULL;
+    if (path && !f)
+        fprintf(stderr, "%s: TRISTEP_FRAME_TIMES '%s': cannot write\n", a->lesson->id, path);
+    for (size_t i = 0; f && i < a->nframes; i++)
+        fprintf(f, "%.3f\n", a->frame_ms[i]);
+    if (f)
+        fclose(f);
+    free(a->frame_ms);
+    a->frame_ms = NULL;
+}
+
 static bool present(struct app *a)
 {
+    Uint64 t0 = SDL_GetPerformanceCounter();
     if (!make_texture(a))
         return false;
     void *pixels;
@@ -116,6 +163,7 @@ static bool present(struct app *a)
         return sdl_failed(a, "SDL_RenderCopy");
     SDL_RenderPresent(a->ren);
     a->dirty = false;
+    record_frame(a, t0);
     return true;
 }
 
@@ -724,7 +772,13 @@ int explorer_run(const struct app_desc *d)
         SDL_DestroyRenderer(a.ren);
     if (a.win)
         SDL_DestroyWindow(a.win);
-    SDL_Quit();
     free_script(&a);
+    write_frame_times(&a);
+#ifdef TRISTEP_LSAN
+    /* everything of ours is freed: look for leaks now, while the libraries
+     * SDL loaded are still there to name theirs (SDL_Quit unloads them) */
+    __lsan_do_leak_check();
+#endif
+    SDL_Quit();
     return status;
 }
