@@ -1,4 +1,5 @@
-# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
+#          make soak [MINUTES=10] | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
@@ -7,7 +8,7 @@ PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
 LES_SRC  := $(wildcard lessons/*/*.c)
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c)) $(B)/obj/lessons.o
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
@@ -27,7 +28,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS)
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench clean deps-test deps-bench FORCE
+.PHONY: all run test figures bench soak clean deps-test deps-bench FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -69,12 +70,19 @@ $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
 
+# The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
+$(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
+
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+MINUTES  ?= 10
+soak: deps-test
+	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(BUILD)/sanitize/tristep-soak --build $(BUILD)/sanitize --minutes $(MINUTES)
 # Every figure of figures/list into $(FIGURES), one process each (cairo's SVG ids count per process).
 FIGURES  ?= figures
 figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)

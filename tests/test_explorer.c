@@ -348,6 +348,36 @@ Test(explorer, counted_later_with_checkpoints_and_steps_back, .timeout = 120)
     scene_free(&s);
 }
 
+/* Found by the soak test: a pixel pinned in the lesson's scene, then X
+ * switching to the smaller exhibit scene, and the watch panel read the
+ * pinned pixel outside the new scene's target. */
+Test(explorer, exhibit_scene_switch_unpins_a_pixel_outside_it)
+{
+    int tried = 0;
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct scene s;
+        if (!l->exhibit_scene || !load_scene(l, SCENE_BUILTIN, &s))
+            continue;
+        struct explorer ex;
+        struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "test",
+                                   .scene_is_default = true };
+        char err[256];
+        cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+        ex.pinned = true;
+        ex.pin_x = s.w - 1, ex.pin_y = s.h - 1;
+        cr_assert(explorer_cycle_exhibit(&ex));
+        cr_assert(!ex.pinned || (ex.pin_x < ex.scene.w && ex.pin_y < ex.scene.h),
+                  "%s: pinned (%d, %d) in a %d x %d scene", l->id, ex.pin_x, ex.pin_y,
+                  ex.scene.w, ex.scene.h);
+        cr_assert_geq(explorer_frame_ms(&ex, 640, 400, 1), 0);  /* the sanitizers watch */
+        explorer_free(&ex);
+        scene_free(&s);
+        tried++;
+    }
+    cr_assert_gt(tried, 0);
+}
+
 /* --- stepping back from the end reproduces every picture ---------------------------- */
 
 Test(explorer, back_from_end_reproduces_every_picture)

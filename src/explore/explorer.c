@@ -403,6 +403,8 @@ bool explorer_cycle_exhibit(struct explorer *ex)
             snprintf(ex->scene_name, sizeof ex->scene_name, "builtin:%s", ex->lesson->exhibit_scene);
             ex->params.checker = s.checker;
             ex->zoom = 0;
+            ex->pinned = false;     /* its pixel may lie outside the new scene */
+            ex->hover_vertex = -1;
             target_free(&ex->fb);
             target_free(&ex->scratch);
             free(ex->diff);
