@@ -435,6 +435,18 @@ static const char *start_xvfb(void)
     return NULL;
 }
 
+/* Q ends the program started as app_pid, with status 0 and nothing on stderr
+ * that matters (a sanitizer report would make the status non-zero). */
+static void quit_app(const char *display)
+{
+    const char *quit[] = { "key", "q", NULL };
+    cr_assert_eq(xdotool(display, quit), 0);
+    int status = finish(&app_pid, 10000);
+    char *app_err = read_all(in_dir("app.err"), NULL);
+    cr_assert_eq(status, 0, "exit status %d after q; stderr:\n%s", status, app_err ? app_err : "");
+    free(app_err);
+}
+
 /* The window's pixels at the screen's top-left corner equal a figure's. */
 static long differing_from_figure(cairo_surface_t *shot, const char *name, const char *size,
                                   const char *scale, int w, int h)
@@ -496,13 +508,18 @@ Test(window, xvfb_high_dpi_and_resize, .fini = cleanup, .timeout = 120)
         cr_assert_eq(pixel(shot, sizes[i][0] + 5, 5), 0, "nothing drawn right of the window");
         cairo_surface_destroy(shot);
     }
-    const char *quit[] = { "key", "q", NULL };
-    cr_assert_eq(xdotool(display, quit), 0);
-    int status = finish(&app_pid, 10000);
-    char *app_err = read_all(in_dir("app.err"), NULL);
-    cr_assert_eq(status, 0, "exit status %d after q; stderr:\n%s", status, app_err ? app_err : "");
-    free(app_err);
+    quit_app(display);
     cairo_surface_destroy(big);
+}
+
+/* The lesson of PROGRAM. */
+static const struct lesson *program_lesson(void)
+{
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
+            return all_lessons[i];
+    cr_assert_fail("no lesson %s", PROGRAM);
+    return NULL;
 }
 
 /* Colours within 3 levels a channel: antialiasing of the lines nearby
@@ -523,10 +540,7 @@ Test(window, painted_at_pixel_ratio_2_is_the_same_layout_twice_as_sharp)
     struct scene s;
     char err[256];
     cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
-    const struct lesson *l = NULL;
-    for (int i = 0; all_lessons[i]; i++)
-        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
-            l = all_lessons[i];
+    const struct lesson *l = program_lesson();
     struct explorer ex;
     struct explorer_desc desc = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle", .step = 40 };
     cr_assert(explorer_init(&ex, &desc, err, sizeof err), "%s", err);
@@ -617,11 +631,7 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
     struct scene s;
     char err[256];
     cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
-    const struct lesson *l = NULL;
-    for (int i = 0; all_lessons[i]; i++)
-        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
-            l = all_lessons[i];
-    cr_assert(l);
+    const struct lesson *l = program_lesson();
     struct explorer ex;
     struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle" };
     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
@@ -688,12 +698,7 @@ Test(window, xvfb_keys_drag_and_screenshot, .fini = cleanup, .timeout = 120)
     cairo_surface_destroy(shot3);
     cairo_surface_destroy(shot4);
 
-    const char *quit[] = { "key", "q", NULL };
-    cr_assert_eq(xdotool(display, quit), 0);
-    int status = finish(&app_pid, 10000);
-    char *app_err = read_all(in_dir("app.err"), NULL);
-    cr_assert_eq(status, 0, "exit status %d after q; stderr:\n%s", status, app_err ? app_err : "");
-    free(app_err);
+    quit_app(display);
     cairo_surface_destroy(shot);
     cairo_surface_destroy(shot2);
     cairo_surface_destroy(want);
