@@ -252,12 +252,19 @@ static void undo_save(struct replay *r, const struct tri_setup *t)
         u.w = t->maxx - t->minx + 1;
         u.h = t->maxy - t->miny + 1;
     }
+    if (!r->undo_data) {
+        /* no more room than a few pictures' worth: a small scene's steps
+         * back need little, and memory should not grow with a long session */
+        size_t few = 4 * target_bytes(&r->base);
+        if (r->undo_bytes > few)
+            r->undo_bytes = few > ((size_t)1 << 20) ? few : (size_t)1 << 20;
+        if (!(r->undo_data = malloc(r->undo_bytes))) {
+            undo_clear(r);
+            return;
+        }
+    }
     size_t bytes = (size_t)u.w * (size_t)u.h * 9;
     if (bytes > r->undo_bytes / 4) {
-        undo_clear(r);
-        return;
-    }
-    if (!r->undo_data && !(r->undo_data = malloc(r->undo_bytes))) {
         undo_clear(r);
         return;
     }
