@@ -689,17 +689,20 @@ static bool init_video(struct app *a)
 }
 
 /* The interface scale a screen of high density wants where windows count in
- * pixels: from its dots per inch (192 gives 2, in quarters, 1 up to 120),
- * or, where SDL cannot tell them (X11 without the monitor's size), from
- * GDK_SCALE, which HiDPI desktops set for every program. */
+ * pixels: GDK_SCALE where the desktop set it (HiDPI desktops set it for
+ * every program), else from the screen's dots per inch where SDL knows
+ * them: whole steps from 168 dpi (192 gives 2), at most 3, since a
+ * physical DPI a little above 96 is usually meant to be used at 1. */
 static double screen_scale(int display)
 {
-    float dpi;
-    if (SDL_GetDisplayDPI(display, &dpi, NULL, NULL) == 0 && dpi > 0)
-        return dpi > 120 ? fmin(round(dpi / 96 * 4) / 4, 4) : 1;
     const char *gdk = SDL_getenv("GDK_SCALE");
     int n = gdk ? SDL_atoi(gdk) : 0;
-    return n >= 1 && n <= 4 ? n : 1;
+    if (n >= 1 && n <= 4)
+        return n;
+    float dpi;
+    if (SDL_GetDisplayDPI(display, &dpi, NULL, NULL) == 0 && dpi >= 168)
+        return fmin(round(dpi / 96), 3);
+    return 1;
 }
 
 /* Resizable, and sharp on HiDPI screens: where windows count in points

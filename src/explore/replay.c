@@ -126,8 +126,8 @@ bool replay_count(struct replay *r, int n)
         r->start[i + 1] = r->total;
         trace_counters_add(&r->sums[i + 1], &r->sums[i], &tr.c);
         r->counted = i + 1;
-        /* one just before the last triangle too: End is a step often taken */
-        bool end = r->counted == r->ntris - 1;
+        /* one near the end too: End is a step often taken */
+        bool end = r->counted == replay_end_checkpoint(r->ntris);
         if (r->keep_pictures && r->counted < r->ntris
             && (r->total - r->check_last >= r->check_gap || end) && !take_checkpoint(r, end))
             return false;

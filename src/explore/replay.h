@@ -64,6 +64,16 @@ struct replay_undo {
  * it allows (about 25 ms of redrawing a scene of small triangles). */
 #define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
 #define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 20)
+/* One more checkpoint this many triangles before the end (an eighth of a
+ * small scene): End redraws them and keeps what they overwrote, so that
+ * steps back from the end are quick too. */
+#define REPLAY_END_TRIANGLES 1024
+
+static inline int replay_end_checkpoint(int ntris)
+{
+    int k = ntris / 8 < REPLAY_END_TRIANGLES ? ntris / 8 : REPLAY_END_TRIANGLES;
+    return ntris - (k > 1 ? k : 1);
+}
 
 /* Count every triangle's events (runs the whole scene once). */
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
