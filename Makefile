@@ -43,9 +43,10 @@ deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 $(B)/obj/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
 $(B)/fast/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
 $(B)/obj/main-%.o: src/cli/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
-# The library anew when src/ gains or loses a file (its folders' mtimes):
-# no member left over from a file moved away.
-$(B)/libtristep.a: $(LIB_OBJ) src $(wildcard src/*/) ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
+# The library anew when its list of objects changes (lib.list, rewritten
+# only then): no member is left over from a file moved away.
+$(B)/lib.list: FORCE ; @echo '$(LIB_OBJ)' | cmp -s - $@ || echo '$(LIB_OBJ)' > $@
+$(B)/libtristep.a: $(LIB_OBJ) $(B)/lib.list ; @rm -f $@ && $(AR) rcs $@ $(LIB_OBJ)
 $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(LD_ALL) $^ $(LIBS) -o $@
 

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "testlib.h"
+#include "util/file.h"
 
 extern char **environ;
 
@@ -755,4 +756,16 @@ Test(cli, keys_file_errors_exit_2_at_their_line, .timeout = 30, .fini = remove_l
     cr_assert(strstr(r.err, where), "stderr: %s", r.err);
     result_free(&r);
     dirs_remove(&d);
+}
+
+/* One suffix test for every file name (figure.c once said >= where cli.c
+ * said >): a name is something before its suffix. */
+Test(cli, a_file_name_is_more_than_its_suffix)
+{
+    cr_assert(has_suffix("a.png", ".png"));
+    cr_assert(has_suffix("dir/.x.pdf", ".pdf"));
+    cr_assert_not(has_suffix(".png", ".png"));
+    cr_assert_not(has_suffix("png", ".png"));
+    cr_assert_not(has_suffix("a.svg", ".png"));
+    cr_assert_not(has_suffix("a.png.tmp", ".png"));
 }

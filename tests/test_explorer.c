@@ -618,6 +618,10 @@ Test(explorer, init_says_why_it_fails)
     cr_assert_not(explorer_init(&ex, &d, err, sizeof err));
     cr_assert(strstr(err, "no scene"), "message: %s", err);
     d.scene = &s;
+    d.lesson = NULL;
+    cr_assert_not(explorer_init(&ex, &d, err, sizeof err));
+    cr_assert(strstr(err, "no lesson"), "message: %s", err);
+    d.lesson = l;
     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
     explorer_free(&ex);
     scene_free(&s);

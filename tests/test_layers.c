@@ -247,3 +247,51 @@ Test(layers, check_catches_a_cycle_and_an_upward_include)
     cr_assert(violation(&h, why, sizeof why));
     cr_assert(strstr(why, "src/gui is not in src/layers.h"), "%s", why);
 }
+
+/* Every file of src/ stays readable in one sitting: under 700 lines (issue
+ * 11 split the 1,349-line painter by concern; a file growing past this is
+ * the sign that it holds two concerns). */
+#define SRC_LINES_MAX 700
+
+static void longest_in(const char *dir, char *longest, size_t n, int *lines)
+{
+    DIR *d = opendir(dir);
+    cr_assert(d, "cannot list %s", dir);
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        if (de->d_name[0] == '.')
+            continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        struct stat st;
+        if (stat(path, &st) != 0)
+            continue;
+        if (S_ISDIR(st.st_mode)) {
+            longest_in(path, longest, n, lines);
+            continue;
+        }
+        size_t len = strlen(de->d_name);
+        if (len < 3 || (strcmp(de->d_name + len - 2, ".c") != 0 && strcmp(de->d_name + len - 2, ".h") != 0))
+            continue;
+        FILE *f = fopen(path, "r");
+        cr_assert(f, "cannot read %s", path);
+        int count = 0;
+        for (int c; (c = getc(f)) != EOF;)
+            count += c == '\n';
+        fclose(f);
+        if (count > *lines) {
+            *lines = count;
+            snprintf(longest, n, "%s", path);
+        }
+    }
+    closedir(d);
+}
+
+Test(layers, every_src_file_under_700_lines)
+{
+    char longest[512] = "";
+    int lines = 0;
+    longest_in("src", longest, sizeof longest, &lines);
+    cr_assert_gt(lines, 0, "no source under src/");
+    cr_assert_lt(lines, SRC_LINES_MAX, "%s has %d lines: split it by concern", longest, lines);
+}

@@ -63,7 +63,7 @@ struct point {
     double c[ATTR_COUNT];
 };
 
-#define POINT_OF_COST { .mul = 5, .add = 0 }
+#define POINT_OF_COST { .mul = 5, .add = 0 }     /* r, g, b times 255; s, t times N */
 
 static struct point point_of(const struct tri_setup *t, const struct raster_params *p, int i)
 {
@@ -241,8 +241,7 @@ static void fill(const struct tri_setup *t, const struct raster_params *p, struc
 static void rasterize(const struct tri_setup *t, const struct raster_params *p,
                       struct target *fb, struct trace *tr)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SORT, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_SORT);
     if (t->empty)
         return;
 
@@ -379,8 +378,7 @@ static void fill_float(const struct tri_setup *t, const struct raster_params *p,
 static void rasterize_source(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SORT, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_SORT);
     if (t->empty)
         return;
     int top = 0;

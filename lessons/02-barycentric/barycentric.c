@@ -70,8 +70,7 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
                            struct target *fb, struct trace *tr, enum fill_rule rule)
 {
     const struct vertex *a = &t->v[0], *b = &t->v[1], *c = &t->v[2];
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SETUP, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
     double inv_area2 = 1.0 / (double)t->area2;

@@ -182,8 +182,7 @@ static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *
 static void rasterize(const struct tri_setup *t, const struct raster_params *p,
                       struct target *fb, struct trace *tr)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SETUP, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
 
@@ -254,8 +253,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 static void rasterize_float(const struct tri_setup *t, const struct raster_params *p,
                             struct target *fb, struct trace *tr)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SETUP, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
 

@@ -164,8 +164,7 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
 {
     struct persp_setup s;
     if (t->empty) {
-        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
-                .x1 = t->maxx, .y1 = t->maxy);
+        NARRATE_SETUP(tr, t, L_BOX);
         return;
     }
     persp_setup(t, p, &s);
@@ -245,8 +244,7 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
 {
     struct persp_setup s;
     if (t->empty) {
-        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
-                .x1 = t->maxx, .y1 = t->maxy);
+        NARRATE_SETUP(tr, t, L_BOX);
         return;
     }
     persp_setup(t, p, &s);
@@ -327,8 +325,7 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 {
     struct persp_setup s;
     if (t->empty) {
-        NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
-                .x1 = t->maxx, .y1 = t->maxy);
+        NARRATE_SETUP(tr, t, L_BOX);
         return;
     }
     persp_setup(t, p, &s);

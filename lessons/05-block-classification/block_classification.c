@@ -19,10 +19,10 @@
  * time with integer SSE compares. What stays: lesson 03's exact integer edge
  * values decide coverage (the corners use the very same values and the same
  * top-left bias as the pixel test, so "full" is really full), and lesson 04's
- * planes 1/z and a/z give perspective-correct depth and colour (formula 23).
- *
- * The four-pixel writes test depth before they shade: a quad hidden behind
- * what the target already holds costs its depth and one compare, no colour.
+ * planes 1/z and a/z give perspective-correct depth and colour (formula 23),
+ * four pixels at a time, from src/shade/quad.h: shared machinery, not this
+ * lesson's idea. This file reads: the edges, the corners of a block, its
+ * class, the three cases, the blocks.
  *
  * Two twins of the partial-block loop sit side by side: one pixel at a time
  * with exact 64-bit edge values, narrating every pixel (what the explorer
@@ -359,8 +359,7 @@ struct block_options {
 static void rasterize_blocks(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr, struct block_options o)
 {
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    NARRATE_SETUP(tr, t, L_BOX);
     if (t->empty)
         return;
     int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;

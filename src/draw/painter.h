@@ -9,6 +9,7 @@
  *     bar.c      the scrub bar
  *     fonts.c    pinned fonts and text (Pango, DejaVu Sans Mono)
  *     palette.c  the colours, named once
+ *     export.c   the frame as a PNG, SVG or PDF file (export.h, public)
  */
 #ifndef TRISTEP_PAINTER_H
 #define TRISTEP_PAINTER_H

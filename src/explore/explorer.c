@@ -461,7 +461,6 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
 {
     memset(ex, 0, sizeof *ex);
     ex->lesson = d->lesson;
-    ex->side = d->side ? d->side : lesson_explorer_of(d->lesson);
     ex->scene_is_default = d->scene_is_default;
     snprintf(ex->scene_name, sizeof ex->scene_name, "%s", d->scene_name ? d->scene_name : "scene");
     ex->params = d->params ? *d->params : (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS };
@@ -477,6 +476,7 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
         snprintf(err, errlen, "%s: variant '%s' is not one of this lesson's", id, d->variant->name);
         return false;
     }
+    ex->side = d->side ? d->side : lesson_explorer_of(d->lesson);
     ex->variant = d->variant ? (int)(d->variant - d->lesson->variants) : 0;
     ex->edge = -1;
     ex->zoom = d->zoom;

@@ -1,8 +1,7 @@
 /* quad.c - the parts of quad.h that run once per triangle or per stray quad. */
 #include "shade/quad.h"
 
-void planes_setup(struct planes *pl, const struct tri_setup *t,
-                         const struct raster_params *p)
+void planes_setup(struct planes *pl, const struct tri_setup *t, const struct raster_params *p)
 {
     int N = p->checker > 0 ? p->checker : 1;
     pl->x0 = t->minx;
@@ -45,8 +44,8 @@ void planes_setup(struct planes *pl, const struct tri_setup *t,
 
 /* target_write() for the lanes of a quad that `mask` keeps (all ones = keep),
  * one pixel at a time: count, depth test (nearer wins), write. */
-void write_quad_pixels(struct target *fb, int xq, int y, __m128i mask,
-                              const struct quad *qd, bool checker)
+void write_quad_pixels(struct target *fb, int xq, int y, __m128i mask, const struct quad *qd,
+                       bool checker)
 {
     __m128 z4 = quad_depth(qd);
     __m128i c4 = quad_colour(qd, z4, checker);

@@ -135,4 +135,10 @@ void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
 #define NARRATING 0
 #endif
 
+/* The triangle is set up: its box and twice its area, the first event of
+ * every triangle (the explorer draws the box). */
+#define NARRATE_SETUP(tr, t, ln) \
+    NARRATE(tr, .kind = TRACE_SETUP, .line = (ln), .x = (t)->minx, .y = (t)->miny, \
+            .x1 = (t)->maxx, .y1 = (t)->maxy, .e = { (t)->area2, 0, 0 })
+
 #endif
