@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "display.h"
 #include "draw/paint.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -57,10 +58,7 @@ struct app {
 
     Uint64 count_shown;         /* when the counting progress was last shown */
 
-    /* TRISTEP_FRAME_TIMES=FILE: every frame's milliseconds (paint, upload,
-     * present), written there at exit (the soak test reads them) */
-    float *frame_ms;
-    size_t nframes, frames_cap;
+    struct frame_times frames;  /* TRISTEP_FRAME_TIMES=FILE: every frame's milliseconds */
 
     /* playing: events owed to the clock */
     double play_debt;
@@ -112,36 +110,6 @@ static bool make_texture(struct app *a)
     return true;
 }
 
-static void record_frame(struct app *a, Uint64 t0)
-{
-    if (!SDL_getenv("TRISTEP_FRAME_TIMES"))
-        return;
-    if (a->nframes == a->frames_cap) {
-        size_t cap = a->frames_cap ? 2 * a->frames_cap : 1024;
-        float *f = cap < ((size_t)1 << 24) ? realloc(a->frame_ms, cap * sizeof *f) : NULL;
-        if (!f)
-            return;
-        a->frame_ms = f;
-        a->frames_cap = cap;
-    }
-    a->frame_ms[a->nframes++] = (float)((double)(SDL_GetPerformanceCounter() - t0) * 1e3
-                                        / (double)SDL_GetPerformanceFrequency());
-}
-
-static void write_frame_times(struct app *a)
-{
-    const char *path = SDL_getenv("TRISTEP_FRAME_TIMES");
-    FILE *f = path ? fopen(path, "w") : NULL;
-    if (path && !f)
-        fprintf(stderr, "%s: TRISTEP_FRAME_TIMES '%s': cannot write\n", a->lesson->id, path);
-    for (size_t i = 0; f && i < a->nframes; i++)
-        fprintf(f, "%.3f\n", a->frame_ms[i]);
-    if (f)
-        fclose(f);
-    free(a->frame_ms);
-    a->frame_ms = NULL;
-}
-
 static bool present(struct app *a)
 {
     Uint64 t0 = SDL_GetPerformanceCounter();
@@ -163,7 +131,8 @@ static bool present(struct app *a)
         return sdl_failed(a, "SDL_RenderCopy");
     SDL_RenderPresent(a->ren);
     a->dirty = false;
-    record_frame(a, t0);
+    frame_times_add(&a->frames, (double)(SDL_GetPerformanceCounter() - t0) * 1e3
+                                / (double)SDL_GetPerformanceFrequency());
     return true;
 }
 
@@ -645,66 +614,6 @@ static void run(struct app *a)
     }
 }
 
-/* Without a display (an SSH session, a container) SDL falls back to a
- * driver that shows nothing (offscreen) and the program would wait for a
- * window no one sees. Unless the user chose that driver (SDL_VIDEODRIVER,
- * as the tests do), say so and how to get the pictures without a window. */
-static bool no_display(struct app *a, const char *why)
-{
-    const char *id = a->lesson->id;
-    fprintf(stderr,
-            "%s: no display found (%s): the explorer needs a window.\n"
-            "Pictures without one:\n"
-            "  %s --figure step40.png --step 40 --view coverage   the explorer's view (.png, .svg, .pdf)\n"
-            "  %s --dump-image final.png                          the finished picture\n"
-            "Over SSH, 'ssh -X' brings the window to your screen; SDL_VIDEODRIVER=x11 or\n"
-            "wayland names a display driver, SDL_VIDEODRIVER=offscreen runs without one.\n",
-            id, why, id, id);
-    a->failed = true;
-    return false;
-}
-
-static bool init_video(struct app *a)
-{
-    const char *chosen = SDL_getenv("SDL_VIDEODRIVER");
-    bool explicit = chosen && *chosen;
-    if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0) {
-        if (!explicit && !SDL_getenv("DISPLAY") && !SDL_getenv("WAYLAND_DISPLAY")) {
-            char why[300];
-            snprintf(why, sizeof why, "DISPLAY and WAYLAND_DISPLAY are not set; SDL_Init: %s",
-                     SDL_GetError());
-            return no_display(a, why);
-        }
-        return sdl_failed(a, "SDL_Init");
-    }
-    const char *driver = SDL_GetCurrentVideoDriver();
-    if (!explicit && driver && (strcmp(driver, "offscreen") == 0 || strcmp(driver, "dummy") == 0)) {
-        char why[200];
-        snprintf(why, sizeof why, "SDL fell back to its '%s' video driver%s", driver,
-                 SDL_getenv("DISPLAY") || SDL_getenv("WAYLAND_DISPLAY") ? ""
-                 : "; DISPLAY and WAYLAND_DISPLAY are not set");
-        return no_display(a, why);
-    }
-    return true;
-}
-
-/* The interface scale a screen of high density wants where windows count in
- * pixels: GDK_SCALE where the desktop set it (HiDPI desktops set it for
- * every program), else from the screen's dots per inch where SDL knows
- * them: whole steps from 168 dpi (192 gives 2), at most 3, since a
- * physical DPI a little above 96 is usually meant to be used at 1. */
-static double screen_scale(int display)
-{
-    const char *gdk = SDL_getenv("GDK_SCALE");
-    int n = gdk ? SDL_atoi(gdk) : 0;
-    if (n >= 1 && n <= 4)
-        return n;
-    float dpi;
-    if (SDL_GetDisplayDPI(display, &dpi, NULL, NULL) == 0 && dpi >= 168)
-        return fmin(round(dpi / 96), 3);
-    return 1;
-}
-
 /* Resizable, and sharp on HiDPI screens: where windows count in points
  * (macOS, Wayland) the drawable has more pixels than the window and the
  * frame is painted at that ratio; where they count in pixels (X11,
@@ -726,9 +635,9 @@ static bool open_window(struct app *a, const struct app_desc *d)
     if (!make_texture(a))
         return false;
     int display = SDL_GetWindowDisplayIndex(a->win);
-    if (a->ratio == 1 && d->explorer.scale <= 0 && display >= 0 && screen_scale(display) != 1) {
+    if (a->ratio == 1 && d->explorer.scale <= 0 && display >= 0 && display_scale(display) != 1) {
         /* pixels, not points: the interface grows instead, and the window with it */
-        a->ex.scale = screen_scale(display);
+        a->ex.scale = display_scale(display);
         SDL_Rect usable;
         if (!d->width && SDL_GetDisplayUsableBounds(display, &usable) == 0) {
             w = (int)fmin(w * a->ex.scale, usable.w);
@@ -755,7 +664,7 @@ int explorer_run(const struct app_desc *d)
     char err[512];
     if (!explorer_fonts(err, sizeof err))
         fprintf(stderr, "%s: %s; the text will not look as in the figures\n", l->id, err);
-    if (!init_video(&a)) {
+    if (!display_init(l->id)) {
         status = EXIT_RUN;             /* no display, or SDL could not start */
     } else if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
@@ -776,7 +685,7 @@ int explorer_run(const struct app_desc *d)
     if (a.win)
         SDL_DestroyWindow(a.win);
     free_script(&a);
-    write_frame_times(&a);
+    frame_times_write(&a.frames, l->id);
 #ifdef TRISTEP_LSAN
     /* everything of ours is freed: look for leaks now, while the libraries
      * SDL loaded are still there to name theirs (SDL_Quit unloads them) */
