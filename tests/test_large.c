@@ -1,7 +1,7 @@
 /* test_large.c - the memory a scene of many triangles takes in the explorer.
  *
  * The issue's bound is 2,000,000 triangles at 1920 x 1080 within 2 GiB;
- * `make bench` opens that scene (340 MB of text) in every lesson and
+ * `make bench` opens that scene (330 MB of text) in every lesson and
  * reports its peak memory against the bound. Within the test budget, a
  * child process does what the window does with a scene file (load it,
  * hand it to the explorer, count every step of lesson 05 and of the two

@@ -334,7 +334,7 @@ bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
 }
 
 /* Read a file in chunks of 1 MiB, each line parsed where it lies in the
- * buffer: a 340 MB scene never needs 340 MB of text in memory. */
+ * buffer: a scene of hundreds of megabytes never needs them all in memory. */
 #define READ_CHUNK ((size_t)1 << 20)
 
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)

@@ -36,7 +36,7 @@ struct scene {
 bool scene_parse(struct scene *s, const char *name, const char *text, size_t len,
                  char *err, size_t errlen);
 /* Read and parse a file ("-" is standard input), a chunk at a time: the
- * text is never held whole (a 2,000,000-triangle scene is 340 MB of it). */
+ * text is never held whole (a 2,000,000-triangle scene is some 330 MB of it). */
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
 /* Write a scene that scene_parse reads back to the same values. */
 bool scene_write(const struct scene *s, FILE *out);

@@ -1,5 +1,5 @@
 /* big.c - the bench's large scene: 2,000,000 small triangles at 1920 x 1080
- * (tests/bench/bigscene.c writes the 340 MB file; it is removed afterwards)
+ * (tests/bench/bigscene.c writes the 330 MB file; it is removed afterwards)
  * opened in the explorer as the window opens it, in a child process per
  * lesson so that each one's peak memory is its own:
  *

@@ -1,6 +1,6 @@
 /* bigscene.h - very large scene files for `make bench` and the memory test:
  * n small triangles at 1920 x 1080 written as scene text (about 170 bytes a
- * triangle: 2,000,000 of them make a 340 MB file), generated on the spot
+ * triangle: 2,000,000 of them make a 330 MB file), generated on the spot
  * and never committed. */
 #ifndef TRISTEP_BIGSCENE_H
 #define TRISTEP_BIGSCENE_H
