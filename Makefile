@@ -1,14 +1,16 @@
-# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
-#          make soak [MINUTES=10] | make clean
+# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make soak [MINUTES=10]
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
 B        := $(BUILD)$(if $(SANITIZE),/sanitize)
 PROGRAMS := $(LESSONS:%=$(B)/%)
-LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c,$(wildcard src/*.c src/*/*.c)))
-LES_SRC  := $(wildcard lessons/*/*.c)
+LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c,$(wildcard src/*.c src/*/*.c)))
+EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
+LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
@@ -28,7 +30,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS)
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak clean deps-test deps-bench FORCE
+.PHONY: all run test figures bench soak clean deps-test deps-bench exercise check FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -73,13 +75,38 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
 $(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
+# Exercises (lessons/NN-name/exercise.c): the student's FILE, compiled with
+# src/exercise/student.h in front, linked into build/exercise-NN; the tests
+# link every skeleton and answer under its own name (build/exercises.c).
+STUDENT   = -DTRISTEP_NARRATE -include exercise/student.h
+EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
+FILE     ?= $(EX_LESSON)/exercise.c
+$(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(FIRST)
+	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) -c $< -o $@
+$(B)/exercises.c: Makefile lessons | $(FIRST)
+	@printf '#include "exercise/exercise.h"\n' > $@
+	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); done >> $@
+	@printf 'const struct exercise_code all_exercises[] = {\n' >> $@
+	@for d in $(sort $(dir $(EX_SRC))); do n=$$(basename $$d | cut -c1-2); printf '    { "%s", exercise_%s_exercise, exercise_%s_answer },\n' $$n $$n $$n; done >> $@
+	@printf '    { NULL, NULL, NULL },\n};\n' >> $@
+$(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+$(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
+	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
+	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -c $(FILE) -o $@
+$(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
+$(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+	@$(LD_ALL) $^ $(LIBS) -o $@
+exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP))
+check: $(B)/exercise-$(LESSON)
+	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
-	$(B)/tristep-bench --out $(B) --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+	$(B)/tristep-bench --out $(B) --markdown BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
 MINUTES  ?= 10
 soak: deps-test
 	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak

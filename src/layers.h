@@ -1,7 +1,7 @@
 /* layers.h - the folders of src/ in their dependency order, lowest first.
  *
  *     util <- raster <- scene <- trace <- (src/ itself: lesson.h, the lesson
- *     interface) <- shade <- explore <- draw <- app <- cli
+ *     interface) <- shade <- explore <- draw <- app <- cli <- exercise
  *
  * A file may include the headers of its own folder and of folders before
  * its own in this list, never of a later one: the narration knows nothing
@@ -24,6 +24,7 @@
     "explore", /* the explorer's state: replaying a run to any step */ \
     "draw",    /* the painter (cairo, Pango): views, panel, figures */ \
     "app",     /* the SDL window */ \
-    "cli"      /* the programs: options, headless modes */
+    "cli",     /* the programs: options, headless modes */ \
+    "exercise" /* a student's rasterizer as a variant, make check */
 
 #endif

@@ -57,6 +57,20 @@ struct cost_term {
 };
 #define COST_TERM(n, COST) { (n), #COST, COST }
 
+/* What `make exercise` and `make check` need of a lesson (src/exercise/):
+ * the rest comes from the descriptor itself (perspective, pseudocode). */
+struct lesson_exercise {
+    /* pseudo-code line of a pixel written by the student's code without
+     * narration of its own (a bare target_write): every write is a step */
+    int write_line;
+    /* the lesson's own property: no multiplication between two pixels of
+     * a row, by the counters (lesson 03) */
+    bool no_pixel_mul;
+    /* ... every block narrated FULL covered in full, every block covered
+     * in full narrated FULL (lesson 05) */
+    bool full_blocks;
+};
+
 struct lesson {
     const char *id;                     /* "02-barycentric", as the program's name */
     const char *title;
@@ -77,6 +91,8 @@ struct lesson {
      * (shaded and written); NULL for none. tests/test_counters.c recounts
      * both from what the code COUNTs. */
     const struct cost_term *cost_tested, *cost_covered;
+
+    struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);

@@ -131,6 +131,20 @@ Test(bench, quick_mode_is_exact_and_catches_the_exhibits, .timeout = 120)
 
     snprintf(path, sizeof path, "%s/bench.png", dir);
     cr_expect(file_starts_with(path, "\x89PNG\r\n\x1a\n", 8), "%s is not a PNG", path);
+    /* the markdown table the texts link (make bench writes it to BENCH.md) */
+    snprintf(path, sizeof path, "%s/bench.md", dir);
+    cr_expect(file_starts_with(path, "# tristep bench", 15), "%s is not the bench's table", path);
+    FILE *md = fopen(path, "r");
+    int tables = 0, rows_md = 0;
+    char mline[1024];
+    while (md && fgets(mline, sizeof mline, md)) {
+        tables += strncmp(mline, "| program | variant | median ms | spread |", 42) == 0;
+        rows_md += strncmp(mline, "| 0", 3) == 0;
+    }
+    if (md)
+        fclose(md);
+    cr_expect_eq(tables, 3, "%s: %d tables, one per scene expected", path, tables);
+    cr_expect_gt(rows_md, 3 * 5, "%s: only %d lesson rows", path, rows_md);
     snprintf(path, sizeof path, "%s/bench.svg", dir);
     cr_expect(file_starts_with(path, "<?xml", 5), "%s is not an SVG", path);
 

@@ -30,28 +30,12 @@ static const char *readme(void)
 
 /* --- events of one run ------------------------------------------------------------ */
 
-struct events {
-    struct trace_event *ev;
-    size_t n, cap;
-};
-
-static void collect(void *ctx, const struct trace_event *ev)
-{
-    struct events *e = ctx;
-    if (e->n == e->cap) {
-        e->cap = e->cap ? 2 * e->cap : 1024;
-        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
-        cr_assert_not_null(e->ev);
-    }
-    e->ev[e->n++] = *ev;
-}
-
 /* Run one triangle through a variant with narration, keeping every event. */
 static void run_traced(const struct lesson_variant *v, const struct tri_setup *t,
-                       struct target *fb, struct events *out)
+                       struct target *fb, struct test_events *out)
 {
     struct raster_params p = default_params();
-    struct trace tr = { .sink = collect, .ctx = out };
+    struct trace tr = { .sink = test_collect, .ctx = out };
     trace_begin(&tr, 0, TRACE_UNLIMITED);
     v->rasterize(t, &p, fb, &tr);
 }
@@ -81,7 +65,7 @@ Test(lesson03, zero_multiplications_per_pixel_inside_the_loop)
         tri_setup(&t, v, 48, 32);
         struct target fb;
         cr_assert(target_init(&fb, 48, 32, 0));
-        struct events e03 = { 0 }, e02 = { 0 };
+        struct test_events e03 = { 0 }, e02 = { 0 };
         run_traced(&lesson_03.variants[0], &t, &fb, &e03);
         run_traced(&lesson_02.variants[0], &t, &fb, &e02);
 
@@ -225,12 +209,10 @@ static void float_errors_of(const struct tri_setup *t, struct float_errors *e)
     target_free(&exact);
 }
 
-/* A number the lesson text states: the digits right after `phrase`. */
-static long stated(const char *phrase)
+/* A number the lesson text states, by its marker (testlib.h). */
+static long stated(const char *key)
 {
-    const char *at = strstr(readme(), phrase);
-    cr_assert_not_null(at, README " does not say \"%s\"", phrase);
-    return strtol(at + strlen(phrase), NULL, 10);
+    return (long)text_number(README, key, NULL);
 }
 
 /* builtin:float-drift: two triangles sharing an edge, two of whose edges run
@@ -249,7 +231,7 @@ Test(lesson03, float_exhibit_is_wrong_on_its_scene_by_the_count_the_text_states)
         float_errors_of(&t, &e);
     }
     cr_expect_gt(e.extra + e.missing, 0, "the exhibit is not wrong anywhere");
-    cr_expect_eq(e.extra + e.missing, stated("float-drift` the float loop decides "),
+    cr_expect_eq(e.extra + e.missing, stated("l03.float.wrong"),
                  "%ld extra + %ld missing", e.extra, e.missing);
     cr_expect_eq(e.on_dropped_edge, e.extra, "every extra pixel is a centre on a right or bottom edge");
     cr_expect_eq(e.beyond_bound, 0);
@@ -262,7 +244,7 @@ Test(lesson03, float_exhibit_is_wrong_on_its_scene_by_the_count_the_text_states)
     for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++)
         twice += fb.count[i] > 1;
     cr_expect_gt(twice, 0);
-    cr_expect_eq(twice, stated("pixels drawn twice: "), "%ld drawn twice", twice);
+    cr_expect_eq(twice, stated("l03.float.twice"), "%ld drawn twice", twice);
     target_free(&fb);
     scene_free(&s);
 }
@@ -277,8 +259,8 @@ Test(lesson03, float_drift_on_a_large_triangle_stays_within_the_rounding_bound)
     float_errors_of(&t, &e);
     cr_expect_eq(e.beyond_bound, 0, "a wrong pixel farther from every edge than rounding explains");
     cr_expect_gt(e.missing, 0, "drift drops centres inside the triangle");
-    cr_expect_eq(e.extra, stated("2,000 pixels across, it covers "));
-    cr_expect_eq(e.missing, stated("centres outside and misses "));
+    cr_expect_eq(e.extra, stated("l03.large.extra"));
+    cr_expect_eq(e.missing, stated("l03.large.missing"));
 }
 
 /* --- interpolation ----------------------------------------------------------------- */
@@ -298,7 +280,7 @@ static void check_against_lesson02(const struct tri_setup *t, int n)
     int w = t->target_w, h = t->target_h;
     struct target fb;
     cr_assert(target_init(&fb, w, h, 0));
-    struct events e03 = { 0 }, e02 = { 0 };
+    struct test_events e03 = { 0 }, e02 = { 0 };
     run_traced(&lesson_03.variants[0], t, &fb, &e03);
     run_traced(&lesson_02.variants[0], t, &fb, &e02);
     struct written *by02 = calloc((size_t)w * (size_t)h, sizeof *by02);

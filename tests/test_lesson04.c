@@ -15,6 +15,8 @@
 #include "testlib.h"
 #include "explore/replay.h"
 
+#define README04 "lessons/04-simd-perspective/README.md"
+
 extern const struct lesson lesson_04, lesson_04_fast;
 
 /* The floor against the analytic answer. Single-precision lanes, stepped:
@@ -317,6 +319,9 @@ Test(lesson04, depth_and_texture_match_the_ray_floor_intersection)
         cr_expect_leq(e.t, LANE_TOL, "%s: t off by %g", name, e.t);
         cr_log_info("%s: %d pixels, worst z %.3g (relative), s %.3g, t %.3g",
                     name, e.covered, e.z, e.s, e.t);
+        double tol, quoted = text_number(README04, "l04.perspective.worst", &tol);
+        cr_expect_leq(fabs(fmax(e.s, e.t) - quoted), tol, "%s: the text quotes %g, the "
+                      "floor's worst is %g", name, quoted, fmax(e.s, e.t));
     }
 }
 
@@ -332,6 +337,10 @@ Test(lesson04, affine_texturing_measurably_misses_the_floor)
         cr_expect_gt(e.t, 0.1, "%s (affine): t is off by only %g", name, e.t);
         cr_expect_gt(e.s, 0.05, "%s (affine): s is off by only %g", name, e.s);
         cr_log_info("%s affine: worst s %.3g, t %.3g", name, e.s, e.t);
+        /* the lesson text quotes the worst, rounded as it prints it */
+        double tol, quoted = text_number(README04, "l04.affine.worst", &tol);
+        cr_expect_leq(fabs(fmax(e.s, e.t) - quoted), tol, "%s: the text quotes %g, the "
+                      "floor's worst is %g", name, quoted, fmax(e.s, e.t));
     }
 }
 

@@ -284,6 +284,87 @@ Test(window, dummy_driver_keys_step_switch_views_export_quit, .fini = cleanup, .
     }
 }
 
+/* S saves the scene as it is now, dragged vertex included, to a new file
+ * each time; the file is what --scene and make check's SCENE= read. */
+Test(window, s_saves_the_scene_with_its_dragged_vertex, .fini = cleanup, .timeout = 60)
+{
+    make_dir();
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "triangle", err, sizeof err));
+    const struct lesson *l = NULL;
+    for (int i = 0; all_lessons[i]; i++)
+        if (strcmp(all_lessons[i]->id, PROGRAM) == 0)
+            l = all_lessons[i];
+    cr_assert(l);
+    struct explorer ex;
+    struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "builtin:triangle" };
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    struct explorer_layout L;
+    explorer_layout(&ex, WIN_W, WIN_H, &L);
+    int hx = (int)lrint(L.ox + L.zoom * ex.tri.x[0] / SUBPIXEL_ONE);
+    int hy = (int)lrint(L.oy + L.zoom * ex.tri.y[0] / SUBPIXEL_ONE);
+    cr_assert_eq(explorer_hit_vertex(&ex, &L, hx, hy), 0);
+    char keys[128];
+    snprintf(keys, sizeof keys, "drag %d %d %d %d\ns\ns\nq\n", hx, hy, hx + 40, hy + 30);
+    write_text(in_dir("keys"), keys);
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--keys", "keys", "--size", size, NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    char *out = read_all(in_dir("out"), NULL);
+    cr_assert_eq(st, 0, "exit status %d", st);
+    const char *first = "tristep-" PROGRAM "-1.scene", *second = "tristep-" PROGRAM "-2.scene";
+    cr_assert(out && strstr(out, first) && strstr(out, second) && strstr(out, "SCENE="),
+              "the messages name two new files and how to check them:\n%s", out ? out : "");
+    free(out);
+    struct scene saved;
+    cr_assert(scene_load(&saved, in_dir(first), err, sizeof err), "%s", err);
+    cr_assert_eq(saved.ntris, s.ntris);
+    /* A dropped where the mouse let go, snapped to 1/256; B and C stayed */
+    struct vertex a = s.tris[0].v[0], got = saved.tris[0].v[0];
+    cr_expect_eq(got.x, lrint((hx + 40 - L.ox) / L.zoom * 256) / 256.0, "x %g, was %g", got.x, a.x);
+    cr_expect_eq(got.y, lrint((hy + 30 - L.oy) / L.zoom * 256) / 256.0, "y %g, was %g", got.y, a.y);
+    for (int k = 1; k < 3; k++) {
+        cr_expect_eq(saved.tris[0].v[k].x, s.tris[0].v[k].x);
+        cr_expect_eq(saved.tris[0].v[k].y, s.tris[0].v[k].y);
+    }
+    scene_free(&saved);
+    explorer_free(&ex);
+    scene_free(&s);
+}
+
+/* Figures for print in the window too: L switches to the light theme, C to
+ * the pixel grid alone, and E exports exactly what --figure draws with
+ * --theme light --figure-part canvas. */
+Test(window, light_theme_and_canvas_part_from_keys_export_the_print_figure, .fini = cleanup,
+     .timeout = 60)
+{
+    make_dir();
+    write_text(in_dir("keys"), "Right\nRight\nRight\nl\nc\ne\nq\n");
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIN_W, WIN_H);
+    char *argv[] = { (char *)program(), "--keys", "keys", "--size", size, NULL };
+    int st = run(argv, dummy_env, "out", "err", 30000);
+    char *err = read_all(in_dir("err"), NULL);
+    cr_assert_eq(st, 0, "exit status %d; stderr:\n%s", st, err ? err : "");
+    free(err);
+    cairo_surface_t *got = load_png(in_dir("tristep-" PROGRAM "-step3-color.png"));
+    char *fargv[] = { (char *)program(), "--figure", "want.png", "--step", "3", "--view", "color",
+                      "--size", size, "--theme", "light", "--figure-part", "canvas", NULL };
+    cr_assert_eq(run(fargv, NULL, NULL, "figure.err", 30000), 0, "--figure failed");
+    cairo_surface_t *want = load_png(in_dir("want.png"));
+    cr_assert_eq(differing(got, want, 0, 0, WIN_W, WIN_H), 0,
+                 "the window's export after L and C is not the light canvas figure");
+    /* and it is the light one: a white page where the dark theme is dark */
+    cairo_surface_flush(got);
+    const uint32_t *px = (const uint32_t *)cairo_image_surface_get_data(got);
+    cr_expect_eq(px[2] & 0xffffff, 0xffffffu, "the corner is %06x, not white",
+                 (unsigned)(px[2] & 0xffffff));
+    cairo_surface_destroy(got);
+    cairo_surface_destroy(want);
+}
+
 Test(window, space_plays_at_the_speed_and_pauses, .fini = cleanup, .timeout = 60)
 {
     make_dir();

@@ -349,3 +349,83 @@ const char *test_build_dir(void)
     const char *b = getenv("TRISTEP_BUILD");
     return b && *b ? b : "build";
 }
+
+/* --- numbers the texts quote ------------------------------------------------- */
+
+const char *test_read_text(const char *path)
+{
+    static char text[1 << 18];
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "%s not found (run the tests from the project's top folder)\n", path);
+        abort();
+    }
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    bool whole = feof(f);
+    fclose(f);
+    if (!whole) {
+        fprintf(stderr, "%s is longer than %zu bytes\n", path, sizeof text - 1);
+        abort();
+    }
+    text[n] = '\0';
+    return text;
+}
+
+double number_before(const char *text, const char *m, double *tol)
+{
+    const char *e = m;
+    while (e > text && (e[-1] == '*' || e[-1] == '`'))
+        e--;
+    const char *b = e;
+    while (b > text && strchr("0123456789.,", b[-1]))
+        b--;
+    if (b > text + 1 && b[-1] == '-' && strchr("eE", b[-2]))
+        for (b -= 2; b > text && strchr("0123456789.", b[-1]); b--)
+            ;
+    char num[64];
+    size_t n = 0;
+    for (const char *p = b; p < e && n + 1 < sizeof num; p++)
+        if (*p != ',')
+            num[n++] = *p;
+    num[n] = '\0';
+    char *stop;
+    double v = strtod(num, &stop);
+    if (n == 0 || *stop)
+        return NAN;
+    const char *dot = strchr(num, '.'), *ex = strpbrk(num, "eE");
+    int digits = dot ? (int)((ex ? ex : num + n) - dot - 1) : 0;
+    int exponent = ex ? atoi(ex + 1) : 0;
+    if (tol)
+        *tol = 0.5 * pow(10, exponent - digits);
+    return v;
+}
+
+double text_number(const char *path, const char *key, double *tol)
+{
+    const char *text = test_read_text(path);
+    char marker[128];
+    snprintf(marker, sizeof marker, "<!--=%s-->", key);
+    const char *at = strstr(text, marker);
+    double v = at ? number_before(text, at, tol) : NAN;
+    if (isnan(v)) {
+        fprintf(stderr, "%s quotes no number marked %s\n", path, marker);
+        abort();
+    }
+    return v;
+}
+
+/* --- narration ----------------------------------------------------------------- */
+
+void test_collect(void *ctx, const struct trace_event *ev)
+{
+    struct test_events *e = ctx;
+    if (e->n == e->cap) {
+        e->cap = e->cap ? 2 * e->cap : 4096;
+        e->ev = realloc(e->ev, e->cap * sizeof *e->ev);
+        if (!e->ev) {
+            fprintf(stderr, "out of memory collecting events\n");
+            abort();
+        }
+    }
+    e->ev[e->n++] = *ev;
+}

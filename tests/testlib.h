@@ -113,6 +113,38 @@ bool coverage_equal(const uint8_t *expected, const uint8_t *actual, int w, int h
 /* Print the case alone (for failures that are not a picture). */
 void print_case(const struct case_info *info);
 
+/* --- narration ------------------------------------------------------------------ */
+
+/* Every event of a run, kept: a trace sink (`.sink = test_collect,
+ * .ctx = &events`); free(events.ev) after. */
+struct test_events {
+    struct trace_event *ev;
+    size_t n, cap;
+};
+void test_collect(void *ctx, const struct trace_event *ev);
+
+/* --- numbers the texts quote ---------------------------------------------------
+ *
+ * A count a lesson text quotes carries a marker right after it, invisible
+ * in the rendered page:
+ *
+ *     differs from the exact coverage on **97**<!--=l01.float.differ--> pixels
+ *
+ * The number is what stands before the marker (bold or code marks skipped,
+ * thousands separated by commas). tests/test_texts.c recomputes every marked
+ * number of every text from the program and fails when one disagrees. */
+
+/* A whole text file, NUL-terminated (static storage, valid until the next
+ * call); fails the test when it cannot be read. */
+const char *test_read_text(const char *path);
+/* The number quoted before the first marker `key` in `path` (aborting the
+ * test when there is none); *tol (if not NULL) gets half a unit of its last
+ * digit, the rounding it was quoted with. */
+double text_number(const char *path, const char *key, double *tol);
+/* The number written right before position m of text (bold and code marks
+ * skipped, commas dropped), NAN when there is none; *tol as above. */
+double number_before(const char *text, const char *m, double *tol);
+
 /* --- programs ----------------------------------------------------------------- */
 
 /* The build directory ($TRISTEP_BUILD, "build" when unset). */

@@ -26,9 +26,13 @@
  *   Dc13 = (c3-c1) / (y3-y1)                  (3)  along the edges 1-2, 1-3
  *   Dc23 = (c3-c2) / (y3-y2)                  (4)  and 2-3 (x too: c = x)
  *
- *   A = (1) + (y2-y1) * Dc13                  (5)  point A of "Draw X": where
- *                                                  the long edge passes the
+ *   x_A = x1 + (y2-y1) * Dx13   case [B]      (5)  point A of "Draw X": where
+ *   x_A = x1 + (y3-y1) * Dx12   case [A]      (5') the long edge passes the
  *                                                  middle vertex's height
+ *                                                  (Dx: formulas (2)-(4) with c = x)
+ *
+ * The seed prints (5) as "A = (1) + (y2-y1) * Dc13", meaning vertex 1 by
+ * "(1)", and gives case [B] only.
  *
  * The denominator of (1) is the cross product |12 x 13|: twice the signed
  * area. tri_setup has already ordered the vertices so that it is positive
@@ -169,11 +173,14 @@ static void edge_step(struct edge *e)
  *             1                              1
  *            / \                            / \
  *           /   \  upper half              /   \
- *          3 .... A  - - - - - -          A .... 2
- *           \    |   lower half            |    /
- *            \   |                         |   /
- *             \  |                         |  /
- *               2                            3
+ *          3 ... A  - - - - - -           A ... 2
+ *            `.   \  lower half          /   .'
+ *               `. \                    / .'
+ *                 `.\                  /.'
+ *                    2                3
+ *
+ *     (the long edge runs straight from 1 to the bottom vertex; A is the
+ *     point on it at the middle vertex's height)
  *
  *     left: 1-3 then 3-2 (short)     left: 1-3 (long)
  *     right: 1-2 (long)              right: 1-2 then 2-3 (short)
@@ -441,4 +448,5 @@ const struct lesson lesson_01 = {
     .nvariants = sizeof variants / sizeof variants[0],
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, PACK_SCALED_COST), COST_TERM(ATTR_COUNT, PLANE_STEP_COST), { 0 } },
+    .exercise = { .write_line = L_FILL },
 };

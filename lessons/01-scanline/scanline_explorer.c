@@ -83,10 +83,12 @@ static void constants(const struct tri_setup *t, const struct raster_params *p, 
         snprintf(buf + at, n - at,
                  " px/row\n"
                  "Dc r = %.4g, g = %.4g, b = %.4g, z = %.4g /px\n"
-                 "case = %s\n",
+                 "case = %s\n"
+                 "walk: 1 = %c (top), 2 = %c, 3 = %c\n",
                  dc[ATTR_R], dc[ATTR_G], dc[ATTR_B], dc[ATTR_Z],
                  t->y[v[1]] > t->y[v[2]] ? "[A] (3 is the middle vertex, on the left)"
-                                         : "[B] (2 is the middle vertex, on the right)");
+                                         : "[B] (2 is the middle vertex, on the right)",
+                 'A' + v[0], 'A' + v[1], 'A' + v[2]);
 }
 
 /* Where the centre line of row y crosses the triangle's left and right
@@ -126,6 +128,59 @@ static void watch(const struct tri_setup *t, const struct raster_params *p,
         snprintf(buf, n, "x_left %.6g, x_right %.6g\n", xl, xr);
 }
 
+/* Where the overlay's names go: the first of a few places beside a point
+ * that covers nothing already drawn (the current scanline and its crossings,
+ * the vertices' handles and names, the names placed before). Rectangles in
+ * scene pixels. */
+struct spot {
+    double x0, y0, x1, y1;
+};
+
+struct spots {
+    struct spot taken[16];
+    int n;
+};
+
+static bool spot_free(const struct spots *sp, struct spot r)
+{
+    for (int i = 0; i < sp->n; i++) {
+        const struct spot *o = &sp->taken[i];
+        if (r.x0 < o->x1 && o->x0 < r.x1 && r.y0 < o->y1 && o->y0 < r.y1)
+            return false;
+    }
+    return true;
+}
+
+static void spot_take(struct spots *sp, struct spot r)
+{
+    if (sp->n < (int)(sizeof sp->taken / sizeof sp->taken[0]))
+        sp->taken[sp->n++] = r;
+}
+
+/* A name (10 px text) near scene point (x, y): on the preferred side of it
+ * (left or right, above or below), else on another, whichever is free first. */
+static void place_label(const struct lesson_canvas *c, struct spots *sp, double x, double y,
+                        const char *name, enum ink ink, bool left, bool above)
+{
+    double u = c->unit, w = (6.5 * (double)strlen(name) + 6) * u, h = 15 * u;
+    double xs[2] = { x + 6 * u, x - w - 6 * u }, ys[2] = { y + 4 * u, y - h - 4 * u };
+    double at[6][2];
+    int n = 0;
+    for (int i = 0; i < 2; i++)             /* the preferred side first, in x then y */
+        for (int j = 0; j < 2; j++)
+            at[n][0] = xs[(i + left) % 2], at[n][1] = ys[(j + above) % 2], n++;
+    at[n][0] = x - w / 2, at[n][1] = y + 10 * u, n++;
+    at[n][0] = x - w / 2, at[n][1] = y - h - 10 * u, n++;
+    int pick = 0;
+    for (int i = 0; i < n; i++)
+        if (spot_free(sp, (struct spot){ at[i][0], at[i][1], at[i][0] + w, at[i][1] + h })) {
+            pick = i;
+            break;
+        }
+    spot_take(sp, (struct spot){ at[pick][0], at[pick][1], at[pick][0] + w, at[pick][1] + h });
+    c->label(c, at[pick][0], at[pick][1], name, 10, ink);
+}
+
 static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     const struct raster_params *p, const struct trace_event *last)
 {
@@ -136,11 +191,29 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     walk_order(t, v);
     bool case_a = t->y[v[1]] > t->y[v[2]];
     int mid = case_a ? v[2] : v[1], bottom = case_a ? v[1] : v[2];
-    double s = 1.0 / SUBPIXEL_ONE;
+    double s = 1.0 / SUBPIXEL_ONE, u = c->unit;
     double x1 = t->x[v[0]] * s, y1 = t->y[v[0]] * s, xm = t->x[mid] * s, ym = t->y[mid] * s;
     double xb = t->x[bottom] * s, yb = t->y[bottom] * s;
     /* point A of "Draw X": the long edge 1 -> bottom at the middle vertex's height */
     double xa = yb > y1 ? x1 + (xb - x1) * (ym - y1) / (yb - y1) : xm;
+
+    /* what the names must not cover: the vertices with their handles and
+     * names (drawn by the explorer about 16 screen pixels out), the current
+     * scanline with its crossings and their values */
+    struct spots sp = { .n = 0 };
+    for (int k = 0; k < 3; k++) {
+        double vx = t->x[k] * s, vy = t->y[k] * s;
+        spot_take(&sp, (struct spot){ vx - 30 * u, vy - 30 * u, vx + 30 * u, vy + 30 * u });
+    }
+    double xl = 0, xr = 0, yc = 0;
+    bool scan = last && strcmp(c->view, "color") != 0
+                && (last->kind == TRACE_ROW || last->kind == TRACE_SPAN)
+                && row_crossings(t, last->y, &xl, &xr);
+    if (scan) {
+        yc = last->y + 0.5;
+        spot_take(&sp, (struct spot){ t->minx, yc - 7 * u, t->maxx + 1, yc + 22 * u });
+        spot_take(&sp, (struct spot){ xl - 72 * u, yc - 7 * u, xr + 80 * u, yc + 22 * u });
+    }
 
     if (strcmp(c->view, "spans") == 0) {
         c->polygon(c, (const double[][2]){ { x1, y1 }, { xm, ym }, { xa, ym } }, 3,
@@ -149,8 +222,6 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                    (struct pen){ .fill = INK_LOWER, .alpha = 0.28 });
         c->line(c, xm, ym, xa, ym,
                 (struct pen){ .stroke = INK_MARK, .width = 1.5, .alpha = 0.8, .dashed = true });
-        c->label(c, fmin(xm, xa) - 2.5, ym - 1.2, "upper", 10, INK_UPPER);
-        c->label(c, fmin(xm, xa) - 2.5, ym + 0.2, "lower", 10, INK_LOWER);
 
         /* gradients: luminance (formula (1) and its y companion) and z */
         double gx = (x1 + xm + xb) / 3, gy = (y1 + ym + yb) / 3;
@@ -162,35 +233,39 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
         const struct { double x, y; const char *name; enum ink ink; } arrows[2] = {
             { lx, ly, "brighter", INK_BRIGHTER }, { d[ATTR_Z][0], d[ATTR_Z][1], "z grows", INK_DEEPER },
         };
-        double len = 70 * c->unit;
-        for (int pass = 0; pass < 2; pass++)       /* the arrows, then their names on top */
-            for (int k = 0; k < 2; k++) {
-                double h = hypot(arrows[k].x, arrows[k].y);
-                if (!(h > 0))
-                    continue;
-                double ex = gx + arrows[k].x / h * len, ey = gy + arrows[k].y / h * len;
-                if (pass == 0)
-                    c->arrow(c, gx, gy, ex, ey, arrows[k].ink);
-                else
-                    c->label(c, ex + 6 * c->unit, ey + 4 * c->unit, arrows[k].name, 10, arrows[k].ink);
-            }
+        double len = 70 * u;
+        double tip[2][2];
+        bool shown[2] = { false, false };
+        for (int k = 0; k < 2; k++) {
+            double h = hypot(arrows[k].x, arrows[k].y);
+            if (!(h > 0))
+                continue;
+            tip[k][0] = gx + arrows[k].x / h * len, tip[k][1] = gy + arrows[k].y / h * len;
+            c->arrow(c, gx, gy, tip[k][0], tip[k][1], arrows[k].ink);
+            shown[k] = true;
+        }
+        /* the names on top: the halves at the line between them, outside the
+         * triangle, then the arrows' at their tips */
+        double hx = case_a ? fmax(xm, xa) : fmin(xm, xa);   /* beside point A, outside */
+        place_label(c, &sp, hx, ym, "upper", INK_UPPER, !case_a, true);
+        place_label(c, &sp, hx, ym, "lower", INK_LOWER, !case_a, false);
+        for (int k = 0; k < 2; k++)
+            if (shown[k])
+                place_label(c, &sp, tip[k][0], tip[k][1], arrows[k].name, arrows[k].ink,
+                            arrows[k].x < 0, arrows[k].y < 0);
     }
 
     /* the current scanline and where its centre line crosses the two edges */
-    double xl, xr;
-    if (!last || strcmp(c->view, "color") == 0
-        || (last->kind != TRACE_ROW && last->kind != TRACE_SPAN)
-        || !row_crossings(t, last->y, &xl, &xr))
+    if (!scan)
         return;
-    double yc = last->y + 0.5;
     c->line(c, t->minx, yc, t->maxx + 1, yc, (struct pen){ .stroke = INK_MARK, .width = 1.5, .alpha = 0.85 });
     const struct { double x; const char *name; } at[2] = { { xl, "xl" }, { xr, "xr" } };
     for (int k = 0; k < 2; k++) {
         c->disc(c, at[k].x, yc, 5, (struct pen){ .fill = INK_PROBE, .stroke = INK_OUTLINE, .width = 1.5 });
         char buf[32];
         snprintf(buf, sizeof buf, "%s %.3f", at[k].name, at[k].x);
-        double lx = k ? at[k].x + 8 * c->unit : at[k].x - 68 * c->unit;
-        c->label(c, lx, yc + 6 * c->unit, buf, 10, INK_PROBE);
+        double lx = k ? at[k].x + 8 * u : at[k].x - 68 * u;
+        c->label(c, lx, yc + 6 * u, buf, 10, INK_PROBE);
     }
 }
 

@@ -32,8 +32,8 @@
 
 static const char *const pseudocode[] = {
     "snap a, b, c to 1/256 px; if area < 0: swap b, c",  /* 0 */
-    "b = findBoundingBox(a, b, c)",                       /* 1 */
-    "foreach pixel (x, y) in b:",                         /* 2 */
+    "box = findBoundingBox(a, b, c)",                     /* 1 */
+    "foreach pixel (x, y) in box:",                       /* 2 */
     "  F_ab, F_bc, F_ca at (x + 0.5, y + 0.5)",            /* 3 */
     "  if inside(F_ab) and inside(F_bc) and inside(F_ca):",/* 4 */
     "    alpha, beta, gamma = F_bc, F_ca, F_ab / area2",  /* 5 */
@@ -146,4 +146,5 @@ const struct lesson lesson_02 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, BARYCENTRIC_COST), COST_TERM(6, INTERPOLATE_COST),
         COST_TERM(1, PACK_RGB_COST), { 0 } },
+    .exercise = { .write_line = L_DRAW },
 };

@@ -46,7 +46,7 @@
 static const char *const pseudocode[] = {
     "snap A, B, C; I0k, J0k, K0k of edges 01, 02, 03 (6)-(8)",  /* 0 */
     "K0k += bias0k   (top-left rule: 0 or -1)",                 /* 1 */
-    "F0k = I0k * minX + J0k * minY + K0k   (first centre)",     /* 2 */
+    "F0k = I0k X + J0k Y + K0k   (X, Y: the first centre)",     /* 2 */
     "Cy0k = F0k",                                               /* 3 */
     "loop y = minY to maxY:",                                   /* 4 */
     "  Cx0k = Cy0k;  u, v, w = Cx02, Cx03, Cx01 / area2  (13)-(15)", /* 5 */
@@ -333,4 +333,5 @@ const struct lesson lesson_03 = {
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){ COST_TERM(1, PACK_SCALED_COST), { 0 } },
+    .exercise = { .write_line = L_RENDER, .no_pixel_mul = true },
 };

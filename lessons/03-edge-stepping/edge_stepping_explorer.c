@@ -60,8 +60,11 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                   && last->kind != TRACE_ROW))
         return;
     double x = last->x + 0.5, y = last->y + 0.5;
-    c->arrow(c, x, y, x + 1, y, INK_MARK);
-    c->arrow(c, x, y, x, y + 1, INK_MARK);
+    /* from the current cell's border when cells are large enough to carry
+     * numbers (the arrows would cover them), else from its centre */
+    double from = c->unit < 1.0 / 20 ? 0.5 : 0;
+    c->arrow(c, x + from, y, x + 1, y, INK_MARK);
+    c->arrow(c, x, y + from, x, y + 1, INK_MARK);
     c->label(c, x + 1 + 3 * c->unit, y - 8 * c->unit, "+I", 11, INK_MARK);
     c->label(c, x + 3 * c->unit, y + 1 + 1 * c->unit, "+J", 11, INK_MARK);
 }

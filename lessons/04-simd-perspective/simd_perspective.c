@@ -34,7 +34,7 @@
 static const char *const pseudocode[] = {
     "bounding box; I0k, J0k, K0k of the 3 edges",        /* 0 */
     "I00 = I02/ZA + I03/ZB + I01/ZC; J00, K00 alike",    /* 1: (19)-(21) */
-    "F = (I minX + J minY + K) / Area2",                 /* 2: (1/z, w, u, v) */
+    "F = (I X + J Y + K) / Area2, X, Y: 1st centre",     /* 2: (1/z, w, u, v) */
     "I = I / Area2;  J = J / Area2;  Cy = F",            /* 3 */
     "loop y = minY to maxY:  Cx = Cy",                   /* 4 */
     "  loop x = minX to maxX:",                          /* 5 */
@@ -471,4 +471,5 @@ const struct lesson lesson_04 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, RECIPROCAL_COST), COST_TERM(5, PERSPECTIVE_COST), COST_TERM(1, PACK_RGB_COST),
         { 0 } },
+    .exercise = { .write_line = L_WRITE },
 };

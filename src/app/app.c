@@ -10,6 +10,8 @@
  * event queue as the keyboard and mouse, so that a test can drive the real
  * program without a display.
  */
+#define _POSIX_C_SOURCE 200809L   /* access */
+
 #include "app.h"
 
 #include <SDL.h>
@@ -19,9 +21,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>      /* access: a free name for a saved scene */
 
 #include "display.h"
 #include "draw/paint.h"
+#include "util/file.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define TRISTEP_LSAN 1
@@ -191,6 +195,36 @@ static void export_view(struct app *a)
     }
 }
 
+static bool scene_writer(FILE *out, void *ctx)
+{
+    const struct explorer *ex = ctx;
+    fprintf(out, "# saved from the %s explorer at step %llu (%s)\n", ex->lesson->id,
+            (unsigned long long)ex->step, ex->scene_name);
+    return scene_write(&ex->scene, out);
+}
+
+/* S: the scene as it is now, dragged vertices included, to a new file
+ * tristep-NN-name-K.scene in the current directory (K the first number
+ * free), for --scene, and for `make check LESSON=NN SCENE=file`. */
+static void save_scene(struct app *a)
+{
+    char path[200], err[480];
+    for (int k = 1; k < 10000; k++) {
+        snprintf(path, sizeof path, "tristep-%s-%d.scene", a->lesson->id, k);
+        if (access(path, F_OK) != 0)
+            break;
+    }
+    if (write_file_atomic(path, scene_writer, &a->ex, err, sizeof err)) {
+        snprintf(a->ex.message, sizeof a->ex.message, "saved the scene to %s: make check LESSON=%.2s "
+                 "SCENE=%s adds it to the checks", path, a->lesson->id, path);
+        printf("%s: %s\n", a->lesson->id, a->ex.message);
+        fflush(stdout);
+    } else {
+        snprintf(a->ex.message, sizeof a->ex.message, "saving the scene failed: %s", err);
+        fprintf(stderr, "%s: %s\n", a->lesson->id, a->ex.message);
+    }
+}
+
 static void set_params(struct app *a, const struct raster_params *p, const char *what)
 {
     if (!explorer_set_params(&a->ex, p)) {
@@ -280,6 +314,16 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         }
         break;
     case SDLK_e: export_view(a); break;
+    case SDLK_l:    /* figures for print: the light theme, also in the window */
+        ex->theme = ex->theme == THEME_LIGHT ? THEME_DARK : THEME_LIGHT;
+        say(a, "%s theme", theme_name(ex->theme));
+        break;
+    case SDLK_c:    /* the pixel grid alone, as --figure-part canvas */
+        ex->part = ex->part == PART_CANVAS ? PART_ALL : PART_CANVAS;
+        say(a, "%s", ex->part == PART_CANVAS ? "the pixel grid alone (C: panel and bar back)"
+                                             : "panel and scrub bar");
+        break;
+    case SDLK_s: save_scene(a); break;
     case SDLK_f: ex->zoom = 0; break;
     case SDLK_h: case SDLK_F1: ex->help = !ex->help; break;
     case SDLK_q: case SDLK_ESCAPE: a->quit = true; break;

@@ -45,6 +45,8 @@ static void usage(const struct lesson *l, FILE *out)
         "  --size WxH              figure or window size in pixels (default 1280x800)\n"
         "  --zoom PX               screen pixels per scene pixel (default: fit)\n"
         "  --scale F               interface scale for text and panels (default 1)\n"
+        "  --theme dark|light      colours: dark for the screen (default), light for paper\n"
+        "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n"
         "  --block-size Q          block size for block lessons (4, 8 or 16)\n"
         "  --subpixel-bits N       snap vertices to N fractional bits, 0..8 (default 8)\n"
         "  --affine                texture affinely, not perspective-correct (lesson 04's exhibit)\n"
@@ -94,7 +96,7 @@ static bool parse_positive(const char *s, double max, double *out)
 
 enum {
     OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
-    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_BLOCK, OPT_BITS, OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
     OPT_HELP, OPT_VERSION,
 };
 
@@ -109,6 +111,8 @@ static const struct option long_options[] = {
     { "size", required_argument, NULL, OPT_SIZE },
     { "zoom", required_argument, NULL, OPT_ZOOM },
     { "scale", required_argument, NULL, OPT_SCALE },
+    { "theme", required_argument, NULL, OPT_THEME },
+    { "figure-part", required_argument, NULL, OPT_PART },
     { "block-size", required_argument, NULL, OPT_BLOCK },
     { "subpixel-bits", required_argument, NULL, OPT_BITS },
     { "affine", no_argument, NULL, OPT_AFFINE },
@@ -167,6 +171,14 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
         case OPT_SCALE:
             if (!parse_positive(optarg, 8, &o->scale) || o->scale < 0.25)
                 return bad_usage(l, "--scale '%s': expected a factor in 0.25..8", optarg);
+            break;
+        case OPT_THEME:
+            if (!theme_from_name(optarg, &o->theme))
+                return bad_usage(l, "--theme '%s': expected dark or light", optarg);
+            break;
+        case OPT_PART:
+            if (!figure_part_from_name(optarg, &o->part))
+                return bad_usage(l, "--figure-part '%s': expected all or canvas", optarg);
             break;
         case OPT_BLOCK:
             if (!parse_uint(optarg, 64, &u) || (u != 4 && u != 8 && u != 16))
@@ -244,7 +256,7 @@ static int explorer_desc_from_cli(const struct lesson *l, const struct cli_optio
     *d = (struct explorer_desc){
         .lesson = l, .scene = s, .scene_name = name, .scene_is_default = !o->scene_path,
         .variant = o->variant, .params = &o->params, .step = o->step, .step_end = o->step_end,
-        .zoom = o->zoom, .scale = o->scale,
+        .zoom = o->zoom, .scale = o->scale, .theme = o->theme, .part = o->part,
     };
     if (o->view) {
         /* check the name first: a bad view is a usage error */

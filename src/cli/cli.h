@@ -24,6 +24,8 @@ struct cli_options {
     int width, height;              /* --size WxH (figure or window), 0 = default */
     double zoom;                    /* --zoom PX: screen pixels per scene pixel, 0 = fit */
     double scale;                   /* --scale F: interface scale, 0 = 1 */
+    enum theme theme;               /* --theme dark|light (figures for print) */
+    enum figure_part part;          /* --figure-part all|canvas */
     const char *keys;               /* --keys FILE: scripted explorer input */
     struct raster_params params;
 };

@@ -121,8 +121,9 @@ static void paint_exhibit(struct painter *p, int x0, int y0, int x1, int y1)
     cairo_t *cr = p->cr;
     const struct explorer_layout *L = &p->L;
     double lw = fmax(2 * p->s, L->zoom * 0.12);
-    for (int kind = EXHIBIT_EXTRA; kind <= EXHIBIT_MISSING; kind++) {
-        set_rgb(cr, kind == EXHIBIT_EXTRA ? p->pal->extra : p->pal->missing);
+    for (int kind = EXHIBIT_EXTRA; kind <= EXHIBIT_COLOUR; kind++) {
+        set_rgb(cr, kind == EXHIBIT_EXTRA ? p->pal->extra : kind == EXHIBIT_MISSING ? p->pal->missing
+                                                                     : p->pal->wrong_colour);
         bool any = false;
         for (int y = y0; y < y1; y++)
             for (int x = x0; x < x1; x++) {
@@ -196,12 +197,31 @@ static void paint_triangle(struct painter *p)
                               : t->I[k] > 0 ? "left" : "right";
             char buf[48];
             snprintf(buf, sizeof buf, "%s %s", edge_names[k], cls);
+            /* from the edge's middle along its outward normal (-I, -J), out
+             * of the bounding box, whose cells may carry numbers */
             double mx = (vx[k] + vx[b]) / 2, my = (vy[k] + vy[b]) / 2;
-            double dx = mx - gx, dy = my - gy, d = hypot(dx, dy);
+            double dx = -(double)t->I[k], dy = -(double)t->J[k], d = hypot(dx, dy);
             if (d > 0)
                 dx /= d, dy /= d;
             double tw = text_width(p, buf, 12);
-            double lx = mx + dx * 22 * p->s - tw / 2, ly = my + dy * 18 * p->s - 8 * p->s;
+            double hw = tw / 2 + 6 * p->s, hh = 11 * p->s;
+            double bx0 = L->ox + t->minx * L->zoom, bx1 = L->ox + (t->maxx + 1) * L->zoom;
+            double by0 = L->oy + t->miny * L->zoom, by1 = L->oy + (t->maxy + 1) * L->zoom;
+            double go = HUGE_VAL;
+            if (dx > 1e-9)
+                go = fmin(go, (bx1 + hw - mx) / dx);
+            if (dx < -1e-9)
+                go = fmin(go, (bx0 - hw - mx) / dx);
+            if (dy > 1e-9)
+                go = fmin(go, (by1 + hh - my) / dy);
+            if (dy < -1e-9)
+                go = fmin(go, (by0 - hh - my) / dy);
+            go = isfinite(go) ? fmax(go, 18 * p->s) : 18 * p->s;
+            double cxl = mx + dx * go, cyl = my + dy * go;
+            /* on the canvas, whatever the zoom */
+            cxl = fmin(fmax(cxl, L->cx + hw), L->cx + L->cw - hw);
+            cyl = fmin(fmax(cyl, L->cy + hh), L->cy + L->ch - hh);
+            double lx = cxl - tw / 2, ly = cyl - 8 * p->s;
             set_rgba(cr, p->pal->shadow, 0.7);
             cairo_rectangle(cr, lx - 4 * p->s, ly - 1 * p->s, tw + 8 * p->s, 18 * p->s);
             cairo_fill(cr);
@@ -220,7 +240,11 @@ static void paint_triangle(struct painter *p)
         double dx = vx[k] - gx, dy = vy[k] - gy, d = hypot(dx, dy);
         if (d > 0)
             dx /= d, dy /= d;
-        double lx = vx[k] + dx * 16 * p->s - 5 * p->s, ly = vy[k] + dy * 16 * p->s - 10 * p->s;
+        /* out of the vertex's own cell when cells are large enough to carry numbers */
+        double out = 16 * p->s + (L->zoom >= 24 ? 0.75 * L->zoom : 0);
+        double lx = vx[k] + dx * out - 5 * p->s, ly = vy[k] + dy * out - 10 * p->s;
+        lx = fmin(fmax(lx, L->cx + 2 * p->s), L->cx + L->cw - 16 * p->s);     /* on the canvas */
+        ly = fmin(fmax(ly, L->cy + 2 * p->s), L->cy + L->ch - 22 * p->s);
         set_rgba(cr, p->pal->shadow, 0.6);
         cairo_arc(cr, lx + 5 * p->s, ly + 10 * p->s, 10 * p->s, 0, 2 * G_PI);
         cairo_fill(cr);

@@ -12,7 +12,7 @@
 void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h)
 {
     mono_face();        /* pins the fonts before Pango starts */
-    struct painter p = { .cr = cr, .ex = ex, .pal = &palette_dark };
+    struct painter p = { .cr = cr, .ex = ex, .pal = palette_of(ex->theme) };
     explorer_layout(ex, w, h, &p.L);
     p.s = p.L.s;
     p.layout = pango_cairo_create_layout(cr);
@@ -22,8 +22,10 @@ void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h)
     set_rgb(cr, p.pal->bg);
     cairo_paint(cr);
     paint_canvas(&p);
-    paint_bar(&p);
-    paint_panel(&p);
+    if (ex->part == PART_ALL) {     /* --figure-part canvas: the grid alone */
+        paint_bar(&p);
+        paint_panel(&p);
+    }
     if (ex->help)
         paint_help(&p);
     cairo_restore(cr);

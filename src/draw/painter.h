@@ -42,15 +42,21 @@ struct palette {
     uint32_t partial_inside, partial_outside;       /* tested pixels of a partial block */
     uint32_t span, row;
     uint32_t extra, missing, exhibit, on_exhibit;   /* an exhibit against the exact rule */
+    uint32_t wrong_colour;                          /* covered alike, coloured otherwise */
     /* what lessons draw with (enum ink in lesson_explorer.h), beside the
      * edges, vertices, text and shadow above */
     uint32_t mark;                                  /* a mark over any cell */
     uint32_t probe;                                 /* a point a lesson computes */
     uint32_t upper, lower;                          /* two parts of one triangle */
     uint32_t brighter, deeper;                      /* gradients of luminance, of depth */
+    bool paper;             /* for print: pixels nothing was drawn on show as `empty_px`,
+                               not as the scene's (dark) background */
 };
 
-extern const struct palette palette_dark;
+extern const struct palette palette_dark, palette_light;
+
+/* The palette of a theme. */
+const struct palette *palette_of(enum theme t);
 
 static inline void set_rgba(cairo_t *cr, uint32_t c, double a)
 {

@@ -19,9 +19,40 @@ const struct palette palette_dark = {
     .partial_inside = 0xf0c674, .partial_outside = 0x8a6d2c,
     .span = 0x4fb3bf, .row = 0x39404e,
     .extra = 0xff4fd8, .missing = 0x00e5ff, .exhibit = 0xe0565b, .on_exhibit = 0xffffff,
+    .wrong_colour = 0xb5f23d,
     .mark = 0xffffff, .probe = 0xff5080, .upper = 0x9e73ff, .lower = 0xff9933,
     .brighter = 0xffff8c, .deeper = 0x8cffbf,
 };
+
+/* For paper: dark ink on white, every cell light enough for black numbers
+ * and dark enough to stand apart from the white page, the data colours
+ * (the scene's own colours, barycentrics, depth) as they are. */
+const struct palette palette_light = {
+    .bg = 0xffffff, .canvas = 0xffffff, .panel = 0xf4f4f2, .rule = 0xc4c8d0,
+    .text = 0x111318, .dim = 0x50586a, .accent = 0xd9480f, .hilite = 0xffe3a3,
+    .track = 0xd8dce4,
+    .grid = 0xc8ccd4, .centre = 0x6a7282, .border = 0x111318,
+    .shadow = 0xffffff,
+    .box = 0x1f6f8b, .pin = 0x00838f, .handle_rim = 0xffffff,
+    .edge = { 0xd9730d, 0x0277bd, 0x8e44ad },
+    .vertex = { 0xd32f2f, 0x2e8b3a, 0x2f5fd0 },
+    .covered = 0x9fd89f, .outside = 0xeab0b7, .untested = 0xe4e7ee,
+    .earlier1 = 0xd3d8e2, .earlier2 = 0xa9b1c2, .empty_px = 0xffffff,
+    .pos = 0x3f8fd2, .neg = 0xd0505a, .zero = 0xf2c200,
+    .fail_one = 0xe9a3a2, .fail_two = 0xc86a74,
+    .block_empty = 0xe9c0c4, .block_full = 0x96d2a6, .block_partial = 0xf2c75c,
+    .partial_inside = 0xf8dd93, .partial_outside = 0xd0ab52,
+    .span = 0x86cdd6, .row = 0xe3e7ee,
+    .extra = 0xe020b8, .missing = 0x00a8c6, .exhibit = 0xc0303a, .on_exhibit = 0xffffff,
+    .mark = 0x111318, .probe = 0xd6246e, .upper = 0x7a4fe0, .lower = 0xe07000,
+    .brighter = 0x8a6d00, .deeper = 0x0f8a5f,
+    .paper = true,
+};
+
+const struct palette *palette_of(enum theme t)
+{
+    return t == THEME_LIGHT ? &palette_light : &palette_dark;
+}
 
 uint32_t mix(uint32_t a, uint32_t b, double t)
 {

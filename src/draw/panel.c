@@ -60,6 +60,9 @@ static double legend(struct painter *p, double x, double y, double w)
     if (ex->lesson->variants[ex->variant].exhibit) {
         y += swatch(p, x, y, w, p->pal->extra, "extra: more than the exact rule") + s;
         y += swatch(p, x, y, w, p->pal->missing, "missing: a crack") + s;
+        if (ex->wrong_colour)
+            y += swatch(p, x, y, w, p->pal->wrong_colour, "wrong colour or depth: not within "
+                        "2 levels, 0.1%") + s;
     }
     y += swatch(p, x, y, w, p->pal->accent, "the current step") + s;
     return y - y0;
@@ -209,7 +212,13 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     int done = explorer_finished(ex);
     char buf[1024];
     size_t at = 0, n = sizeof buf;
-    at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    if (done == 0) {
+        /* nothing finished yet: compare the whole scene rather than show zeros */
+        done = ex->replay.ntris;
+        at = cat(buf, n, at, "whole scene, %d triangle%s:\n", done, done == 1 ? "" : "s");
+    } else {
+        at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
+    }
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
@@ -253,11 +262,13 @@ static double counters(struct painter *p, double x, double y, double w)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
     if (ex->lesson->variants[ex->variant].exhibit) {
         char e[256];
-        snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
-                 ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
-                 (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        int at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
+                          ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
+                          (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)
+            snprintf(e + at, sizeof e - (size_t)at, "\nwrong colour %llu", (unsigned long long)ex->wrong_colour);
         h += 4 * p->s;
-        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing ? p->pal->extra : p->pal->covered, false);
+        h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing + ex->wrong_colour ? p->pal->extra : p->pal->covered, false);
     }
     return h;
 }
@@ -278,18 +289,19 @@ void paint_panel(struct painter *p)
     cairo_rectangle(cr, L->px, 0, L->pw, L->h);
     cairo_clip(cr);
     double x = L->px + 16 * s, w = L->pw - 32 * s, y = 12 * s;
-    double footer = L->h - 24 * s;
     y += draw_text(p, x, y, w, ex->lesson->id, 15, p->pal->accent, false);
     y += draw_text(p, x, y, w, ex->lesson->title, 11.5, p->pal->dim, false) + 6 * s;
 
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
     char buf[512];
     if (v->exhibit) {
-        double bw = text_width(p, "EXHIBIT", 11) + 10 * s;
+        /* the exercise (make exercise) is shown against the exact rule like an exhibit */
+        const char *badge = strcmp(v->name, "exercise") == 0 ? "YOUR CODE" : "EXHIBIT";
+        double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
         cairo_fill(cr);
-        draw_text(p, x + 5 * s, y + 2 * s, 0, "EXHIBIT", 11, p->pal->on_exhibit, false);
+        draw_text(p, x + 5 * s, y + 2 * s, 0, badge, 11, p->pal->on_exhibit, false);
         snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
         y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
     } else {
@@ -330,10 +342,13 @@ void paint_panel(struct painter *p)
     }
     y += heading(p, x, y, w, "SO FAR");
     y += counters(p, x, y, w) + 8 * s;
-    (void)y;
-    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
-    draw_text(p, x, footer, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11, p->pal->dim, false);
-    pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    /* the key hints at the bottom, unless the panel's text reaches down there */
+    if (y <= L->h - 24 * s) {
+        pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
+        draw_text(p, x, L->h - 24 * s, w, "H help  V view  \u2190\u2192 step  E export  Q quit", 11,
+                  p->pal->dim, false);
+        pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
+    }
     cairo_restore(cr);
 }
 
@@ -357,7 +372,8 @@ void paint_help(struct painter *p)
         "+ / -                play faster / slower\n"
         "V / Shift+V          next / previous view\n"
         "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
-        "N                    numbers in cells: auto, always, off\n");
+        "N                    numbers in cells: auto, always, off\n"
+        "S                    save the scene as it is now to a new file\n");
     bool exhibits = false, twins = false;
     for (int i = 1; i < ex->lesson->nvariants; i++)
         exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;
@@ -373,6 +389,8 @@ void paint_help(struct painter *p)
         at = cat(keys, n, at, "P                    affine / perspective-correct\n");
     at = cat(keys, n, at,
         "E                    export the view (PNG and SVG)\n"
+        "L                    light theme (for paper) / dark\n"
+        "C                    the pixel grid alone / with panel and bar\n"
         "F                    fit the scene to the window\n"
         "H / F1               this help\n"
         "Q / Esc              quit\n"

@@ -152,9 +152,41 @@ static bool advance_exact(struct explorer *ex, int upto)
 
 /* An exhibit: compare the coverage counts of the finished triangles with
  * what variants[0] gives for the same triangles. */
+struct exact_mask {
+    uint8_t *m;
+    int w;
+};
+
+static void mark_exact(void *ctx, int x, int y)
+{
+    struct exact_mask *e = ctx;
+    e->m[(size_t)y * (size_t)e->w + (size_t)x] = 1;
+}
+
+/* The triangle being drawn: a pixel it has written more often than the
+ * exact rule covers it is extra already, whatever comes after (writes only
+ * add), so it is marked at the step that writes it. */
+static bool extra_so_far(struct explorer *ex)
+{
+    size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
+    uint8_t *exact = calloc(n, 1);
+    if (!exact)
+        return false;
+    reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
+    for (size_t i = 0; i < n; i++) {
+        int now = ex->fb.count[i] - ex->replay.base.count[i];
+        if (now > exact[i] && ex->diff[i] == 0) {     /* an earlier verdict stands */
+            ex->diff[i] = EXHIBIT_EXTRA;
+            ex->extra++;
+        }
+    }
+    free(exact);
+    return true;
+}
+
 static bool compare_exhibit(struct explorer *ex)
 {
-    ex->extra = ex->missing = 0;
+    ex->extra = ex->missing = ex->wrong_colour = 0;
     ex->diff_done = 0;
     if (!ex->lesson->variants[ex->variant].exhibit)
         return true;
@@ -163,17 +195,22 @@ static bool compare_exhibit(struct explorer *ex)
         return false;
     int done = explorer_finished(ex);
     /* the picture of exactly the finished triangles */
-    const uint8_t *count = ex->cur >= 0 && done > ex->cur ? ex->fb.count : ex->replay.base.count;
+    const struct target *have_fb = ex->cur >= 0 && done > ex->cur ? &ex->fb : &ex->replay.base;
+    const uint8_t *count = have_fb->count;
     if (!advance_exact(ex, done))
         return false;
     ex->diff_done = done;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
-        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING : 0;
+        bool colour = have == want && want > 0
+            && !pixel_close(ex->exact.color[i], ex->exact.depth[i], have_fb->color[i], have_fb->depth[i]);
+        ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING
+                    : colour ? EXHIBIT_COLOUR : 0;
         ex->extra += have > want;
         ex->missing += have < want;
+        ex->wrong_colour += colour;
     }
-    return true;
+    return ex->cur >= 0 && done == ex->cur ? extra_so_far(ex) : true;
 }
 
 bool explorer_set_step(struct explorer *ex, uint64_t step)
@@ -481,6 +518,8 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     ex->edge = -1;
     ex->zoom = d->zoom;
     ex->scale = d->scale > 0 ? d->scale : 1;
+    ex->theme = d->theme;
+    ex->part = d->part;
     ex->speed = 8;              /* 16 events per second */
     ex->marks_tri = -1;
     ex->exact_upto = -1;
@@ -536,14 +575,53 @@ void explorer_free(struct explorer *ex)
 
 /* --- layout ---------------------------------------------------------------------- */
 
+static const char *const theme_names[THEME_COUNT] = { "dark", "light" };
+static const char *const part_names[PART_COUNT] = { "all", "canvas" };
+
+/* The index of `name` in names[0..n), or -1. */
+static int name_index(const char *const *names, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *theme_name(enum theme t)
+{
+    return t >= 0 && t < THEME_COUNT ? theme_names[t] : "?";
+}
+
+bool theme_from_name(const char *name, enum theme *out)
+{
+    int i = name_index(theme_names, THEME_COUNT, name);
+    if (i >= 0)
+        *out = (enum theme)i;
+    return i >= 0;
+}
+
+const char *figure_part_name(enum figure_part f)
+{
+    return f >= 0 && f < PART_COUNT ? part_names[f] : "?";
+}
+
+bool figure_part_from_name(const char *name, enum figure_part *out)
+{
+    int i = name_index(part_names, PART_COUNT, name);
+    if (i >= 0)
+        *out = (enum figure_part)i;
+    return i >= 0;
+}
+
 void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L)
 {
     double s = ex->scale;
     L->s = s;
     L->w = w, L->h = h;
-    L->pw = fmin(430 * s, w * 0.45);
+    bool canvas_only = ex->part == PART_CANVAS;   /* the grid alone fills the frame */
+    L->pw = canvas_only ? 0 : fmin(430 * s, w * 0.45);
     L->px = w - L->pw;
-    L->bar_h = 46 * s;
+    L->bar_h = canvas_only ? 0 : 46 * s;
     L->cx = 0, L->cy = 0;
     L->cw = L->px, L->ch = h - L->bar_h;
     L->bar_y = L->ch;

@@ -29,6 +29,19 @@ enum step_unit {
 
 enum numbers_mode { NUMBERS_AUTO, NUMBERS_ALWAYS, NUMBERS_OFF, NUMBERS_MODE_COUNT };
 
+/* Figures for print (CONVENTIONS.md): the colours, and how much of the view.
+ * THEME_DARK is the screen's; THEME_LIGHT draws for paper (dark ink on
+ * white). PART_CANVAS is the pixel grid alone, without the panel and the
+ * scrub bar. */
+enum theme { THEME_DARK, THEME_LIGHT, THEME_COUNT };
+enum figure_part { PART_ALL, PART_CANVAS, PART_COUNT };
+
+/* "dark", "light" / "all", "canvas"; the parsers return false on anything else. */
+const char *theme_name(enum theme t);
+bool theme_from_name(const char *name, enum theme *out);
+const char *figure_part_name(enum figure_part f);
+bool figure_part_from_name(const char *name, enum figure_part *out);
+
 /* What the current triangle's narration said about one pixel so far. */
 enum cell_flags {
     CELL_TESTED = 1,        /* a pixel test reached it */
@@ -80,6 +93,8 @@ struct explorer_desc {
     bool step_end;
     double zoom;                    /* 0: fit the scene into the canvas */
     double scale;                   /* 0: 1 */
+    enum theme theme;               /* THEME_DARK unless for paper */
+    enum figure_part part;          /* PART_ALL: panel and scrub bar too */
 };
 
 struct explorer {
@@ -113,12 +128,12 @@ struct explorer {
     size_t nmarks, marks_cap;
     struct target scratch;
 
-    /* an exhibit shown against variants[0]: per pixel 0, EXHIBIT_EXTRA or EXHIBIT_MISSING */
+    /* an exhibit shown against variants[0]: per pixel 0 or EXHIBIT_* */
     struct target exact;
     int exact_upto;
     uint8_t *diff;
     int diff_done;                  /* triangles compared (finished at this step) */
-    uint64_t extra, missing;
+    uint64_t extra, missing, wrong_colour;
 
     /* earlier lessons on the same scene (lesson->compare), for the counters */
     int ncompare;
@@ -132,6 +147,8 @@ struct explorer {
     double zoom;                    /* 0: fit */
     double centre_x, centre_y;      /* scene point at the canvas centre (zoom != 0) */
     double scale;
+    enum theme theme;
+    enum figure_part part;          /* PART_CANVAS: the grid fills the frame, no panel, no bar */
     bool pinned;
     int pin_x, pin_y;
     bool help;
@@ -141,7 +158,10 @@ struct explorer {
     char message[512];
 };
 
-enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2 };
+/* The diff against the exact rule, per pixel of the finished triangles:
+ * covered more often, less often, or as often but in a colour or at a depth
+ * not pixel_close() to the exact one. */
+enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2, EXHIBIT_COLOUR = 3 };
 
 /* Start from a description. On failure (out of memory) nothing is left
  * allocated and err says what could not be done. */

@@ -53,8 +53,10 @@ enum { EDGE_AB, EDGE_BC, EDGE_CA };
  *
  *     F(P) = I * Px + J * Py + K,   I = Ay - By,  J = Bx - Ax,  K = Ax By - Ay Bx
  *
- * is the perp-dot product |AB x AP| of seed 001, formula (3), in 1/256 units
- * (one unit of F is 1/65536 of a square pixel; F01 + F02 + F03 = 2 * area). */
+ * is the perp-dot product AB x AP of seed 001, formula (3), in 1/256 units: a
+ * signed number (the seed writes it |AB x AP|, but those are not absolute
+ * values: its sign says on which side of AB the point P lies). One unit of F
+ * is 1/65536 of a square pixel; F01 + F02 + F03 = 2 * area. */
 struct tri_setup {
     struct vertex v[3];      /* A, B, C after normalisation (B and C swapped if needed) */
     int32_t x[3], y[3];      /* snapped positions, 1/256 pixel */
@@ -197,6 +199,27 @@ static inline void target_write(struct target *fb, int x, int y, float z, uint32
         fb->depth[i] = z;
         fb->color[i] = rgba;
     }
+}
+
+/* Is a written pixel (colour, depth) close enough to the exact one? What
+ * make check and the explorer's diff hold a student's code (or an exhibit)
+ * to: colour within PIXEL_COLOUR_LEVELS of 255 per channel (the lessons
+ * interpolate in float or double and round to 8 bits: a right formula lands
+ * within one level, a wrong one misses by far more), depth within
+ * PIXEL_DEPTH_RELATIVE of z (lesson 04's float lanes keep 1/z to about 1e-5
+ * over a row; affine z on a receding triangle is off by tens of percent). */
+#define PIXEL_COLOUR_LEVELS 2
+#define PIXEL_DEPTH_RELATIVE 1e-3
+
+static inline bool pixel_close(uint32_t want_rgba, float want_z, uint32_t got_rgba, float got_z)
+{
+    for (int shift = 0; shift < 24; shift += 8) {
+        int d = (int)((want_rgba >> shift) & 255) - (int)((got_rgba >> shift) & 255);
+        if (d > PIXEL_COLOUR_LEVELS || d < -PIXEL_COLOUR_LEVELS)
+            return false;
+    }
+    float dz = got_z - want_z;
+    return dz == 0 || (dz <= PIXEL_DEPTH_RELATIVE * want_z && -dz <= PIXEL_DEPTH_RELATIVE * want_z);
 }
 
 /* --- the reference ---------------------------------------------------------- */

@@ -11,7 +11,10 @@
  * every pixel equals the exact reference's, and llvmpipe's (0 differing
  * pixels, or the exit status is 1).
  *
- * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png.
+ * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png, and
+ * the same table as markdown (BUILD/bench.md, or --markdown FILE): `make
+ * bench` writes it to BENCH.md, the one place the course's texts take a
+ * speed from (tests/test_texts.c holds them to it).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -54,6 +57,7 @@ struct options {
     int runs;
     uint64_t seed;
     const char *out;            /* directory for bench.csv/svg/png */
+    const char *markdown;       /* the markdown table, NULL: OUT/bench.md */
     const char *only;           /* run only lessons whose id starts with this */
     const char *figures_cmd;    /* command that runs `make figures`, timed */
 };
@@ -310,9 +314,31 @@ static void print_diff(char *buf, size_t len, int64_t d)
         snprintf(buf, len, "%lld", (long long)d);
 }
 
-static void print_table(const struct bench_scene *sc, double limit)
+/* The measured cells of one row of the table on scene i, formatted once for
+ * the terminal and the markdown table alike. */
+struct cells {
+    char median[24], spread[16], mtri[16], mpix[16], ratio[16], mem[16], dref[24], dpeer[24];
+};
+
+static void row_cells(const struct bench_scene *sc, int i, const struct row *r, double limit,
+                      struct cells *c)
 {
     const struct row *base = find_row("02-", NULL);
+    const struct bench_timing *t = &r->t[i];
+    snprintf(c->median, sizeof c->median, "%.2f", t->median * 1e3);
+    snprintf(c->spread, sizeof c->spread, "%.1f%%", 100 * (t->hi - t->lo) / t->median);
+    snprintf(c->mtri, sizeof c->mtri, "%.3g", mtri(&sc[i], t));
+    snprintf(c->mpix, sizeof c->mpix, "%.1f", mpix(&sc[i], t));
+    snprintf(c->ratio, sizeof c->ratio, "-");
+    if (base)
+        snprintf(c->ratio, sizeof c->ratio, "%.2f", base->t[i].median / t->median);
+    snprintf(c->mem, sizeof c->mem, "%.1f%%", limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0);
+    print_diff(c->dref, sizeof c->dref, t->diff_ref);
+    print_diff(c->dpeer, sizeof c->dpeer, t->diff_peer);
+}
+
+static void print_table(const struct bench_scene *sc, double limit)
+{
     for (int i = 0; i < NSCENES; i++) {
         const struct scene *s = &sc[i].s;
         printf("\nscene %s: %d x %d, %d triangles, %llu covered pixels (%.1f x the screen); %s\n",
@@ -322,16 +348,11 @@ static void print_table(const struct bench_scene *sc, double limit)
                "median ms", "spread", "Mtri/s", "Mpix/s", "x L02", "% mem", "diff ref", "diff llvm");
         for (int k = 0; k < nrows; k++) {
             const struct row *r = &rows[k];
-            const struct bench_timing *t = &r->t[i];
-            char ratio[16] = "-", dref[24], dpeer[24];
-            if (base)
-                snprintf(ratio, sizeof ratio, "%.2f", base->t[i].median / t->median);
-            print_diff(dref, sizeof dref, t->diff_ref);
-            print_diff(dpeer, sizeof dpeer, t->diff_peer);
-            printf("  %-26s %-15s %10.2f %6.1f%% %9.3g %9.1f %7s %5.1f%% %9s %9s%s\n", r->program,
-                   r->variant, t->median * 1e3, 100 * (t->hi - t->lo) / t->median, mtri(&sc[i], t),
-                   mpix(&sc[i], t), ratio, limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, dref,
-                   dpeer, r->exhibit ? "  (exhibit)" : "");
+            struct cells c;
+            row_cells(sc, i, r, limit, &c);
+            printf("  %-26s %-15s %10s %7s %9s %9s %7s %6s %9s %9s%s\n", r->program, r->variant,
+                   c.median, c.spread, c.mtri, c.mpix, c.ratio, c.mem, c.dref, c.dpeer,
+                   r->exhibit ? "  (exhibit)" : "");
         }
     }
     printf("\n(spread = (slowest - fastest) / median; Mpix/s counts covered pixels, overdraw "
@@ -387,6 +408,85 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
             fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1\n", b->ntris,
                     b->program, m[k].what, m[k].v);
     }
+    bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
+    if (!ok)
+        remove(tmp);
+    return ok;
+}
+
+/* The table as markdown: machine, date, one table per scene (medians,
+ * spread), the memory limit, the explorer's frame. Written to a temporary
+ * file and renamed, so a failed run leaves the old one. */
+static bool write_markdown(const char *path, const struct bench_scene *sc, double limit,
+                           const char *cpu, const char *date, const char *system,
+                           const struct options *o)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return false;
+    fprintf(f, "# tristep bench%s\n\n", o->quick ? " (quick mode: tiny scenes, not a measurement)" : "");
+    fprintf(f, "<!-- written by `make bench` (tests/bench/bench.c); do not edit by hand: "
+               "run `make bench` again -->\n\n");
+    fprintf(f, "- machine: %s, %ld cores online, %s\n", cpu, sysconf(_SC_NPROCESSORS_ONLN),
+            system);
+    fprintf(f, "- date: %s\n", date);
+    fprintf(f, "- work: every lesson's fast build (narration compiled out), `tri_setup` and "
+               "rasterize of every triangle into an RGBA8 target (sizes below) with a float "
+               "depth buffer (test LESS, write), Gouraud colour; one thread unless said\n");
+    fprintf(f, "- timing: median of %d runs after one warm-up (seed %llu); spread = "
+               "(slowest - fastest) / median; on a shared machine, differences smaller than "
+               "the spread are noise\n", o->runs, (unsigned long long)o->seed);
+    fprintf(f, "- peer: %s\n", find_row("llvmpipe", NULL) ? peer_renderer : "llvmpipe not measured");
+    for (int i = 0; i < NSCENES; i++) {
+        const struct scene *s = &sc[i].s;
+        fprintf(f, "\n## %s: %d x %d, %d triangles, %llu covered pixels (%.1f x the screen)\n\n",
+                sc[i].name, s->w, s->h, s->ntris, (unsigned long long)sc[i].pixels,
+                (double)sc[i].pixels / ((double)s->w * s->h));
+        fprintf(f, "%s\n\n", sc[i].what);
+        fprintf(f, "| program | variant | median ms | spread | Mtri/s | Mpix/s | x L02 | %% mem "
+                   "| diff ref | diff llvmpipe |\n");
+        fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        for (int k = 0; k < nrows; k++) {
+            const struct row *r = &rows[k];
+            struct cells c;
+            row_cells(sc, i, r, limit, &c);
+            fprintf(f, "| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r->program,
+                    r->variant, r->exhibit ? " (exhibit)" : "", c.median, c.spread, c.mtri, c.mpix,
+                    c.ratio, c.mem, c.dref, c.dpeer);
+        }
+    }
+    fprintf(f, "\n## Limits and the explorer\n\n");
+    fprintf(f, "- memory limit (one read-modify-write pass over colour + depth, one core): "
+               "%.1f Mpix/s; the %% mem column is a share of it\n", limit);
+    if (frame_ms > 0)
+        fprintf(f, "- explorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n",
+                frame_ms);
+    if (figures_s > 0)
+        fprintf(f, "- `make figures`: %.1f s\n", figures_s);
+    if (nbig > 0) {
+        fprintf(f, "\n## A scene of %d triangles in the explorer\n\n", big[0].ntris);
+        fprintf(f, "| program | load | first frame | (CPU) | all steps counted | steps | jump, median "
+                   "| jump, worst | End | back, worst | worst step (CPU) | peak RSS |\n"
+                   "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        for (int i = 0; i < nbig; i++) {
+            const struct big_result *b = &big[i];
+            if (b->ok)
+                fprintf(f, "| %s | %.2f s | %.2f s | %.2f s | %.1f s | %llu | %.0f ms | %.0f ms "
+                           "| %.0f ms | %.0f ms | %.0f ms | %.0f MiB |\n", b->program, b->load_s,
+                        b->first_frame_s, b->first_frame_cpu_s, b->counted_s,
+                        (unsigned long long)b->steps, 1e3 * b->step_median_s,
+                        1e3 * b->step_worst_s, 1e3 * b->end_s, 1e3 * b->back_worst_s,
+                        1e3 * b->step_worst_cpu_s, b->peak_rss_mib);
+        }
+        fprintf(f, "\nFirst frame: reading the scene, opening the explorer, one paint; the "
+                   "window counts the steps after it, between events. Wall-clock times, with "
+                   "CPU times beside them where a shared machine stretches the wall clock.\n");
+    }
+    fprintf(f, "\nMpix/s counts covered pixels, overdraw included; x L02 is the speed-up over "
+               "lesson 02 (a median's ratio); diff = pixels whose coverage count differs from "
+               "the exact reference and from llvmpipe (- when not measured).\n");
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -498,13 +598,15 @@ static void print_targets(const struct bench_scene *sc, double limit)
 static int usage(FILE *f, int status)
 {
     fprintf(f,
-        "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--lesson NN]\n"
+        "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--markdown F]\n"
+        "                     [--lesson NN]\n"
         "                     [--exhibits] [--no-llvmpipe] [--no-large-scene] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
         "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
         "  --quick        tiny scenes, 3 runs (what `make test` runs)\n"
         "  --runs N       timed runs after one warm-up (default 7, at least 5)\n"
         "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
+        "  --markdown F   write the table as markdown to F (default DIR/bench.md)\n"
         "  --lesson NN    only lessons whose id starts with NN\n"
         "  --exhibits     also run the exhibits (their coverage is expected to differ)\n"
         "  --figures-cmd  the command that runs `make figures`, timed\n"
@@ -543,6 +645,8 @@ static bool parse(struct options *o, int argc, char **argv)
             i++;
         } else if (val && strcmp(a, "--out") == 0) {
             o->out = argv[++i];
+        } else if (val && strcmp(a, "--markdown") == 0) {
+            o->markdown = argv[++i];
         } else if (val && strcmp(a, "--lesson") == 0) {
             o->only = argv[++i];
         } else if (val && strcmp(a, "--figures-cmd") == 0) {
@@ -709,9 +813,20 @@ int main(int argc, char **argv)
     bool ok = write_csv(path, sc, limit, cpu, date);
     if (!ok)
         fprintf(stderr, "tristep-bench: cannot write %s: %s\n", path, strerror(errno));
+    char md[1024], sys[160];
+    snprintf(sys, sizeof sys, "%s %s", un.sysname, un.release);
+    if (o.markdown)
+        snprintf(md, sizeof md, "%s", o.markdown);
+    else
+        snprintf(md, sizeof md, "%s/bench.md", o.out);
+    if (!write_markdown(md, sc, limit, cpu, date, sys, &o)) {
+        fprintf(stderr, "tristep-bench: cannot write %s: %s\n", md, strerror(errno));
+        ok = false;
+    }
     snprintf(title, sizeof title, "tristep bench, %s, %s%s", cpu, date, o.quick ? " (quick)" : "");
     ok = write_chart(o.out, sc, limit, title) && ok;
-    printf("wrote %s/bench.csv, bench.svg, bench.png; %.0f s in all\n", o.out, now() - start);
+    printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
+           now() - start);
 
     for (int i = 0; i < NSCENES; i++)
         free(peer_cov[i]);

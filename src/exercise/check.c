@@ -1,0 +1,398 @@
+/* check.c - make check: the lesson's checks on the student's code, simplest
+ * first; at the first failure, a smallest counterexample and the command
+ * that opens it in the explorer at the first wrong pixel.
+ *
+ * Every check draws scenes twice, with the exact rule (src/raster's
+ * reference coverage and reference_shade) and with the code given to
+ * exercise_use, one triangle at a time, and compares after each triangle:
+ *
+ *   coverage   how many times each pixel was written (target.count): a
+ *              pixel written twice by one triangle is as wrong as one
+ *              written by a triangle that does not cover it;
+ *   colour     colour and depth pixel_close() to the exact ones (raster.h),
+ *              on every pixel the exact rule covers;
+ *   property   what the lesson is about: no multiplication between two
+ *              pixels of a row (lesson 03), every block narrated full
+ *              really full and every full block found (lesson 05).
+ *
+ * A write outside the target fails any check. */
+#define _DEFAULT_SOURCE           /* fork, MAP_ANONYMOUS, strsignal */
+
+#include "checker.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "exercise/scenes.h"
+
+struct guard *check_guard;
+
+
+struct check {
+    const char *name;
+    enum check_kind kind;
+    scene_gen gen;
+};
+
+static void progress(const struct check_options *o, int n, int i, const char *name, int done, int total)
+{
+    if (!o->progress)
+        return;
+    fprintf(o->out, "\r  %d/%d %-31s %3d%%", i + 1, n, name, total ? 100 * done / total : 0);
+    fflush(o->out);
+}
+
+/* A failing scene: shrink it, write it, say everything. */
+static bool report_failure(struct checker *C, const char *name, struct scene *s, const char *what,
+                           struct check_result *r)
+{
+    const struct check_options *o = C->o;
+    FILE *out = o->out;
+    struct verdict v;
+    evaluate(C, s, &v);
+    fprintf(out, "FAILED\n      on %s\n", what);
+    say_verdict(C, out, &v, s);
+
+    shrink(C, s);
+    evaluate(C, s, &v);
+    r->x = v.x, r->y = v.y;
+    r->ntris = s->ntris;
+    struct trail f;
+    r->step = step_of(C, s, &v, &f);
+    snprintf(r->failed, sizeof r->failed, "%s", name);
+
+    char slug[64];
+    size_t k = 0;
+    for (const char *p = name; *p && k + 1 < sizeof slug; p++)
+        slug[k++] = (*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') ? *p : '-';
+    while (k > 0 && slug[k - 1] == '-')
+        k--;
+    slug[k] = '\0';
+    for (char *p = slug; (p = strstr(p, "--"));)
+        memmove(p, p + 1, strlen(p));
+    char nn[3] = { C->l->id[0], C->l->id[1], '\0' };
+    if (!make_dirs(o->out_dir)) {
+        fprintf(out, "  cannot create %s: %s\n", o->out_dir, strerror(errno));
+        return false;
+    }
+    snprintf(r->counterexample, sizeof r->counterexample, "%s/%s-%s.scene", o->out_dir, nn, slug);
+    char err[600];
+    if (!write_counterexample(r->counterexample, s, name, C->l, o->file, &v, err, sizeof err)) {
+        fprintf(out, "  %s\n", err);
+        r->counterexample[0] = '\0';
+        return false;
+    }
+    fprintf(out, "\n  smallest counterexample: %d triangle%s, written to %s\n", s->ntris,
+            s->ntris == 1 ? "" : "s", r->counterexample);
+    say_verdict(C, out, &v, s);
+    explain(C, out, &v, s, &f);
+    fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s SCENE=%s STEP=%llu\n",
+            (unsigned long long)r->step, o->open_cmd, r->counterexample, (unsigned long long)r->step);
+    return true;
+}
+
+/* Run one check over all of its scenes. */
+static bool run_check(struct checker *C, int i, int n, const struct check *ck, struct check_result *r)
+{
+    FILE *out = C->o->out;
+    fprintf(out, "  %d/%d %-31s ", i + 1, n, ck->name);
+    fflush(out);
+    C->kind = ck->kind;
+    uint64_t tris0 = C->triangles;
+    int total = 0;
+    char what[200];
+    struct scene s;
+    while (ck->gen(total, &s, what, sizeof what)) {
+        scene_free(&s);
+        total++;
+    }
+    for (int k = 0; k < total; k++) {
+        if (k % 64 == 0)
+            progress(C->o, n, i, ck->name, k, total);
+        ck->gen(k, &s, what, sizeof what);
+        if (check_guard) {
+            check_guard->check = i;
+            check_guard->scene = k;
+            alarm(SCENE_SECONDS);
+        }
+        struct verdict v;
+        bool passed = evaluate(C, &s, &v);
+        if (check_guard)
+            alarm(0);
+        if (!passed) {
+            if (C->o->progress)
+                fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
+            report_failure(C, ck->name, &s, what, r);
+            scene_free(&s);
+            return false;
+        }
+        scene_free(&s);
+    }
+    if (C->o->progress)
+        fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
+    fprintf(out, "ok (%d scene%s, %llu triangles)\n", total, total == 1 ? "" : "s",
+            (unsigned long long)(C->triangles - tris0));
+    return true;
+}
+
+/* The student's own scenes (SCENE=), every comparison at once. */
+static const char *const *user_scenes;
+static struct scene *user_loaded;
+static int user_count;
+
+static bool gen_user(int i, struct scene *s, char *what, size_t n)
+{
+    if (i >= user_count)
+        return false;
+    scene_copy(s, &user_loaded[i]);
+    snprintf(what, n, "your scene %s", user_scenes[i]);
+    return true;
+}
+
+/* The checks of lesson l, in order; false when a SCENE= file does not load. */
+struct plan {
+    struct check checks[8];
+    int n;
+};
+
+static void plan_free(void)
+{
+    for (int i = 0; i < user_count; i++)
+        scene_free(&user_loaded[i]);
+    free(user_loaded);
+    user_loaded = NULL;
+    user_count = 0;
+}
+
+static bool plan_checks(const struct lesson *l, const struct check_options *o, struct plan *P)
+{
+    P->n = 0;
+    user_scenes = o->scenes;
+    user_count = 0;
+    int wanted = 0;
+    while (o->scenes && o->scenes[wanted])
+        wanted++;
+    user_loaded = calloc((size_t)wanted + 1, sizeof *user_loaded);
+    if (!user_loaded)
+        return false;
+    for (; user_count < wanted; user_count++) {
+        char err[512];
+        if (!scene_load(&user_loaded[user_count], o->scenes[user_count], err, sizeof err)) {
+            fprintf(o->out, "%s\n", err);
+            plan_free();
+            return false;
+        }
+    }
+    struct check *c = P->checks;
+    if (user_count)
+        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user };
+    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single };
+    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties };
+    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes };
+    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random };
+    c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
+                                CK_COLOUR, gen_colour };
+    if (l->exercise.no_pixel_mul)
+        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property };
+    if (l->exercise.full_blocks)
+        c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property };
+    return true;
+}
+
+static struct raster_params check_params(const struct check_options *o)
+{
+    struct raster_params p = o->params;
+    if (p.subpixel_bits == 0 && p.block_size == 0 && !p.affine)
+        p.subpixel_bits = SUBPIXEL_BITS;
+    return p;
+}
+
+bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r)
+{
+    memset(r, 0, sizeof *r);
+    FILE *out = o->out;
+    struct checker C = { .l = l, .o = o, .p = check_params(o) };
+    struct plan P;
+    if (!plan_checks(l, o, &P))
+        return false;
+    int n = P.n;
+    fprintf(out, "make check, lesson %s: %s\n", l->id, o->file);
+    clock_t t0 = clock();
+    r->nchecks = n;
+    bool ok = true;
+    for (int i = 0; i < n && ok; i++) {
+        ok = run_check(&C, i, n, &P.checks[i], r);
+        r->passed += ok;
+    }
+    if (ok)
+        fprintf(out, "all %d checks pass: %llu scenes, %llu triangles, every pixel as the exact rule "
+                "decides it (%.1f s)\n", n, (unsigned long long)C.evaluations,
+                (unsigned long long)C.triangles, (double)(clock() - t0) / CLOCKS_PER_SEC);
+    else
+        fprintf(out, "\n%d of %d checks passed; fix the first failure and run make check again\n",
+                r->passed, n);
+    plan_free();
+    target_free(&C.want);
+    target_free(&C.got);
+    free(C.mask);
+    return ok;
+}
+
+/* --- a crash or an endless loop ------------------------------------------------ */
+
+/* Does drawing s crash? In a process of its own. */
+static bool crashes(struct checker *C, const struct scene *s)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return false;
+    if (pid == 0) {
+        /* quietly: the first crash has been reported (a sanitizer's handler
+         * would report every candidate again) */
+        signal(SIGSEGV, SIG_DFL);
+        signal(SIGBUS, SIG_DFL);
+        signal(SIGFPE, SIG_DFL);
+        signal(SIGILL, SIG_DFL);
+        alarm(2);
+        struct verdict v;
+        evaluate(C, s, &v);
+        _exit(0);
+    }
+    int status;
+    if (waitpid(pid, &status, 0) != pid)
+        return false;
+    return !(WIFEXITED(status) && WEXITSTATUS(status) == 0) && !(WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM);
+}
+
+static void report_crash(const struct lesson *l, const struct check_options *o, const struct guard *g,
+                         int status, struct check_result *r)
+{
+    FILE *out = o->out;
+    struct plan P;
+    memset(r, 0, sizeof *r);
+    if (!plan_checks(l, o, &P))
+        return;
+    r->nchecks = P.n;
+    r->passed = g->check;
+    bool endless = WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM;
+    const struct check *ck = &P.checks[g->check < P.n ? g->check : P.n - 1];
+    snprintf(r->failed, sizeof r->failed, "%s", ck->name);
+    struct scene s;
+    char what[200];
+    if (!ck->gen(g->scene, &s, what, sizeof what)) {
+        plan_free();
+        return;
+    }
+    if (endless)
+        fprintf(out, "DID NOT FINISH\n      your code drew triangle %d of %s for %d s: an endless loop?\n",
+                g->tri + 1, what, SCENE_SECONDS);
+    else if (WIFSIGNALED(status))
+        fprintf(out, "CRASHED\n      your code crashed (%s) drawing triangle %d of %s\n",
+                strsignal(WTERMSIG(status)), g->tri + 1, what);
+    else
+        fprintf(out, "CRASHED\n      your code stopped the check (exit status %d) drawing triangle %d of %s\n",
+                WEXITSTATUS(status), g->tri + 1, what);
+
+    struct checker C = { .l = l, .o = o, .p = check_params(o), .kind = ck->kind };
+    if (!endless) {
+        /* fewest triangles, then each coordinate rounded, while it still crashes */
+        int budget = CRASH_BUDGET;
+        for (int i = s.ntris - 1; i >= 0 && s.ntris > 1 && budget > 0; i--, budget--) {
+            struct scene c;
+            if (!scene_copy(&c, &s))
+                break;
+            memmove(&c.tris[i], &c.tris[i + 1], sizeof c.tris[0] * (size_t)(c.ntris - i - 1));
+            c.ntris--;
+            if (crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
+        for (int k = 0; k < 6 * s.ntris && budget > 0; k++, budget--) {
+            struct scene c;
+            if (!scene_copy(&c, &s))
+                break;
+            *scene_coord(&c, k) = round(*scene_coord(&c, k));
+            if (*scene_coord(&c, k) != *scene_coord(&s, k) && crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
+    }
+    if (make_dirs(o->out_dir)) {
+        char nn[3] = { l->id[0], l->id[1], '\0' };
+        snprintf(r->counterexample, sizeof r->counterexample, "%s/%s-%s.scene", o->out_dir, nn,
+                 endless ? "endless" : "crash");
+        struct verdict v = { .tri = 0 };
+        char err[600];
+        if (write_counterexample(r->counterexample, &s, endless ? "did not finish" : "crashed", l, o->file,
+                                 &v, err, sizeof err)) {
+            r->ntris = s.ntris;
+            fprintf(out, "\n  %s: %d triangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
+                    s.ntris, s.ntris == 1 ? "" : "s", r->counterexample);
+            for (int i = 0; i < s.ntris; i++) {
+                const struct vertex *tv = s.tris[i].v;
+                fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", i + 1, tv[0].x, tv[0].y,
+                        tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+            }
+            fprintf(out, "\n  the explorer runs your code too, and stops where it does; to see where, run it\n"
+                    "  under the debugger:\n      gdb -ex run --args %s --file %s --scene %s --dump-coverage /tmp/coverage.pgm\n",
+                    o->program ? o->program : "build/exercise-NN", o->file, r->counterexample);
+        } else {
+            fprintf(out, "  %s\n", err);
+            r->counterexample[0] = '\0';
+        }
+    }
+    fprintf(out, "\n%d of %d checks passed; fix the first failure and run make check again\n",
+            r->passed, P.n);
+    scene_free(&s);
+    plan_free();
+}
+
+bool exercise_check_guarded(const struct lesson *l, const struct check_options *o,
+                            struct check_result *r)
+{
+    struct guard *g = mmap(NULL, sizeof *g, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (g == MAP_FAILED)
+        return exercise_check(l, o, r);
+    memset(g, 0, sizeof *g);
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        munmap(g, sizeof *g);
+        return exercise_check(l, o, r);
+    }
+    if (pid == 0) {
+        check_guard = g;
+        bool ok = exercise_check(l, o, &g->result);
+        fflush(NULL);
+        _exit(ok ? 10 : 11);
+    }
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) {
+            status = 0;
+            break;
+        }
+    bool ok = false;
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == 10 || WEXITSTATUS(status) == 11)) {
+        *r = g->result;
+        ok = WEXITSTATUS(status) == 10;
+    } else {
+        report_crash(l, o, g, status, r);
+    }
+    munmap(g, sizeof *g);
+    return ok;
+}

@@ -1,0 +1,93 @@
+/* checker.h - what the parts of make check share (check.c runs the checks,
+ * evaluate.c draws and compares, shrink.c shrinks a counterexample,
+ * report.c says what went wrong). Private to src/exercise/. */
+#ifndef TRISTEP_EXERCISE_CHECKER_H
+#define TRISTEP_EXERCISE_CHECKER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "exercise/exercise.h"
+
+/* Shrinking tries at most this many candidate scenes. */
+#define SHRINK_BUDGET 4000
+/* A scene that takes longer than this is an endless loop: no scene of the
+ * checks needs a hundredth of it. */
+#define SCENE_SECONDS 10
+/* Shrinking a crash runs each candidate in a process of its own. */
+#define CRASH_BUDGET 600
+
+/* Where a guarded check is (exercise_check_guarded): shared with the
+ * process that runs it, so a crash still says which scene did it. */
+struct guard {
+    int check, scene, tri;
+    struct check_result result;
+};
+extern struct guard *check_guard;     /* NULL unless guarded */
+
+enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
+
+/* What went wrong, at the first triangle after which the pictures differ. */
+enum wrong {
+    WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
+    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED,
+};
+
+struct verdict {
+    enum wrong what;
+    int tri;                    /* the triangle that went wrong */
+    int x, y;                   /* its first wrong pixel */
+    int want_n, got_n;          /* coverage counts there */
+    uint32_t want_c, got_c;     /* colours */
+    float want_z, got_z;
+    int bx, by, bx1, by1;       /* a block, for the block properties */
+    uint64_t mul;               /* multiplications between two pixels */
+};
+
+/* Everything one check run needs. */
+struct checker {
+    const struct lesson *l;
+    const struct check_options *o;
+    struct raster_params p;
+    enum check_kind kind;
+    struct target want, got;
+    uint8_t *mask;              /* the exact coverage of the triangle being run */
+    /* the property watch, fed by the narration */
+    struct verdict *prop;
+    bool in_row;
+    int last_x, last_y;
+    uint64_t pixel_mul;         /* mul counted when the last pixel began */
+    uint64_t evaluations;       /* scenes drawn, for the report */
+    uint64_t triangles;
+};
+
+/* Draw scene s both ways, triangle by triangle; false (and v) at the first
+ * triangle after which they differ in what C->kind compares. */
+bool evaluate(struct checker *C, const struct scene *s, struct verdict *v);
+
+/* x, then y, of each vertex of the scene in order: coordinate k. */
+double *scene_coord(struct scene *s, int k);
+/* Fewest triangles, then the smallest, roundest coordinates, while the
+ * check still fails. */
+void shrink(struct checker *C, struct scene *s);
+
+/* What the code's own narration said about the first wrong pixel. */
+struct trail {
+    int x, y;
+    bool written, tested, held;
+    struct trace_event write, test, hold;
+};
+void say_verdict(const struct checker *C, FILE *out, const struct verdict *v, const struct scene *s);
+/* The step at which the explorer shows the first wrong pixel (and the trail). */
+uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v,
+                 struct trail *f);
+void explain(const struct checker *C, FILE *out, const struct verdict *v, const struct scene *s,
+             const struct trail *f);
+/* Write s to path, all or nothing, with a header naming the check. */
+bool write_counterexample(const char *path, const struct scene *s, const char *check,
+                          const struct lesson *l, const char *file, const struct verdict *v,
+                          char *err, size_t errlen);
+bool make_dirs(const char *dir);
+
+#endif

@@ -1,0 +1,155 @@
+/* evaluate.c - make check draws a scene twice, with the exact rule and with
+ * the code given to exercise_use, one triangle at a time, and compares
+ * after each triangle (check.c says what each check compares). */
+#include "checker.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+static bool prepare(struct target *fb, const struct scene *s)
+{
+    if (fb->color && fb->w == s->w && fb->h == s->h) {
+        fb->background = scene_background(s);
+        target_clear(fb);
+        return true;
+    }
+    target_free(fb);
+    return target_init(fb, s->w, s->h, scene_background(s));
+}
+
+static void mark(void *ctx, int x, int y)
+{
+    struct checker *C = ctx;
+    C->mask[(size_t)y * (size_t)C->want.w + (size_t)x] = 1;
+}
+
+static bool covered(const struct checker *C, int x, int y)
+{
+    return x >= 0 && y >= 0 && x < C->want.w && y < C->want.h
+        && C->mask[(size_t)y * (size_t)C->want.w + (size_t)x];
+}
+
+/* The narration, watched for the lesson's property. */
+static void watch(void *ctx, const struct trace_event *ev)
+{
+    struct checker *C = ctx;
+    struct verdict *v = C->prop;
+    if (v->what != WRONG_NONE)
+        return;
+    switch (ev->kind) {
+    case TRACE_ROW:
+    case TRACE_SETUP:
+    case TRACE_SPAN:
+        C->in_row = false;
+        break;
+    case TRACE_PIXEL_TEST:
+    case TRACE_PIXEL_WRITE:
+        if (!C->l->exercise.no_pixel_mul)
+            break;
+        if (C->in_row && ev->y == C->last_y && ev->x == C->last_x)
+            break;          /* the same pixel: its write after its test */
+        if (C->in_row && ev->y == C->last_y && ev->mul > C->pixel_mul) {
+            *v = (struct verdict){ .what = WRONG_MUL, .x = ev->x, .y = ev->y,
+                                   .mul = ev->mul - C->pixel_mul, .bx = C->last_x };
+            break;
+        }
+        C->in_row = true;
+        C->last_x = ev->x;
+        C->last_y = ev->y;
+        C->pixel_mul = ev->mul;
+        break;
+    case TRACE_BLOCK: {
+        C->in_row = false;
+        if (!C->l->exercise.full_blocks || ev->x > ev->x1 || ev->y > ev->y1)
+            break;
+        int missing_x = -1, missing_y = -1;
+        for (int y = ev->y; y <= ev->y1 && missing_x < 0; y++)
+            for (int x = ev->x; x <= ev->x1; x++)
+                if (!covered(C, x, y)) {
+                    missing_x = x, missing_y = y;
+                    break;
+                }
+        if (ev->klass == BLOCK_FULL && missing_x >= 0)
+            *v = (struct verdict){ .what = WRONG_BLOCK_NOT_FULL, .x = missing_x, .y = missing_y,
+                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
+        else if (ev->klass != BLOCK_FULL && missing_x < 0)
+            *v = (struct verdict){ .what = WRONG_BLOCK_MISSED, .x = ev->x, .y = ev->y,
+                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+/* The first pixel, in reading order, where the pictures differ. */
+static bool compare(const struct checker *C, int tri, struct verdict *v)
+{
+    const struct target *W = &C->want, *G = &C->got;
+    size_t n = (size_t)W->w * (size_t)W->h;
+    bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
+    for (size_t i = 0; i < n; i++) {
+        enum wrong what = WRONG_NONE;
+        if (W->count[i] != G->count[i])
+            what = WRONG_COUNT;
+        else if (colour && W->count[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
+            what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
+        if (what != WRONG_NONE) {
+            *v = (struct verdict){
+                .what = what, .tri = tri, .x = (int)(i % (size_t)W->w), .y = (int)(i / (size_t)W->w),
+                .want_n = W->count[i], .got_n = G->count[i], .want_c = W->color[i], .got_c = G->color[i],
+                .want_z = W->depth[i], .got_z = G->depth[i],
+            };
+            return false;
+        }
+    }
+    return true;
+}
+
+bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
+{
+    *v = (struct verdict){ .what = WRONG_NONE };
+    if (!prepare(&C->want, s) || !prepare(&C->got, s))
+        return true;    /* out of memory: said by the caller */
+    uint8_t *mask = realloc(C->mask, (size_t)s->w * (size_t)s->h);
+    if (!mask)
+        return true;
+    C->mask = mask;
+    C->evaluations++;
+    const struct lesson_variant *exact = exercise_exact(C->l->perspective);
+    bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL;
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
+        exact->rasterize(&t, &C->p, &C->want, NULL);
+        if (property) {
+            memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
+            reference_coverage(&t, mark, C);
+        }
+        struct verdict prop = { .what = WRONG_NONE };
+        struct trace tr = { .sink = property ? watch : NULL, .ctx = C };
+        C->prop = &prop;
+        C->in_row = false;
+        trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+        exercise_fault_clear();
+        if (check_guard)
+            check_guard->tri = i;
+        exercise_variant.rasterize(&t, &C->p, &C->got, &tr);
+        C->triangles++;
+        const struct exercise_fault *f = exercise_fault();
+        if (f->any) {
+            *v = (struct verdict){ .what = WRONG_OUTSIDE, .tri = i, .x = f->x, .y = f->y };
+            return false;
+        }
+        if (prop.what != WRONG_NONE) {
+            *v = prop;
+            v->tri = i;
+            return false;
+        }
+        if (!compare(C, i, v))
+            return false;
+    }
+    return true;
+}

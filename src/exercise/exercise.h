@@ -1,0 +1,100 @@
+/* exercise.h - a student's rasterizer run as a lesson variant, and the
+ * checks of `make check` (CONVENTIONS.md, "Exercises").
+ *
+ * The student's file defines exercise_rasterize(), compiled with
+ * student.h in front of it. Here it becomes a variant of the lesson
+ * ("exercise"), shown in the explorer beside the exact rule and checked
+ * against it: coverage by the reference rasterizer of src/raster,
+ * colour and depth by reference_shade(), linear or perspective-correct as
+ * the lesson interpolates.
+ *
+ * A lesson gets its exercise from its own data, nothing here names it:
+ *   - lessons/NN-name/exercise.c, the skeleton: the lesson's scaffolding
+ *     with the heart left as TODOs; it compiles, runs and fails the check;
+ *   - lessons/NN-name/answer.c beside it, the skeleton with its TODOs
+ *     written (the Makefile lists both for the tests, build/exercises.c);
+ *   - `.exercise` in the lesson's descriptor (struct lesson_exercise,
+ *     lesson.h): the pseudo-code line of a bare write, and the lesson's own
+ *     property among those the check knows (no_pixel_mul, full_blocks);
+ *   - the lesson's exhibits each name the check they fail in
+ *     tests/test_exercise.c (the test fails on an exhibit it does not know);
+ *   - the "Write it yourself" section that ends the lesson's README. */
+#ifndef TRISTEP_EXERCISE_H
+#define TRISTEP_EXERCISE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "lesson.h"
+
+/* The code the exercise variant runs from now on (the student's
+ * exercise_rasterize, or any rasterizer: a lesson's own, an exhibit) and the
+ * lesson it is an exercise of. */
+void exercise_use(const struct lesson *l, rasterize_fn fn);
+
+/* The variant that runs the code given to exercise_use: every write checked,
+ * a bare target_write narrated as a step of its own. */
+extern const struct lesson_variant exercise_variant;
+
+/* The exact rule as a variant: the reference coverage, and colour and depth
+ * from reference_shade (1/z perspective-correct when `perspective`). */
+const struct lesson_variant *exercise_exact(bool perspective);
+
+/* The lesson the explorer shows for an exercise: l's descriptor with two
+ * variants, the exact rule (variants[0], what the diff view compares with)
+ * and the exercise (an exhibit of the student's making). */
+void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], const struct lesson *l,
+                     const char *file);
+
+/* A write outside the target since the last exercise_fault_clear(): the
+ * first one, which the write skipped. */
+struct exercise_fault {
+    bool any;
+    int x, y, w, h;
+};
+const struct exercise_fault *exercise_fault(void);
+void exercise_fault_clear(void);
+
+/* --- make check ---------------------------------------------------------------- */
+
+struct check_options {
+    const char *file;               /* the code checked, as the report names it */
+    const char *const *scenes;      /* scenes of the student's own (SCENE=), NULL-terminated */
+    const char *out_dir;            /* where a counterexample is written */
+    const char *open_cmd;           /* how to open a scene: "make exercise LESSON=02 FILE=x.c" */
+    struct raster_params params;    /* subpixel_bits, block_size, affine (the exhibit) */
+    FILE *out;                      /* the report (stdout) */
+    bool progress;                  /* show progress on long checks (a terminal) */
+    const char *program;            /* the exercise program, for the debugger command */
+};
+
+struct check_result {
+    int nchecks, passed;            /* checks run, checks passed */
+    char failed[64];                /* name of the failed check, "" when all passed */
+    char counterexample[512];       /* the scene written, "" when none */
+    int x, y;                       /* its first wrong pixel */
+    uint64_t step;                  /* the step that shows it in the explorer */
+    int ntris;                      /* triangles in the counterexample */
+};
+
+/* Run every check of lesson l on the code given to exercise_use, in order,
+ * stopping at the first failure. Returns true when all pass. False also for
+ * an unreadable SCENE file or an unwritable counterexample (said on o->out). */
+bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r);
+/* The same in a process of its own: code that crashes, or loops for
+ * SCENE_SECONDS on one scene, fails with the scene it was drawing (shrunk
+ * when it crashes) and the command that shows where under a debugger. */
+bool exercise_check_guarded(const struct lesson *l, const struct check_options *o,
+                            struct check_result *r);
+
+/* The skeletons and answers compiled into the tests (generated
+ * build/exercises.c), each under its own name. */
+struct exercise_code {
+    const char *lesson;             /* "02" */
+    rasterize_fn skeleton;          /* lessons/NN-name/exercise.c as given */
+    rasterize_fn answer;            /* lessons/NN-name/answer.c */
+};
+extern const struct exercise_code all_exercises[];     /* ends with lesson == NULL */
+
+#endif

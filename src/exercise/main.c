@@ -1,0 +1,80 @@
+/* main.c - build/exercise-NN: one lesson's explorer on the student's code
+ * (what `make exercise` opens), or the lesson's checks on it (`make check`).
+ * The Makefile defines LESSON as the lesson's descriptor and links the
+ * student's file, which defines exercise_rasterize.
+ *
+ *     exercise-NN [--file NAME] [LESSON PROGRAM OPTIONS]      the explorer
+ *     exercise-NN --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD]
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+#include "exercise/exercise.h"
+
+extern const struct lesson LESSON;
+void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
+                        struct target *fb, struct trace *tr);
+
+int main(int argc, char **argv)
+{
+    const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL;
+    bool check = false;
+    const char **scenes = calloc((size_t)argc + 1, sizeof *scenes);
+    char **rest = calloc((size_t)argc + 3, sizeof *rest);
+    if (!scenes || !rest)
+        return 1;
+    int nscenes = 0, nrest = 0;
+    bool variant_given = false;
+    rest[nrest++] = argv[0];
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        bool has_value = i + 1 < argc;
+        if (strcmp(a, "--check") == 0)
+            check = true;
+        else if (strcmp(a, "--file") == 0 && has_value)
+            file = argv[++i];
+        else if (strcmp(a, "--check-scene") == 0 && has_value)
+            scenes[nscenes++] = argv[++i];
+        else if (strcmp(a, "--out") == 0 && has_value)
+            out_dir = argv[++i];
+        else if (strcmp(a, "--open") == 0 && has_value)
+            open_cmd = argv[++i];
+        else {
+            variant_given |= strcmp(a, "--variant") == 0 || strncmp(a, "--variant=", 10) == 0;
+            rest[nrest++] = argv[i];
+        }
+    }
+
+    exercise_use(&LESSON, exercise_rasterize);
+    int status;
+    if (check) {
+        char cmd[600];
+        if (!open_cmd) {
+            snprintf(cmd, sizeof cmd, "make exercise LESSON=%.2s FILE=%s", LESSON.id, file);
+            open_cmd = cmd;
+        }
+        struct check_options o = {
+            .file = file, .scenes = scenes, .out_dir = out_dir, .open_cmd = open_cmd,
+            .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = stdout,
+            .progress = isatty(STDOUT_FILENO), .program = argv[0],
+        };
+        struct check_result r;
+        bool ok = exercise_check_guarded(&LESSON, &o, &r);
+        status = ok ? 0 : r.nchecks == 0 ? 2 : 1;     /* 2: a SCENE= file that does not load */
+    } else {
+        /* the lesson program, on the exercise variant unless told otherwise */
+        struct lesson l;
+        struct lesson_variant variants[2];
+        exercise_lesson(&l, variants, &LESSON, file);
+        if (!variant_given) {
+            rest[nrest++] = "--variant";
+            rest[nrest++] = "exercise";
+        }
+        status = lesson_main(&l, nrest, rest);
+    }
+    free(scenes);
+    free(rest);
+    return status;
+}

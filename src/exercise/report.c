@@ -1,0 +1,243 @@
+/* report.c - what make check says about a failure: expected beside got
+ * around the first wrong pixel, why the exact rule decides that pixel as it
+ * does, what the code's narration said about it, the step that shows it in
+ * the explorer, and the counterexample file. */
+#define _POSIX_C_SOURCE 200809L   /* mkdir */
+
+#include "checker.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "explore/replay.h"
+#include "util/file.h"
+
+
+static const char *times(int n)
+{
+    static const char *const t[] = { "not covered", "covered once", "covered twice" };
+    static char buf[32];
+    if (n < 3)
+        return t[n];
+    snprintf(buf, sizeof buf, "covered %d times", n);
+    return buf;
+}
+
+/* Expected beside got around the wrong pixel: '.' uncovered, '#' once, a
+ * digit for more; the wrong pixel in brackets. */
+static void neighbourhood(const struct checker *C, FILE *out, int px, int py)
+{
+    const struct target *W = &C->want, *G = &C->got;
+    int x0 = px - 6 < 0 ? 0 : px - 6, x1 = px + 6 >= W->w ? W->w - 1 : px + 6;
+    int y0 = py - 4 < 0 ? 0 : py - 4, y1 = py + 4 >= W->h ? W->h - 1 : py + 4;
+    int width = (x1 - x0 + 1) * 2 + 1;
+    fprintf(out, "      %-*s    %s\n", width + 4, "expected", "got");
+    for (int y = y0; y <= y1; y++) {
+        fprintf(out, "  %3d ", y);
+        for (int pass = 0; pass < 2; pass++) {
+            const struct target *T = pass ? G : W;
+            for (int x = x0; x <= x1; x++) {
+                int n = T->count[(size_t)y * (size_t)T->w + (size_t)x];
+                char ch = n == 0 ? '.' : n == 1 ? '#' : n < 10 ? (char)('0' + n) : '*';
+                bool here = x == px && y == py;
+                fprintf(out, "%c%c", here ? '[' : (x == px + 1 && y == py) ? ']' : ' ', ch);
+            }
+            fprintf(out, "%c", x1 == px && y == py ? ']' : ' ');
+            fputs(pass ? "\n" : "     ", out);
+        }
+    }
+    fprintf(out, "      (# covered once, 2 twice, . not covered; x from %d to %d)\n", x0, x1);
+}
+
+void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
+                        const struct scene *s)
+{
+    const struct vertex *tv = s->tris[v->tri].v;
+    fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", v->tri + 1, tv[0].x, tv[0].y,
+            tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+    switch (v->what) {
+    case WRONG_COUNT:
+        fprintf(out, "      pixel (%d, %d), centre (%g, %g): expected %s, got %s: %s\n", v->x, v->y,
+                v->x + 0.5, v->y + 0.5, times(v->want_n), times(v->got_n),
+                v->got_n > v->want_n ? (v->want_n ? "written twice" : "an extra pixel") : "a missing pixel");
+        neighbourhood(C, out, v->x, v->y);
+        break;
+    case WRONG_COLOUR:
+        fprintf(out, "      pixel (%d, %d): expected colour #%06x, got #%06x (more than %d of 255 off in a channel);\n"
+                "      depth expected %.6g, got %.6g\n", v->x, v->y, v->want_c & 0xffffffu,
+                v->got_c & 0xffffffu, PIXEL_COLOUR_LEVELS, v->want_z, v->got_z);
+        break;
+    case WRONG_DEPTH:
+        fprintf(out, "      pixel (%d, %d): expected depth %.6g, got %.6g (more than %g%% off)\n",
+                v->x, v->y, v->want_z, v->got_z, 100 * PIXEL_DEPTH_RELATIVE);
+        break;
+    case WRONG_OUTSIDE:
+        fprintf(out, "      wrote pixel (%d, %d), outside the %d x %d target (the write was skipped)\n",
+                v->x, v->y, C->got.w, C->got.h);
+        break;
+    case WRONG_MUL:
+        fprintf(out, "      %llu multiplication%s between pixel (%d, %d) and pixel (%d, %d) of the same row:\n"
+                "      expected none (COUNT_OPS and every edge_value() or pixel_centre() call count)\n",
+                (unsigned long long)v->mul, v->mul == 1 ? "" : "s", v->bx, v->y, v->x, v->y);
+        break;
+    case WRONG_BLOCK_NOT_FULL:
+        fprintf(out, "      block (%d, %d)-(%d, %d) narrated FULL, but pixel (%d, %d) in it is not covered\n",
+                v->bx, v->by, v->bx1, v->by1, v->x, v->y);
+        break;
+    case WRONG_BLOCK_MISSED:
+        fprintf(out, "      block (%d, %d)-(%d, %d) is covered in full, but was not narrated FULL\n",
+                v->bx, v->by, v->bx1, v->by1);
+        break;
+    case WRONG_NONE:
+        break;
+    }
+}
+
+/* What the code's own narration says about the first wrong pixel: its
+ * first write there, its last test of it, and the block or span that holds
+ * it. From these, the step at which the explorer shows it: the write (or
+ * the block or span), or the end of the triangle when the code never wrote
+ * the pixel (a missing one). */
+static void follow(void *ctx, const struct trace_event *ev)
+{
+    struct trail *f = ctx;
+    bool here = ev->x == f->x && ev->y == f->y;
+    if (ev->kind == TRACE_PIXEL_WRITE && here && !f->written)
+        f->written = true, f->write = *ev;
+    else if (ev->kind == TRACE_PIXEL_TEST && here)
+        f->tested = true, f->test = *ev;
+    else if ((ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN) && !f->held && f->x >= ev->x
+             && f->x <= ev->x1 && f->y >= ev->y && f->y <= ev->y1)
+        f->held = true, f->hold = *ev;
+}
+
+uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v,
+                        struct trail *f)
+{
+    *f = (struct trail){ .x = v->x, .y = v->y };
+    struct replay r;
+    if (!replay_init(&r, s, &exercise_variant, &C->p))
+        return 0;
+    uint64_t step = r.start[v->tri + 1];
+    struct target fb;
+    if (target_init(&fb, s->w, s->h, scene_background(s))) {
+        struct tri_setup t;
+        replay_setup(&r, v->tri, &t);
+        struct trace tr = { .sink = follow, .ctx = f };
+        trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
+        exercise_variant.rasterize(&t, &C->p, &fb, &tr);
+        bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
+        if (!missing && f->written)
+            step = r.start[v->tri] + f->write.index + 1;
+        else if (!missing && f->held)
+            step = r.start[v->tri] + f->hold.index + 1;
+        target_free(&fb);
+    }
+    replay_free(&r);
+    return step;
+}
+
+static const char *line_text(const struct lesson *l, int line)
+{
+    for (int i = 0; l->pseudocode && l->pseudocode[i]; i++)
+        if (i == line)
+            return l->pseudocode[i];
+    return "?";
+}
+
+static const char *const edge_names[3] = { "AB", "BC", "CA" };
+
+/* Why the exact rule decides the pixel as it does, when its centre lies
+ * exactly on an edge; and what the code's narration said about it. */
+void explain(const struct checker *C, FILE *out, const struct verdict *v,
+                    const struct scene *s, const struct trail *f)
+{
+    if (v->what == WRONG_COUNT || v->what == WRONG_COLOUR || v->what == WRONG_DEPTH) {
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[v->tri].v, s->w, s->h, C->p.subpixel_bits);
+        for (int k = 0; k < 3 && t.area2 > 0; k++) {
+            if (edge_value(&t, k, v->x, v->y) != 0)
+                continue;
+            bool top = t.I[k] == 0 && t.J[k] > 0, left = t.I[k] > 0;
+            fprintf(out, "      its centre lies exactly on edge %s (F = 0), a %s edge: the top-left rule %s\n",
+                    edge_names[k], top ? "top" : left ? "left" : t.I[k] == 0 ? "bottom" : "right",
+                    top || left ? "covers it" : "leaves it to the triangle on the other side");
+        }
+    }
+    const struct lesson *l = C->l;
+    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_NOT_FULL || v->what == WRONG_BLOCK_MISSED
+        || v->what == WRONG_OUTSIDE)
+        return;     /* the verdict said it all */
+    if (f->held) {
+        static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };
+        if (f->hold.kind == TRACE_BLOCK)
+            fprintf(out, "      your code put it in block (%d, %d)-(%d, %d), classified %s (masks %x %x %x)\n",
+                    f->hold.x, f->hold.y, f->hold.x1, f->hold.y1,
+                    f->hold.klass < 3 ? klass[f->hold.klass] : "?", f->hold.mask[0], f->hold.mask[1],
+                    f->hold.mask[2]);
+        else
+            fprintf(out, "      your code put it in the span %d..%d of row %d\n", f->hold.x, f->hold.x1,
+                    f->hold.y);
+    }
+    if (f->tested) {
+        fprintf(out, "      your code tested it and said %s, edge values F_ab, F_bc, F_ca = %lld, %lld, %lld\n",
+                f->test.flags & TRACE_INSIDE ? "inside" : "outside", (long long)f->test.e[0],
+                (long long)f->test.e[1], (long long)f->test.e[2]);
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[v->tri].v, s->w, s->h, C->p.subpixel_bits);
+        int64_t e[3] = { edge_value(&t, 0, v->x, v->y), edge_value(&t, 1, v->x, v->y),
+                         edge_value(&t, 2, v->x, v->y) };
+        if (e[0] != f->test.e[0] || e[1] != f->test.e[1] || e[2] != f->test.e[2])
+            fprintf(out, "      the exact edge values at its centre (%g, %g) are %lld, %lld, %lld\n",
+                    v->x + 0.5, v->y + 0.5, (long long)e[0], (long long)e[1], (long long)e[2]);
+        double w[3];
+        barycentric(&t, e, w);
+        if (v->what != WRONG_COUNT)
+            fprintf(out, "      the exact weights of A, B, C there: %.4f, %.4f, %.4f (A, B, C in setup's order%s)\n",
+                    w[0], w[1], w[2], t.swapped ? ": the file's second and third vertex exchanged" : "");
+    }
+    if (f->written)
+        fprintf(out, "      your code wrote it (\"%s\"): colour #%06x, depth %.6g\n",
+                line_text(l, f->write.line), f->write.rgba & 0xffffffu, f->write.z);
+    else if (v->what == WRONG_COUNT)
+        fprintf(out, "      your code never wrote it\n");
+}
+
+struct scene_out {
+    const struct scene *s;
+    const char *check, *lesson, *file;
+    const struct verdict *v;
+};
+
+static bool write_scene(FILE *out, void *ctx)
+{
+    const struct scene_out *o = ctx;
+    fprintf(out, "# the smallest counterexample make check found for lesson %s\n"
+            "# check: %s, code: %s\n# first wrong pixel: (%d, %d), triangle %d\n",
+            o->lesson, o->check, o->file, o->v->x, o->v->y, o->v->tri + 1);
+    return scene_write(o->s, out);
+}
+
+bool write_counterexample(const char *path, const struct scene *s, const char *check,
+                          const struct lesson *l, const char *file, const struct verdict *v,
+                          char *err, size_t errlen)
+{
+    struct scene_out so = { s, check, l->id, file, v };
+    return write_file_atomic(path, write_scene, &so, err, errlen);
+}
+
+bool make_dirs(const char *dir)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(path, 0777) != 0 && errno != EEXIST)
+                return false;
+            *p = '/';
+        }
+    return mkdir(path, 0777) == 0 || errno == EEXIST;
+}

@@ -1,0 +1,392 @@
+/* scenes.c - the scenes of make check (scenes.h): hand-made where a check
+ * is about particular cases (ties on pixel centres, both windings,
+ * degenerate triangles), seeded random where it is about every case. */
+#include "scenes.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* splitmix64: the checks draw the same scenes on every run */
+struct rng {
+    uint64_t s;
+};
+
+static uint64_t rng_next(struct rng *r)
+{
+    uint64_t z = (r->s += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return z ^ (z >> 31);
+}
+
+static double rng_unit(struct rng *r)
+{
+    return (double)(rng_next(r) >> 11) * 0x1p-53;
+}
+
+static double rng_range(struct rng *r, double lo, double hi)
+{
+    return lo + (hi - lo) * rng_unit(r);
+}
+
+/* A coordinate as scenes give them: on the 1/256 grid, or on a pixel centre,
+ * or an integer, chosen at random. */
+static double grid(struct rng *r, double v)
+{
+    double u = rng_unit(r);
+    if (u < 0.2)
+        return floor(v) + 0.5;
+    if (u < 0.3)
+        return floor(v);
+    return floor(v * SUBPIXEL_ONE) / SUBPIXEL_ONE;
+}
+
+static struct vertex vtx(double x, double y, double z, double r, double g, double b)
+{
+    return (struct vertex){ .x = x, .y = y, .z = z, .r = r, .g = g, .b = b };
+}
+
+/* A vertex with a random colour and a depth in [zmin, zmax]. */
+static struct vertex rvtx(struct rng *r, double x, double y, double zmin, double zmax)
+{
+    return vtx(x, y, rng_range(r, zmin, zmax), rng_unit(r), rng_unit(r), rng_unit(r));
+}
+
+static bool add(struct scene *s, struct vertex a, struct vertex b, struct vertex c)
+{
+    double lim = COORD_LIMIT - 1.0 / SUBPIXEL_ONE;
+    struct vertex v[3] = { a, b, c };
+    for (int i = 0; i < 3; i++) {
+        v[i].x = fmin(fmax(v[i].x, -COORD_LIMIT), lim);
+        v[i].y = fmin(fmax(v[i].y, -COORD_LIMIT), lim);
+    }
+    return scene_add(s, v);
+}
+
+/* The same triangle walked the other way round. */
+static bool add_flipped(struct scene *s, struct vertex a, struct vertex b, struct vertex c,
+                        bool flip)
+{
+    return flip ? add(s, a, c, b) : add(s, a, b, c);
+}
+
+static void scene_start(struct scene *s, int w, int h)
+{
+    memset(s, 0, sizeof *s);
+    s->w = w;
+    s->h = h;
+}
+
+bool gen_single(int i, struct scene *s, char *what, size_t n)
+{
+    /* nothing on a pixel centre: no edge passes exactly through one */
+    static const double tris[][6] = {
+        { 4.3, 3.2, 35.7, 8.9, 13.1, 26.6 },
+        { 20.1, 2.2, 27.9, 27.3, 14.6, 18.35 },
+        { 7.7, 5.1, 11.2, 9.9, 3.3, 12.4 },
+        { 5.1, 4.2, 30.3, 4.2, 17.9, 25.7 },
+        { 36.2, 2.9, 37.1, 26.3, 2.7, 14.1 },
+    };
+    if (i >= (int)(sizeof tris / sizeof tris[0]))
+        return false;
+    const double *c = tris[i];
+    scene_start(s, 40, 30);
+    add(s, vtx(c[0], c[1], 1, 1, 0, 0), vtx(c[2], c[3], 2, 0, 1, 0), vtx(c[4], c[5], 3, 0, 0, 1));
+    snprintf(what, n, "one triangle (%g, %g) (%g, %g) (%g, %g)", c[0], c[1], c[2], c[3], c[4], c[5]);
+    return true;
+}
+
+bool gen_ties(int i, struct scene *s, char *what, size_t n)
+{
+    scene_start(s, 20, 16);
+    bool f1 = i & 1, f2 = (i >> 1) & 1;     /* the windings of the two triangles */
+    const char *w1 = f1 ? "counter-clockwise" : "clockwise", *w2 = f2 ? "counter-clockwise" : "clockwise";
+    struct vertex P = vtx(0, 0, 1, 0.9, 0.5, 0.1);
+    switch (i >> 2) {
+    case 0:     /* a vertical edge x = 10.5 through pixel centres */
+        add_flipped(s, vtx(10.5, 2.5, 1, 1, 0, 0), vtx(10.5, 14.5, 1, 0, 1, 0), vtx(3.2, 8.1, 1, 0, 0, 1), f1);
+        add_flipped(s, vtx(10.5, 2.5, 2, 1, 1, 0), vtx(17.7, 9.3, 2, 0, 1, 1), vtx(10.5, 14.5, 2, 1, 0, 1), f2);
+        snprintf(what, n, "two triangles sharing the vertical edge x = 10.5 through pixel centres (%s, %s)", w1, w2);
+        return true;
+    case 1:     /* a horizontal edge y = 8.5 */
+        add_flipped(s, vtx(2.5, 8.5, 1, 1, 0, 0), vtx(17.5, 8.5, 1, 0, 1, 0), vtx(9.2, 1.3, 1, 0, 0, 1), f1);
+        add_flipped(s, vtx(2.5, 8.5, 2, 1, 1, 0), vtx(11.7, 15.6, 2, 0, 1, 1), vtx(17.5, 8.5, 2, 1, 0, 1), f2);
+        snprintf(what, n, "two triangles sharing the horizontal edge y = 8.5 through pixel centres (%s, %s)", w1, w2);
+        return true;
+    case 2:     /* a diagonal through a centre every 3 pixels */
+        add_flipped(s, vtx(2.5, 2.5, 1, 1, 0, 0), vtx(17.5, 12.5, 1, 0, 1, 0), vtx(4.1, 13.7, 1, 0, 0, 1), f1);
+        add_flipped(s, vtx(2.5, 2.5, 2, 1, 1, 0), vtx(16.2, 3.1, 2, 0, 1, 1), vtx(17.5, 12.5, 2, 1, 0, 1), f2);
+        snprintf(what, n, "two triangles sharing the edge (2.5, 2.5)-(17.5, 12.5) through pixel centres (%s, %s)", w1, w2);
+        return true;
+    case 3:     /* a square of two triangles, every vertex on a pixel centre */
+        add_flipped(s, vtx(3.5, 2.5, 1, 1, 0, 0), vtx(15.5, 2.5, 1, 0, 1, 0), vtx(3.5, 13.5, 1, 0, 0, 1), f1);
+        add_flipped(s, vtx(15.5, 2.5, 2, 1, 1, 0), vtx(15.5, 13.5, 2, 0, 1, 1), vtx(3.5, 13.5, 2, 1, 0, 1), f2);
+        snprintf(what, n, "a square of two triangles, vertices on pixel centres (%s, %s)", w1, w2);
+        return true;
+    case 4: {   /* a fan of eight around a centre, every vertex on a pixel centre */
+        static const double ring[8][2] = { { 10.5, 1.5 }, { 16.5, 3.5 }, { 18.5, 8.5 }, { 15.5, 13.5 },
+                                           { 10.5, 14.5 }, { 4.5, 12.5 }, { 1.5, 7.5 }, { 5.5, 2.5 } };
+        for (int k = 0; k < 8; k++) {
+            const double *a = ring[k], *b = ring[(k + 1) % 8];
+            P.x = 10.5, P.y = 8.5;
+            add_flipped(s, P, vtx(a[0], a[1], 1, k & 1, 0.5, 1), vtx(b[0], b[1], 1, 1, k & 1, 0.3),
+                        (k & 1) ? f1 : f2);
+        }
+        snprintf(what, n, "a fan of eight triangles around the pixel centre (10.5, 8.5), windings mixed");
+        return true;
+    }
+    case 5:     /* degenerate: they cover nothing */
+        if (f2)
+            return false;
+        if (!f1) {
+            add(s, vtx(2.5, 2.5, 1, 1, 1, 1), vtx(8.5, 6.5, 1, 1, 1, 1), vtx(14.5, 10.5, 1, 1, 1, 1));
+            add(s, vtx(3.5, 12.5, 1, 1, 1, 1), vtx(15.5, 12.5, 1, 1, 1, 1), vtx(9.5, 12.5, 1, 1, 1, 1));
+            snprintf(what, n, "degenerate: three vertices in line through pixel centres (cover nothing)");
+        } else {
+            add(s, vtx(4.5, 3.5, 1, 1, 1, 1), vtx(12.3, 9.7, 1, 1, 1, 1), vtx(4.5, 3.5, 1, 1, 1, 1));
+            add(s, vtx(7.5, 7.5, 1, 1, 1, 1), vtx(7.5, 7.5, 1, 1, 1, 1), vtx(7.5, 7.5, 1, 1, 1, 1));
+            snprintf(what, n, "degenerate: a repeated vertex, a triangle that is a point (cover nothing)");
+        }
+        return true;
+    }
+    return false;
+}
+
+/* A jittered grid of nx x ny cells over [x0, x1] x [y0, y1], each cell cut
+ * along a random diagonal into two triangles of random winding. */
+static void grid_mesh(struct scene *s, struct rng *r, int nx, int ny, double x0, double y0,
+                      double x1, double y1, double jitter)
+{
+    struct vertex *v = malloc(sizeof *v * (size_t)(nx + 1) * (size_t)(ny + 1));
+    if (!v)
+        return;
+    double cw = (x1 - x0) / nx, ch = (y1 - y0) / ny;
+    for (int j = 0; j <= ny; j++)
+        for (int i = 0; i <= nx; i++) {
+            double x = x0 + i * cw, y = y0 + j * ch;
+            if (i > 0 && i < nx)
+                x = grid(r, x + rng_range(r, -jitter, jitter) * cw);
+            if (j > 0 && j < ny)
+                y = grid(r, y + rng_range(r, -jitter, jitter) * ch);
+            v[j * (nx + 1) + i] = rvtx(r, x, y, 1, 4);
+        }
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            struct vertex a = v[j * (nx + 1) + i], b = v[j * (nx + 1) + i + 1];
+            struct vertex c = v[(j + 1) * (nx + 1) + i + 1], d = v[(j + 1) * (nx + 1) + i];
+            if (rng_unit(r) < 0.5) {
+                add_flipped(s, a, b, c, rng_unit(r) < 0.5);
+                add_flipped(s, a, c, d, rng_unit(r) < 0.5);
+            } else {
+                add_flipped(s, a, b, d, rng_unit(r) < 0.5);
+                add_flipped(s, b, c, d, rng_unit(r) < 0.5);
+            }
+        }
+    free(v);
+}
+
+bool gen_meshes(int i, struct scene *s, char *what, size_t n)
+{
+    struct rng r = { 0x3e5a11u + (uint64_t)i };
+    switch (i) {
+    case 0:
+        scene_start(s, 48, 36);
+        grid_mesh(s, &r, 6, 4, 2.5, 2.5, 45.5, 33.5, 0.3);
+        snprintf(what, n, "a jittered 6 x 4 grid of 48 triangles, corners on pixel centres");
+        return true;
+    case 1:
+        scene_start(s, 48, 36);
+        grid_mesh(s, &r, 16, 12, 1.3, 1.7, 46.2, 34.1, 0.35);
+        snprintf(what, n, "a jittered 16 x 12 grid of 384 small triangles");
+        return true;
+    case 2:
+        scene_start(s, 40, 30);
+        grid_mesh(s, &r, 7, 5, -20.25, -15.75, 61.5, 47.25, 0.3);
+        snprintf(what, n, "a jittered 7 x 5 grid reaching past every side of the target");
+        return true;
+    case 3:
+        scene_start(s, 48, 36);
+        grid_mesh(s, &r, 2, 24, 1.5, 0.5, 46.5, 35.5, 0.45);
+        snprintf(what, n, "a 2 x 24 grid of long thin triangles");
+        return true;
+    case 4:
+        scene_start(s, 48, 36);
+        grid_mesh(s, &r, 12, 9, 0, 0, 48, 36, 0);
+        snprintf(what, n, "a regular 12 x 9 grid on whole pixels: every edge through pixel corners");
+        return true;
+    }
+    return false;
+}
+
+/* Random triangles by kind, one per scene. */
+#define RANDOM_SCENES 1600
+bool gen_random(int i, struct scene *s, char *what, size_t n)
+{
+    if (i >= RANDOM_SCENES)
+        return false;
+    struct rng r = { 0x7a11d0u * 31 + (uint64_t)i };
+    int w = 64, h = 48;
+    double cx = rng_range(&r, 0, w), cy = rng_range(&r, 0, h);
+    struct vertex v[3];
+    const char *kind;
+    switch (i % 8) {
+    case 0:
+        kind = "generic";
+        for (int k = 0; k < 3; k++) {
+            double d = rng_range(&r, 1, 24);
+            v[k] = rvtx(&r, grid(&r, cx + rng_range(&r, -d, d)), grid(&r, cy + rng_range(&r, -d, d)), 1, 4);
+        }
+        break;
+    case 1:
+        kind = "sliver";
+        v[0] = rvtx(&r, grid(&r, rng_range(&r, 0, w)), grid(&r, rng_range(&r, 0, h)), 1, 4);
+        v[1] = rvtx(&r, grid(&r, rng_range(&r, 0, w)), grid(&r, rng_range(&r, 0, h)), 1, 4);
+        {
+            double t = rng_unit(&r), d = rng_range(&r, -0.7, 0.7);
+            v[2] = rvtx(&r, grid(&r, v[0].x + t * (v[1].x - v[0].x) + d),
+                        grid(&r, v[0].y + t * (v[1].y - v[0].y) - d), 1, 4);
+        }
+        break;
+    case 2:
+        kind = "smaller than a pixel";
+        for (int k = 0; k < 3; k++)
+            v[k] = rvtx(&r, grid(&r, cx + rng_range(&r, -0.7, 0.7)), grid(&r, cy + rng_range(&r, -0.7, 0.7)), 1, 4);
+        break;
+    case 3:
+        kind = "larger than the target";
+        w = 256, h = 192;
+        for (int k = 0; k < 3; k++)
+            v[k] = rvtx(&r, grid(&r, rng_range(&r, -2.0 * w, 3.0 * w)), grid(&r, rng_range(&r, -2.0 * h, 3.0 * h)), 1, 4);
+        break;
+    case 4:
+        kind = "partly off-screen";
+        if (rng_unit(&r) < 0.5)
+            cx = rng_unit(&r) < 0.5 ? rng_range(&r, -4, 4) : w + rng_range(&r, -4, 4);
+        else
+            cy = rng_unit(&r) < 0.5 ? rng_range(&r, -4, 4) : h + rng_range(&r, -4, 4);
+        for (int k = 0; k < 3; k++) {
+            double d = rng_range(&r, 2, 40);
+            v[k] = rvtx(&r, grid(&r, cx + rng_range(&r, -d, d)), grid(&r, cy + rng_range(&r, -d, d)), 1, 4);
+        }
+        break;
+    case 5:
+        kind = "vertices on pixel centres";
+        for (int k = 0; k < 3; k++)
+            v[k] = rvtx(&r, floor(cx + rng_range(&r, -16, 16)) + 0.5, floor(cy + rng_range(&r, -16, 16)) + 0.5, 1, 4);
+        break;
+    case 6:
+        kind = "a horizontal or vertical edge";
+        {
+            double a = grid(&r, rng_range(&r, 0, w)), b = grid(&r, rng_range(&r, 0, w));
+            double c = grid(&r, rng_range(&r, 0, h)), d = grid(&r, rng_range(&r, 0, h));
+            v[0] = rvtx(&r, a, c, 1, 4);
+            if (rng_unit(&r) < 0.5)
+                v[1] = rvtx(&r, b, c, 1, 4), v[2] = rvtx(&r, grid(&r, rng_range(&r, 0, w)), d, 1, 4);
+            else
+                v[1] = rvtx(&r, a, d, 1, 4), v[2] = rvtx(&r, b, grid(&r, rng_range(&r, 0, h)), 1, 4);
+        }
+        break;
+    default:
+        kind = "with far vertices (up to 16384 px away)";
+        for (int k = 0; k < 3; k++)
+            v[k] = rvtx(&r, grid(&r, rng_range(&r, -16000, 16000)), grid(&r, rng_range(&r, -16000, 16000)), 1, 4);
+        if (rng_unit(&r) < 0.7)
+            v[0] = rvtx(&r, grid(&r, cx), grid(&r, cy), 1, 4);
+        break;
+    }
+    scene_start(s, w, h);
+    add(s, v[0], v[1], v[2]);
+    snprintf(what, n, "random triangle %d of %d: %s", i + 1, RANDOM_SCENES, kind);
+    return true;
+}
+
+bool gen_colour(int i, struct scene *s, char *what, size_t n)
+{
+    struct rng r = { 0xc0107u + (uint64_t)i };
+    switch (i) {
+    case 0:
+        scene_start(s, 40, 30);
+        add(s, vtx(4.3, 3.2, 1, 1, 0, 0), vtx(35.7, 8.9, 2, 0, 1, 0), vtx(13.1, 26.6, 3, 0, 0, 1));
+        snprintf(what, n, "one triangle, red, green and blue corners at depths 1, 2, 3");
+        return true;
+    case 1:
+        scene_start(s, 64, 48);
+        add(s, vtx(2.2, 45.1, 1, 1, 1, 0.2), vtx(61.7, 44.3, 1.2, 0.1, 0.9, 1), vtx(30.4, 2.6, 12, 0.9, 0.1, 0.6));
+        snprintf(what, n, "a triangle receding from depth 1 to depth 12");
+        return true;
+    case 2:
+        scene_start(s, 48, 36);
+        add(s, vtx(3.5, 3.5, 1, 1, 0, 0), vtx(44.5, 5.5, 6, 0, 1, 0), vtx(40.5, 32.5, 2, 0, 0, 1));
+        add(s, vtx(3.5, 3.5, 1, 1, 0, 0), vtx(40.5, 32.5, 2, 0, 0, 1), vtx(5.5, 30.5, 9, 1, 1, 1));
+        snprintf(what, n, "a quad of two triangles sharing an edge, depths 1 to 9");
+        return true;
+    case 3:
+    case 4: {   /* the nearer triangle must win, whichever is drawn first */
+        scene_start(s, 40, 30);
+        struct vertex n0 = vtx(3.3, 4.1, 1, 1, 0.2, 0.2), n1 = vtx(30.2, 9.9, 1.5, 1, 0.6, 0.2),
+                      n2 = vtx(9.7, 27.4, 1.2, 0.9, 0.1, 0.3);
+        struct vertex f0 = vtx(36.1, 2.2, 4, 0.2, 0.3, 1), f1 = vtx(35.3, 28.8, 6, 0.2, 1, 0.6),
+                      f2 = vtx(5.2, 15.6, 5, 0.1, 0.6, 1);
+        if (i == 3) {
+            add(s, n0, n1, n2);
+            add(s, f0, f1, f2);
+            snprintf(what, n, "depth test: a near triangle, then a far one over it (the near one stays)");
+        } else {
+            add(s, f0, f1, f2);
+            add(s, n0, n1, n2);
+            snprintf(what, n, "depth test: a far triangle, then a near one over it");
+        }
+        return true;
+    }
+    case 5:
+        scene_start(s, 200, 150);
+        add(s, vtx(3.1, 2.7, 1, 1, 0.5, 0), vtx(197.2, 40.3, 3, 0, 0.5, 1), vtx(60.6, 148.1, 8, 0.5, 1, 0.5));
+        snprintf(what, n, "a large triangle, 200 x 150 pixels, depths 1 to 8");
+        return true;
+    default:
+        if (i >= 6 + 24)
+            return false;
+        scene_start(s, 48, 36);
+        {
+            double cx = rng_range(&r, 8, 40), cy = rng_range(&r, 8, 28);
+            struct vertex v[3];
+            for (int k = 0; k < 3; k++)
+                v[k] = rvtx(&r, grid(&r, cx + rng_range(&r, -20, 20)), grid(&r, cy + rng_range(&r, -20, 20)), 1, 10);
+            add(s, v[0], v[1], v[2]);
+        }
+        snprintf(what, n, "random coloured triangle %d of 24, depths 1 to 10", i - 5);
+        return true;
+    }
+}
+
+bool gen_property(int i, struct scene *s, char *what, size_t n)
+{
+    struct rng r = { 0x9409e7u + (uint64_t)i };
+    switch (i) {
+    case 0:
+        scene_start(s, 160, 120);
+        add(s, vtx(5.3, 4.7, 1, 1, 0, 0), vtx(154.1, 30.2, 2, 0, 1, 0), vtx(40.8, 116.6, 3, 0, 0, 1));
+        snprintf(what, n, "a large triangle, 150 pixels across");
+        return true;
+    case 1:
+        scene_start(s, 160, 120);
+        add(s, vtx(80.5, 2.5, 1, 1, 1, 0), vtx(157.5, 117.5, 1, 0, 1, 1), vtx(2.5, 117.5, 1, 1, 0, 1));
+        add(s, vtx(20.5, 10.5, 2, 1, 1, 0), vtx(60.5, 10.5, 2, 0, 1, 1), vtx(20.5, 50.5, 2, 1, 0, 1));
+        snprintf(what, n, "two large triangles, vertices on pixel centres");
+        return true;
+    case 2:
+        scene_start(s, 96, 72);
+        grid_mesh(s, &r, 4, 3, -5.5, -3.25, 101.5, 75.5, 0.25);
+        snprintf(what, n, "a jittered 4 x 3 grid of large triangles over the target");
+        return true;
+    case 3:
+        scene_start(s, 128, 96);
+        add(s, vtx(-300.2, -200.6, 1, 1, 0, 0), vtx(900.3, 40.1, 1, 0, 1, 0), vtx(60.7, 700.9, 1, 0, 0, 1));
+        snprintf(what, n, "a triangle larger than the target");
+        return true;
+    }
+    return false;
+}

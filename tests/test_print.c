@@ -1,0 +1,293 @@
+/* test_print.c - figures for print (CONVENTIONS.md, "Figures for print"):
+ * --theme dark|light and --figure-part all|canvas give a valid file for
+ * every lesson, every view and every format, the same bytes every time; the
+ * light theme is white paper with dark ink, the canvas part is the pixel
+ * grid without panel or scrub bar; figures/list holds a light PDF of every
+ * lesson, and bad values are usage errors that write nothing. */
+#define _XOPEN_SOURCE 700   /* mkdtemp */
+
+#include <cairo.h>
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "draw/paint.h"
+#include "testlib.h"
+
+#define FIG_W 480
+#define FIG_H 300
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    cr_assert_not_null(buf);
+    *len = fread(buf, 1, (size_t)n, f);
+    buf[*len] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static bool same_bytes(const char *a, const char *b)
+{
+    size_t na = 0, nb = 0;
+    char *x = slurp(a, &na), *y = slurp(b, &nb);
+    bool same = x && y && na == nb && memcmp(x, y, na) == 0;
+    free(x);
+    free(y);
+    return same;
+}
+
+static bool starts_with(const char *path, const char *magic, size_t n)
+{
+    size_t len = 0;
+    char *buf = slurp(path, &len);
+    bool ok = buf && len > n && memcmp(buf, magic, n) == 0;
+    free(buf);
+    return ok;
+}
+
+/* 0xRRGGBB of pixel (x, y) of a PNG. */
+static uint32_t png_pixel(const char *path, int x, int y, int *w, int *h)
+{
+    cairo_surface_t *s = cairo_image_surface_create_from_png(path);
+    cr_assert_eq(cairo_surface_status(s), CAIRO_STATUS_SUCCESS, "%s is not a PNG", path);
+    cairo_surface_flush(s);
+    *w = cairo_image_surface_get_width(s);
+    *h = cairo_image_surface_get_height(s);
+    const unsigned char *data = cairo_image_surface_get_data(s);
+    int stride = cairo_image_surface_get_stride(s);
+    uint32_t v = *(const uint32_t *)(data + (size_t)y * (size_t)stride + 4 * (size_t)x) & 0xffffff;
+    cairo_surface_destroy(s);
+    return v;
+}
+
+static double luma_of(uint32_t c)
+{
+    return (0.299 * (c >> 16 & 255) + 0.587 * (c >> 8 & 255) + 0.114 * (c & 255)) / 255;
+}
+
+/* Every lesson x every view (the built-in ones, the lesson's own, one edge
+ * alone) x PNG, SVG, PDF with --theme light --figure-part canvas: a valid
+ * file; PNG and PDF drawn twice are the same bytes. (SVG twice in one
+ * process is not: cairo numbers its ids per process; the next test draws
+ * them in processes of their own.) */
+Test(print, light_canvas_figures_of_every_lesson_view_and_format, .timeout = 240)
+{
+    char dir[] = "/tmp/tristep-print-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char why[256];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
+    int files = 0;
+    for (int i = 0; all_lessons[i]; i++) {
+        const struct lesson *l = all_lessons[i];
+        struct scene s;
+        char err[256];
+        cr_assert(scene_builtin(&s, l->builtin_scene, err, sizeof err), "%s", err);
+        struct explorer ex;
+        struct raster_params prm = default_params();
+        struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = l->builtin_scene,
+                                   .params = &prm,
+                                   .step_end = true, .theme = THEME_LIGHT, .part = PART_CANVAS };
+        cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s: %s", l->id, err);
+        /* half-way, so that the current step, its cells and the lesson's
+         * drawings are on the figure too */
+        cr_assert(explorer_set_step(&ex, ex.replay.total / 2));
+        int nviews = explorer_view_count(&ex);
+        for (int v = 0; v <= nviews; v++) {
+            const char *view = v < nviews ? explorer_view_name(&ex, v) : "edge-bc";
+            cr_assert(explorer_set_view_name(&ex, view), "%s: view %s", l->id, view);
+            static const char *const formats[] = { "png", "pdf", "svg" };
+            for (int f = 0; f < 3; f++) {
+                char a[512], b[512];
+                snprintf(a, sizeof a, "%s/%s-%s-a.%s", dir, l->id, view, formats[f]);
+                snprintf(b, sizeof b, "%s/%s-%s-b.%s", dir, l->id, view, formats[f]);
+                cr_assert(explorer_export(&ex, a, FIG_W, FIG_H, err, sizeof err), "%s: %s", a, err);
+                files++;
+                if (f == 0) {
+                    cr_expect(starts_with(a, "\x89PNG\r\n\x1a\n", 8), "%s is not a PNG", a);
+                    int w, h;
+                    uint32_t corner = png_pixel(a, 1, 1, &w, &h);
+                    cr_expect(w == FIG_W && h == FIG_H, "%s is %d x %d", a, w, h);
+                    /* the pixel grid alone: no panel at the right, no bar at the bottom */
+                    uint32_t right = png_pixel(a, FIG_W - 2, FIG_H / 2, &w, &h);
+                    uint32_t bottom = png_pixel(a, FIG_W / 2, FIG_H - 2, &w, &h);
+                    cr_expect_eq(corner, 0xffffffu, "%s: the page is %06x, not white", a,
+                                 (unsigned)corner);
+                    cr_expect_eq(right, 0xffffffu, "%s: %06x at the right, a panel?", a, (unsigned)right);
+                    cr_expect_eq(bottom, 0xffffffu, "%s: %06x at the bottom, a bar?", a,
+                                 (unsigned)bottom);
+                } else if (f == 1) {
+                    cr_expect(starts_with(a, "%PDF-", 5), "%s is not a PDF", a);
+                } else {
+                    cr_expect(starts_with(a, "<?xml", 5), "%s is not an SVG", a);
+                }
+                if (f < 2) {
+                    cr_assert(explorer_export(&ex, b, FIG_W, FIG_H, err, sizeof err), "%s: %s", b, err);
+                    cr_expect(same_bytes(a, b), "%s and its second drawing differ", a);
+                    remove(b);
+                }
+                remove(a);
+            }
+        }
+        explorer_free(&ex);
+        scene_free(&s);
+    }
+    rmdir(dir);
+    cr_expect_gt(files, 5 * 3 * 8);
+}
+
+static int run_program(const char *lesson, const char *args)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "%s/%s %s >/dev/null 2>&1", test_build_dir(), lesson, args);
+    int st = system(cmd);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* From the command line, in processes of their own: every lesson, every
+ * format, both themes and both parts, the same bytes twice. */
+Test(print, command_line_figures_are_reproducible_in_every_theme_and_part, .timeout = 240)
+{
+    char dir[] = "/tmp/tristep-print-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    static const char *const themes[] = { "dark", "light" }, *const parts[] = { "all", "canvas" };
+    static const char *const formats[] = { "png", "svg", "pdf" };
+    for (int i = 0; all_lessons[i]; i++)
+        for (int t = 0; t < 2; t++)
+            for (int p = 0; p < 2; p++)
+                for (int f = 0; f < 3; f++) {
+                    char a[512], b[512], args[1400];
+                    snprintf(a, sizeof a, "%s/a.%s", dir, formats[f]);
+                    snprintf(b, sizeof b, "%s/b.%s", dir, formats[f]);
+                    for (int k = 0; k < 2; k++) {
+                        snprintf(args, sizeof args, "--figure %s --step end --size %dx%d "
+                                 "--theme %s --figure-part %s", k ? b : a, FIG_W, FIG_H,
+                                 themes[t], parts[p]);
+                        cr_assert_eq(run_program(all_lessons[i]->id, args), 0, "%s %s",
+                                     all_lessons[i]->id, args);
+                    }
+                    cr_expect(same_bytes(a, b), "%s --theme %s --figure-part %s: .%s not "
+                              "reproducible", all_lessons[i]->id, themes[t], parts[p], formats[f]);
+                    remove(a);
+                    remove(b);
+                }
+    rmdir(dir);
+}
+
+/* The light theme is dark ink on white, the dark theme the opposite; the
+ * whole view keeps its panel, the canvas part does not. */
+Test(print, light_is_paper_and_canvas_drops_the_panel)
+{
+    char dir[] = "/tmp/tristep-print-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char path[512], args[1024];
+    snprintf(path, sizeof path, "%s/f.png", dir);
+    struct { const char *opts; bool light, panel; } cases[] = {
+        { "--theme dark", false, true }, { "--theme light", true, true },
+        { "--theme light --figure-part canvas", true, false },
+        { "--figure-part canvas", false, false },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        snprintf(args, sizeof args, "--figure %s --step 300 --size 1280x800 %s", path, cases[c].opts);
+        cr_assert_eq(run_program("02-barycentric", args), 0, "%s", args);
+        int w, h;
+        uint32_t page = png_pixel(path, 4, 4, &w, &h);
+        uint32_t side = png_pixel(path, 1270, 400, &w, &h);     /* the panel, if any */
+        cr_expect(cases[c].light ? luma_of(page) > 0.9 : luma_of(page) < 0.2,
+                  "%s: the page is %06x", cases[c].opts, (unsigned)page);
+        /* the panel's colour differs from the page's; without it the canvas runs on */
+        cr_expect(cases[c].panel ? side != page : side == page, "%s: %06x at the right, page %06x",
+                  cases[c].opts, (unsigned)side, (unsigned)page);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
+Test(print, bad_theme_or_part_is_a_usage_error_that_writes_nothing)
+{
+    char dir[] = "/tmp/tristep-print-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char path[512], args[1024];
+    snprintf(path, sizeof path, "%s/f.png", dir);
+    const char *bad[] = { "--theme sepia", "--theme", "--figure-part panel", "--figure-part ''",
+                          "--theme Light" };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(args, sizeof args, "--figure %s %s", path, bad[i]);
+        cr_expect_eq(run_program("03-edge-stepping", args), 2, "%s", bad[i]);
+        FILE *f = fopen(path, "rb");
+        cr_expect_null(f, "%s wrote %s", bad[i], path);
+        if (f)
+            fclose(f);
+    }
+    rmdir(dir);
+}
+
+/* figures/list draws a light PDF of every lesson, and the lesson's text
+ * links it. */
+Test(print, every_lesson_has_a_light_pdf_in_the_list_and_links_it)
+{
+    size_t len = 0;
+    char *list = slurp("figures/list", &len);
+    cr_assert_not_null(list, "figures/list not found");
+    for (int i = 0; all_lessons[i]; i++) {
+        const struct lesson *l = all_lessons[i];
+        bool listed = false;
+        char name[128] = "";
+        for (char *line = list; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+            char out[128], les[128];
+            if (sscanf(line, "%127s %127s", out, les) != 2 || out[0] == '#')
+                continue;
+            size_t n = strlen(out);
+            if (strcmp(les, l->id) == 0 && n > 10 && strcmp(out + n - 10, "-light.pdf") == 0
+                && strstr(line, "--theme light")) {
+                listed = true;
+                snprintf(name, sizeof name, "%s", out);
+                break;
+            }
+        }
+        cr_expect(listed, "figures/list has no light PDF of %s", l->id);
+        if (!listed)
+            continue;
+        char path[256], link[256];
+        snprintf(path, sizeof path, "figures/%s", name);
+        cr_expect(starts_with(path, "%PDF-", 5), "%s is not committed", path);
+        snprintf(path, sizeof path, "lessons/%s/README.md", l->id);
+        snprintf(link, sizeof link, "(../../figures/%s)", name);
+        cr_expect(strstr(test_read_text(path), link) != NULL, "%s does not link %s", path, link);
+    }
+    free(list);
+}
+
+/* No two committed figures are the same picture under two names. */
+Test(print, no_two_committed_figures_are_identical)
+{
+    size_t len = 0;
+    char *list = slurp("figures/list", &len);
+    cr_assert_not_null(list);
+    char names[128][64];
+    int n = 0;
+    for (char *line = list; line && *line && n < 128;
+         line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        char out[64];
+        if (sscanf(line, "%63s", out) == 1 && out[0] != '#')
+            snprintf(names[n++], 64, "%s", out);
+    }
+    cr_assert_gt(n, 10);
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++) {
+            char pa[128], pb[128];
+            snprintf(pa, sizeof pa, "figures/%.63s", names[a]);
+            snprintf(pb, sizeof pb, "figures/%.63s", names[b]);
+            cr_expect(!same_bytes(pa, pb), "%s and %s are the same file", names[a], names[b]);
+        }
+    free(list);
+}
