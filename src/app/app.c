@@ -24,6 +24,7 @@
 #include <unistd.h>      /* access: a free name for a saved scene */
 
 #include "display.h"
+#include "pointer.h"
 #include "draw/paint.h"
 #include "util/file.h"
 
@@ -52,13 +53,7 @@ struct app {
                                  * counts windows and the mouse in points */
     bool dirty, quit, failed;
 
-    /* the mouse */
-    enum { DRAG_NONE, DRAG_VERTEX, DRAG_PAN } drag;
-    int drag_vertex;
-    double down_x, down_y, last_x, last_y;
-    bool moved;
-    double drop_x, drop_y;      /* scene position the dragged vertex goes to */
-    bool drop_pending;
+    struct pointer ptr;         /* the mouse */
 
     Uint64 count_shown;         /* when the counting progress was last shown */
 
@@ -331,73 +326,38 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
     }
 }
 
-/* --- the mouse ---------------------------------------------------------------------- */
+/* --- the mouse (pointer.c) ------------------------------------------------------------ */
 
 static void mouse_down(struct app *a, double x, double y)
 {
     struct explorer_layout L;
     layout(a, &L);
-    a->down_x = a->last_x = x;
-    a->down_y = a->last_y = y;
-    a->moved = false;
-    a->drag = DRAG_NONE;
-    if (x >= L.cx + L.cw || y >= L.cy + L.ch)
-        return;                         /* the panel or the scrub bar */
-    a->drag_vertex = explorer_hit_vertex(&a->ex, &L, x, y);
-    a->drag = a->drag_vertex >= 0 ? DRAG_VERTEX : DRAG_PAN;
+    pointer_down(&a->ptr, &a->ex, &L, x, y);
 }
 
 static void mouse_move(struct app *a, double x, double y)
 {
     struct explorer_layout L;
     layout(a, &L);
-    if (fabs(x - a->down_x) > 3 || fabs(y - a->down_y) > 3)
-        a->moved = true;
-    if (a->drag == DRAG_VERTEX) {
-        /* moved once per frame (drop_vertex): every move re-runs the lesson */
-        a->ex.hover_vertex = a->drag_vertex;
-        a->drop_x = (x - L.ox) / L.zoom, a->drop_y = (y - L.oy) / L.zoom;
-        a->drop_pending = true;
+    if (pointer_move(&a->ptr, &a->ex, &L, x, y))
         a->dirty = true;
-    } else if (a->drag == DRAG_PAN && a->moved) {
-        explorer_pan(&a->ex, &L, x - a->last_x, y - a->last_y);
-        a->dirty = true;
-    } else if (a->drag == DRAG_NONE) {
-        int h = explorer_hit_vertex(&a->ex, &L, x, y);
-        if (h != a->ex.hover_vertex)
-            a->ex.hover_vertex = h, a->dirty = true;
-    }
-    a->last_x = x, a->last_y = y;
 }
 
-/* Move the dragged vertex to where the mouse last was. */
 static void drop_vertex(struct app *a)
 {
-    if (!a->drop_pending)
-        return;
-    a->drop_pending = false;
-    if (!explorer_move_vertex(&a->ex, a->drag_vertex, a->drop_x, a->drop_y))
+    if (!pointer_drop(&a->ptr, &a->ex))
         out_of_memory(a);
 }
 
 static void mouse_up(struct app *a, double x, double y)
 {
-    mouse_move(a, x, y);
-    drop_vertex(a);
-    if (a->drag == DRAG_PAN && !a->moved) {
-        /* a click on a cell pins its values; a second click unpins */
-        struct explorer_layout L;
-        layout(a, &L);
-        int px = (int)floor((x - L.ox) / L.zoom), py = (int)floor((y - L.oy) / L.zoom);
-        struct explorer *ex = &a->ex;
-        if (px < 0 || py < 0 || px >= ex->scene.w || py >= ex->scene.h
-            || (ex->pinned && ex->pin_x == px && ex->pin_y == py))
-            ex->pinned = false;
-        else
-            ex->pinned = true, ex->pin_x = px, ex->pin_y = py;
+    struct explorer_layout L;
+    layout(a, &L);
+    bool dirty;
+    if (!pointer_up(&a->ptr, &a->ex, &L, x, y, &dirty))
+        out_of_memory(a);
+    if (dirty)
         a->dirty = true;
-    }
-    a->drag = DRAG_NONE;
 }
 
 static void wheel(struct app *a, int dy)
@@ -406,10 +366,8 @@ static void wheel(struct app *a, int dy)
     SDL_GetMouseState(&mx, &my);
     struct explorer_layout L;
     layout(a, &L);
-    if (mx >= L.cx + L.cw || my >= L.cy + L.ch || dy == 0)
-        return;
-    explorer_zoom_at(&a->ex, &L, mx, my, pow(1.25, dy));
-    a->dirty = true;
+    if (pointer_wheel(&a->ex, &L, mx, my, dy))
+        a->dirty = true;
 }
 
 /* --- --keys ------------------------------------------------------------------------- */
@@ -698,7 +656,7 @@ static bool open_window(struct app *a, const struct app_desc *d)
 int explorer_run(const struct app_desc *d)
 {
     const struct lesson *l = d->explorer.lesson;
-    struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
+    struct app a = { .lesson = l, .dirty = true };
     int status = d->keys ? read_script(&a, d->keys) : -1;
     if (status >= 0) {
         free_script(&a);

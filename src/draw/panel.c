@@ -222,15 +222,16 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        const char *name = i < 0 ? "this lesson" : ex->compare[i]->id;
         if (r->counted < done) {        /* a large scene, still being counted */
-            at = cat(buf, n, at, "%-18s counting: %.0f%%\n", ex->compare[i]->id,
+            at = cat(buf, n, at, "%-18s counting: %.0f%%\n", name,
                      100.0 * r->counted / (r->ntris ? r->ntris : 1));
             continue;
         }
         const struct trace_counters *c = &r->sums[done];
         double px = c->tested ? (double)c->tested : 1;
-        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
-                 (unsigned long long)c->tested, (double)c->mul / px, (double)c->add / px);
+        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", name, (unsigned long long)c->tested,
+                 (double)c->mul / px, (double)c->add / px);
     }
     while (at > 0 && at <= n && buf[at - 1] == '\n')
         buf[--at] = '\0';
