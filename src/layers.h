@@ -1,7 +1,7 @@
 /* layers.h - the folders of src/ in their dependency order, lowest first.
  *
- *     util <- raster <- scene <- trace <- (src/ itself: lesson.h, the lesson
- *     interface) <- shade <- explore <- draw <- app <- cli <- exercise
+ *     util <- raster <- scene <- front <- trace <- (src/ itself: lesson.h,
+ *     the lesson interface) <- shade <- explore <- draw <- app <- cli <- exercise
  *
  * A file may include the headers of its own folder and of folders before
  * its own in this list, never of a later one: the narration knows nothing
@@ -17,7 +17,8 @@
 #define TRISTEP_LAYERS \
     "util",    /* writing files all or nothing */ \
     "raster",  /* snapping, triangle setup, the fill rule, the target */ \
-    "scene",   /* scene files and the built-in scenes */ \
+    "scene",   /* scene files (2-D and 3-D), OBJ files, the built-in scenes */ \
+    "front",   /* the 3-D front end: 3-D scene -> screen triangles */ \
     "trace",   /* the narration: events, counters, NARRATE */ \
     ".",       /* the lesson interface: lesson.h, lesson_explorer.h */ \
     "shade",   /* shared lesson machinery: shading pixels, four at a time */ \

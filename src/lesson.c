@@ -3,6 +3,14 @@
 
 #include <string.h>
 
+#include "front/front.h"
+
+front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v)
+{
+    front_fn f = l->fronts ? l->fronts[v - l->variants] : NULL;
+    return f ? f : front_scene;
+}
+
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)
 {
     for (int i = 0; i < l->nvariants; i++)

@@ -19,7 +19,15 @@ struct raster_params {
     int block_size;       /* q for block lessons (0 = the lesson's default) */
     bool affine;          /* texture affinely, not perspective-correct (exhibit) */
     int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
+    int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
+    /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
+     * of a world triangle from it before rasterizing its first screen triangle */
+    const struct scene *scene;
 };
+
+/* Makes a 3-D scene's screen triangles (src/front/: front_scene, or an
+ * exhibit's own way); false only when out of memory. */
+typedef bool (*front_fn)(struct scene *s);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
@@ -45,7 +53,10 @@ enum lesson_param_flags {
     LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
     LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
     LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
+    LESSON_PARAM_SAMPLES = 8,   /* samples per pixel 1, 4, 8; 4 unless --samples (lesson 08) */
 };
+
+#define LESSON_SAMPLES_DEFAULT 4    /* --samples of a lesson with LESSON_PARAM_SAMPLES */
 
 /* A named cost (trace/trace.h) counted n times, in a lesson's declaration of
  * what one pixel costs: COST_TERM(3, EDGE_VALUE_COST). A list of terms ends
@@ -91,9 +102,21 @@ struct lesson {
      * (shaded and written); NULL for none. tests/test_counters.c recounts
      * both from what the code COUNTs. */
     const struct cost_term *cost_tested, *cost_covered;
+    /* How each variant makes a 3-D scene's screen triangles (nvariants
+     * entries; lesson 06's exhibits have their own), or NULL: every variant
+     * uses the shared front end (src/front/) */
+    const front_fn *fronts;
+    /* Which variants keep another quantity than z in the depth buffer
+     * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
+     * NULL: none. An exhibit among them is compared by its colours alone. */
+    const bool *other_depth;
 
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
+
+/* The front end variant v of lesson l runs on a 3-D scene: its entry of
+ * l->fronts, or front_scene. */
+front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
 

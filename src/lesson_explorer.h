@@ -95,7 +95,9 @@ struct lesson_canvas {
  *         { "lanes", "which of the four lanes tested the pixel", lanes_cell },
  *     };
  *
- * `test` or `write` is NULL when the pixel saw no such event this step; `t`
+ * `test` or `write` is NULL when the pixel saw no such event this step (a
+ * pixel covered without a test of its own, in a full block or a span, gets
+ * a test event with its x, y and TRACE_INSIDE, the rest zero); `t`
  * is the triangle's setup (its vertices, for values the events do not carry).
  * The name is what --view accepts; the legend is shown under it. */
 struct lesson_view {

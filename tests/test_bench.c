@@ -129,6 +129,11 @@ Test(bench, quick_mode_is_exact_and_catches_the_exhibits, .timeout = 120)
     if (exhibits > 0)
         cr_expect_gt(exhibits_caught, 0, "no exhibit differs from the reference on any scene");
 
+    /* the 3-D front end's row: the whole 100,000-triangle mesh, timed */
+    const struct csv_row *fe = find(rows, n, "torus-3d", "front-end", "clip+project");
+    cr_assert(fe, "no row for the 3-D front end");
+    cr_expect_gt(fe->median, 0, "the front end has no time");
+
     snprintf(path, sizeof path, "%s/bench.png", dir);
     cr_expect(file_starts_with(path, "\x89PNG\r\n\x1a\n", 8), "%s is not a PNG", path);
     /* the markdown table the texts link (make bench writes it to BENCH.md) */

@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "front/front.h"
 #include "testlib.h"
 #include "util/file.h"
 
@@ -335,6 +336,61 @@ Test(cli, malformed_scenes_exit_2_with_file_line_message_and_no_output, .timeout
     dirs_remove(&d);
 }
 
+/* Bad 3-D input (the whole list is read in-process by test_scene3.c): the
+ * message names the scene's line, or the OBJ file's own line. */
+static const struct bad_scene3 {
+    const char *name, *scene, *obj;
+    bool in_obj;
+    int line;
+} bad_scenes3[] = {
+    { "up parallel to the view direction", "size 8 8\ncamera 0 0 5  0 0 0  0 0 1  60 0.1 100\n", NULL, false, 2 },
+    { "near = 0", "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  60 0 100\n", NULL, false, 2 },
+    { "far <= near", "size 8 8\n# c\ncamera 0 0 5  0 0 0  0 1 0  60 2 2\n", NULL, false, 3 },
+    { "eye = target", "size 8 8\ncamera 1 2 3  1 2 3  0 1 0  60 0.1 100\n", NULL, false, 2 },
+    { "world coordinate beyond 10^6", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 60 0.1 100\n"
+      "tri3 0 0 0 1 1 1  1 0 0 1 1 1  0 1e7 0 1 1 1\n", NULL, false, 3 },
+    { "missing OBJ", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 60 0.1 100\nobj missing.obj 1 1 1\n", NULL, false, 3 },
+    { "OBJ index out of range", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 60 0.1 100\nobj bad.obj 1 1 1\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n", true, 5 },
+    { "malformed OBJ", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 60 0.1 100\nobj bad.obj 1 1 1\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 zero\n", true, 3 },
+    { "non-finite OBJ vertex", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 60 0.1 100\nobj bad.obj 1 1 1\n",
+      "v 0 0 0\nv inf 0 0\n", true, 2 },
+};
+
+Test(cli, bad_3d_scenes_and_objs_exit_2_with_file_line_message_and_no_output, .timeout = 120, .fini = remove_live_dirs)
+{
+    struct programs p;
+    find_programs(&p);
+    static struct dirs d;   /* static: .fini may run after the test returned early */
+    dirs_make(&d);
+    char scene[300], obj[300], out[300], png[300];
+    snprintf(scene, sizeof scene, "%s/bad.scene", d.work);
+    snprintf(obj, sizeof obj, "%s/bad.obj", d.work);
+    snprintf(out, sizeof out, "%s/out.pgm", d.work);
+    snprintf(png, sizeof png, "%s/out.png", d.work);
+    static const char *const keep[] = { "bad.scene", "bad.obj", NULL };
+    for (int k = 0; k < p.n; k++)
+        for (size_t i = 0; i < sizeof bad_scenes3 / sizeof bad_scenes3[0]; i++) {
+            const struct bad_scene3 *b = &bad_scenes3[i];
+            write_file(scene, b->scene, strlen(b->scene));
+            unlink(obj);
+            if (b->obj)
+                write_file(obj, b->obj, strlen(b->obj));
+            char *argv[] = { p.path[k], "--scene", scene, "--dump-coverage", out, "--dump-image", png, NULL };
+            struct result r = run(argv, d.scratch);
+            char what[200], stray[256] = "";
+            snprintf(what, sizeof what, "%s, 3-D scene '%s'", p.name[k], b->name);
+            cr_assert_eq(r.status, 2, "%s: exit status %d (stderr: %s)", what, r.status, r.err);
+            expect_located_message(r.err, b->in_obj ? obj : scene, b->line, what);
+            cr_assert_eq(r.out_len, 0, "%s: wrote to stdout: %s", what, r.out);
+            cr_assert_eq(stray_files(d.work, keep, stray, sizeof stray), 0, "%s: left '%s' behind",
+                         what, stray);
+            result_free(&r);
+        }
+    dirs_remove(&d);
+}
+
 /* --- malformed command lines ------------------------------------------------------- */
 
 struct bad_args {
@@ -509,6 +565,7 @@ static uint8_t *reference_of(const char *path, struct scene *s, int bits)
 {
     char err[512];
     cr_assert(scene_load(s, path, err, sizeof err), "%s", err);
+    cr_assert(front_scene(s));      /* a 3-D scene: its screen triangles */
     uint8_t *mask = calloc((size_t)s->w * (size_t)s->h, 1);
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
@@ -570,6 +627,36 @@ static void write_scenes(const char *dir, char names[][300], int *count)
         cr_assert_eq(fclose(f), 0);
         n++;
     }
+    /* 3-D scenes: a room seen from inside (every wall cut by the near plane
+     * and reaching past the guard band), an OBJ model culled */
+    snprintf(names[n], 300, "%s/room.scene", dir);
+    FILE *f = fopen(names[n++], "w");
+    cr_assert_not_null(f);
+    fprintf(f, "size 61 43\ncamera 0.3 -0.2 0.1  2 0.5 -1  0.1 1 0  100 0.003 50\n");
+    static const int quads[6][4] = { { 0, 1, 3, 2 }, { 4, 6, 7, 5 }, { 0, 4, 5, 1 },
+                                      { 2, 3, 7, 6 }, { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
+    for (int q = 0; q < 6; q++)
+        for (int t = 0; t < 2; t++) {
+            fprintf(f, "tri3");
+            for (int k = 0; k < 3; k++) {
+                int c = quads[q][t == 0 ? k : (k + 2) % 4];
+                fprintf(f, "  %d %d %d  %.3f %.3f %.3f", c & 1 ? 2 : -2, c & 2 ? 1 : -1,
+                        c & 4 ? 3 : -3, q / 6.0, k / 3.0, t * 0.5);
+            }
+            fprintf(f, "\n");
+        }
+    cr_assert_eq(fclose(f), 0);
+    char obj[300];
+    snprintf(obj, sizeof obj, "%s/model.obj", dir);
+    const char *model = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
+                        "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2/1 3/1 7/1 6/1\n"
+                        "f 3//2 4//2 8//2 7//2\nf -8 -3 -1 -4\n";
+    write_file(obj, model, strlen(model));
+    snprintf(names[n], 300, "%s/model.scene", dir);
+    const char *culled = "size 50 40\nbackground 0.1 0.1 0.1\n"
+                         "camera 3 2.5 4  0 0 0  0 1 0  50 0.5 20\ncull back\nobj model.obj 0.8 0.6 0.3\n";
+    write_file(names[n++], culled, strlen(culled));
+
     /* a 1 x 1 scene and a scene with no triangles */
     snprintf(names[n], 300, "%s/tiny.scene", dir);
     const char *tiny = "size 1 1\ntri 0 0 1 1 1 1  1 0 1 1 1 1  0 1 1 1 1 1\r\n";
@@ -595,6 +682,13 @@ static void check_dump_bits(const char *program, const char *variant, const char
     if (bits >= 0) {
         argv[n++] = "--subpixel-bits";
         argv[n++] = bits_arg;
+    }
+    /* a lesson with samples (08) counts samples, 4 by default: one sample is
+     * the pixel centre (its sample counts are test_lesson08.c's) */
+    const struct lesson *l = lesson_of(strrchr(program, '/') ? strrchr(program, '/') + 1 : program);
+    if (l && (l->params & LESSON_PARAM_SAMPLES)) {
+        argv[n++] = "--samples";
+        argv[n++] = "1";
     }
     argv[n] = NULL;
     struct result r = run(argv, d->scratch);

@@ -26,6 +26,7 @@
 #include "exercise/exercise.h"
 #include "explore/explorer.h"
 #include "shade/shade.h"
+#include "front/front.h"   /* front_scene */
 #include "testlib.h"
 
 /* A whole check must finish in 30 s on the slowest machine of the course
@@ -185,6 +186,14 @@ static const struct {
     { "04", NULL, true, "colour and depth (perspective)" },
     { "05", "corners-outside", false, "single triangle" },
     { "05", "or-inside", false, "single triangle" },
+    { "06", "inverse", false, "colour and depth (perspective)" },
+    { "06", "reversed", false, "colour and depth (perspective)" },
+    { "06", "ndc24", false, "colour and depth (perspective)" },
+    { "06", "no-guard-32", false, "random triangles" },
+    { "08", "no-fill-rule", false, "fill-rule ties" },
+    /* at the one sample the check runs with, the grid is the pixel centre:
+     * exact, and it passes (tests/test_lesson08.c counts it at 4 samples) */
+    { "08", "grid", false, NULL },
 };
 
 Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
@@ -199,18 +208,32 @@ Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
         struct run run;
         check(&run, l, v->rasterize, &p);
         const char *name = exhibits[i].variant ? exhibits[i].variant : "affine";
+        if (!exhibits[i].check) {
+            cr_expect(run.ok, "%s/%s is exact at one sample, yet fails:\n%s", l->id, name, run.report);
+            run_free(&run);
+            continue;
+        }
         cr_expect_not(run.ok, "%s/%s passes", l->id, name);
         cr_expect_str_eq(run.r.failed, exhibits[i].check, "%s/%s:\n%s", l->id, name, run.report);
         cr_expect_neq(run.r.counterexample[0], '\0');
         cr_expect_lt(run.seconds, CHECK_SECONDS);
         run_free(&run);
     }
-    /* and every exhibit of every lesson is in the table */
-    int exhibits_seen = 0;
+    /* and every exhibit of every lesson is in the table: lesson 06's slips
+     * of the 3-D front end may be left out, as they make other screen
+     * triangles and are on the check's 2-D scenes the lesson itself
+     * (tests/test_lesson06.c counts them on 3-D scenes) */
     for (int i = 0; all_lessons[i]; i++)
-        for (int k = 0; k < all_lessons[i]->nvariants; k++)
-            exhibits_seen += all_lessons[i]->variants[k].exhibit;
-    cr_expect_eq((size_t)exhibits_seen + 1, n, "an exhibit without an expected check (the +1 is --affine)");
+        for (int k = 0; k < all_lessons[i]->nvariants; k++) {
+            const struct lesson_variant *v = &all_lessons[i]->variants[k];
+            if (!v->exhibit || lesson_front(all_lessons[i], v) != front_scene)
+                continue;
+            bool listed = false;
+            for (size_t e = 0; e < n && !listed; e++)
+                listed = exhibits[e].variant && strncmp(all_lessons[i]->id, exhibits[e].lesson, 2) == 0
+                         && strcmp(exhibits[e].variant, v->name) == 0;
+            cr_expect(listed, "the exhibit %s/%s has no expected check", all_lessons[i]->id, v->name);
+        }
 }
 
 /* Lesson 03's own property fails a rasterizer that is right pixel for pixel

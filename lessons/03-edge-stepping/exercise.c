@@ -128,6 +128,7 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
             bool inside = Cx[0] >= 0 && Cx[1] >= 0 && Cx[2] >= 0;
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { Cx[0] - e.bias[0], Cx[1] - e.bias[1], Cx[2] - e.bias[2] },
+                    .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t },
                     .flags = inside ? TRACE_INSIDE : 0);
             if (inside)
                 target_write(fb, x, y, (float)P.z, shade_scaled(p, tr, P.r, P.g, P.b, P.s, P.t));

@@ -24,6 +24,7 @@
 #include <unistd.h>      /* access: a free name for a saved scene */
 
 #include "display.h"
+#include "params.h"
 #include "pointer.h"
 #include "draw/paint.h"
 #include "util/file.h"
@@ -286,27 +287,9 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         if (has_twins(a->lesson) && !explorer_cycle_twin(ex))
             out_of_memory(a);
         break;
-    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET:
-        if (prm & LESSON_PARAM_SUBPIXEL) {
-            p.subpixel_bits += k == SDLK_LEFTBRACKET ? -1 : 1;
-            p.subpixel_bits = p.subpixel_bits < 0 ? 0 : p.subpixel_bits > 8 ? 8 : p.subpixel_bits;
-            snprintf(buf, sizeof buf, "sub-pixel bits: %d", p.subpixel_bits);
+    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET: case SDLK_b: case SDLK_m: case SDLK_p:
+        if (params_key(prm, (int)k, &p, buf, sizeof buf))     /* params.c */
             set_params(a, &p, buf);
-        }
-        break;
-    case SDLK_b:
-        if (prm & LESSON_PARAM_BLOCK) {
-            int q = p.block_size ? p.block_size : 8;
-            p.block_size = q == 4 ? 8 : q == 8 ? 16 : 4;
-            snprintf(buf, sizeof buf, "block size %d x %d", p.block_size, p.block_size);
-            set_params(a, &p, buf);
-        }
-        break;
-    case SDLK_p:
-        if (prm & LESSON_PARAM_AFFINE) {
-            p.affine = !p.affine;
-            set_params(a, &p, p.affine ? "affine texturing (the exhibit)" : "perspective-correct");
-        }
         break;
     case SDLK_e: export_view(a); break;
     case SDLK_l:    /* figures for print: the light theme, also in the window */

@@ -49,6 +49,7 @@ static void usage(const struct lesson *l, FILE *out)
         "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n"
         "  --block-size Q          block size for block lessons (4, 8 or 16)\n"
         "  --subpixel-bits N       snap vertices to N fractional bits, 0..8 (default 8)\n"
+        "  --samples N             samples per pixel, 1, 4 or 8 (lesson 08; default 4)\n"
         "  --affine                texture affinely, not perspective-correct (lesson 04's exhibit)\n"
         "  --keys FILE             explorer: read key names from FILE, one per line\n"
         "  --list-scenes           list the built-in scenes\n"
@@ -96,7 +97,8 @@ static bool parse_positive(const char *s, double max, double *out)
 
 enum {
     OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
-    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_SAMPLES,
+    OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
     OPT_HELP, OPT_VERSION,
 };
 
@@ -115,6 +117,7 @@ static const struct option long_options[] = {
     { "figure-part", required_argument, NULL, OPT_PART },
     { "block-size", required_argument, NULL, OPT_BLOCK },
     { "subpixel-bits", required_argument, NULL, OPT_BITS },
+    { "samples", required_argument, NULL, OPT_SAMPLES },
     { "affine", no_argument, NULL, OPT_AFFINE },
     { "keys", required_argument, NULL, OPT_KEYS },
     { "list-scenes", no_argument, NULL, OPT_LIST_SCENES },
@@ -128,6 +131,8 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
 {
     *o = (struct cli_options){ .variant = &l->variants[0],
                                .params = { .subpixel_bits = SUBPIXEL_BITS } };
+    if (l->params & LESSON_PARAM_SAMPLES)
+        o->params.samples = LESSON_SAMPLES_DEFAULT;
     opterr = 0;   /* our own messages, in the same form as every other error */
     optind = 1;
     int c;
@@ -189,6 +194,11 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
             if (!parse_uint(optarg, SUBPIXEL_BITS, &u))
                 return bad_usage(l, "--subpixel-bits '%s': expected 0..8", optarg);
             o->params.subpixel_bits = (int)u;
+            break;
+        case OPT_SAMPLES:
+            if (!parse_uint(optarg, SAMPLES_MAX, &u) || !sample_pattern((int)u))
+                return bad_usage(l, "--samples '%s': expected 1, 4 or 8", optarg);
+            o->params.samples = (int)u;
             break;
         case OPT_AFFINE: o->params.affine = true; break;
         case OPT_KEYS: o->keys = optarg; break;
@@ -333,6 +343,12 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     if (!loaded) {
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
+    }
+    o.params.scene = &s;
+    if (!lesson_front(l, o.variant)(&s)) {    /* a 3-D scene: its screen triangles */
+        fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
+        scene_free(&s);
+        return EXIT_RUN;
     }
     o.params.checker = s.checker;
 

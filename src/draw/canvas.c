@@ -286,6 +286,10 @@ static void paint_current(struct painter *p)
         case TRACE_BLOCK:
             outline(p, ev->x, ev->y, ev->x1 + 1, ev->y1 + 1, p->pal->accent, w);
             break;
+        case TRACE_FRONT:
+            if (ev->klass == FRONT_PROJECT || ev->klass == FRONT_NEW)
+                outline(p, ev->x, ev->y, ev->x + 1, ev->y + 1, p->pal->accent, w);
+            break;
         case TRACE_SETUP:
             if (!ex->tri.empty)
                 outline(p, ex->tri.minx, ex->tri.miny, ex->tri.maxx + 1, ex->tri.maxy + 1,

@@ -44,6 +44,7 @@ const struct palette palette_light = {
     .partial_inside = 0xf8dd93, .partial_outside = 0xd0ab52,
     .span = 0x86cdd6, .row = 0xe3e7ee,
     .extra = 0xe020b8, .missing = 0x00a8c6, .exhibit = 0xc0303a, .on_exhibit = 0xffffff,
+    .wrong_colour = 0x5f9e00,
     .mark = 0x111318, .probe = 0xd6246e, .upper = 0x7a4fe0, .lower = 0xe07000,
     .brighter = 0x8a6d00, .deeper = 0x0f8a5f,
     .paper = true,

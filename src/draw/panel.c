@@ -11,7 +11,7 @@
 #include "views.h"
 
 static const char *const kind_names[TRACE_KIND_COUNT] = {
-    "setup", "row", "span", "block", "pixel test", "pixel write",
+    "setup", "row", "span", "block", "pixel test", "pixel write", "front end",
 };
 static const char *const class_names[BLOCK_CLASS_COUNT] = { "empty", "full", "partial" };
 
@@ -146,6 +146,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
                  (ev->flags & TRACE_DEPTH_PASS) ? "pass" : "fail");
         at = cat(buf, n, at, "colour #%06x\n", (unsigned)(ev->rgba & 0xffffff));
         break;
+    case TRACE_FRONT:           /* the lesson's watch says what the step did */
     case TRACE_KIND_COUNT:
         break;
     }
@@ -156,7 +157,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
         if (ex->lesson->aux_names[0])
             at = cat(buf, n, at, "\n");
     }
-    if (ex->side && ex->side->watch && ex->tri.area2 > 0 && at < n) {
+    if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
         ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
@@ -267,7 +268,7 @@ static double counters(struct painter *p, double x, double y, double w)
                           ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
                           (unsigned long long)ex->extra, (unsigned long long)ex->missing);
         if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)
-            snprintf(e + at, sizeof e - (size_t)at, "\nwrong colour %llu", (unsigned long long)ex->wrong_colour);
+            snprintf(e + at, sizeof e - (size_t)at, "   wrong colour %llu", (unsigned long long)ex->wrong_colour);
         h += 4 * p->s;
         h += draw_text(p, x, y + h, w, e, 11.5, ex->extra + ex->missing + ex->wrong_colour ? p->pal->extra : p->pal->covered, false);
     }
@@ -320,6 +321,8 @@ void paint_panel(struct painter *p)
             at = cat(buf, sizeof buf, at, "sub-pixel bits %d  ", ex->params.subpixel_bits);
         if (prm & LESSON_PARAM_BLOCK)
             at = cat(buf, sizeof buf, at, "block %d  ", ex->params.block_size ? ex->params.block_size : 8);
+        if (prm & LESSON_PARAM_SAMPLES)
+            at = cat(buf, sizeof buf, at, "samples %d  ", ex->params.samples > 1 ? ex->params.samples : 1);
         if (prm & LESSON_PARAM_AFFINE)
             at = cat(buf, sizeof buf, at, "%s", ex->params.affine ? "affine" : "perspective");
         y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
@@ -386,6 +389,8 @@ void paint_help(struct painter *p)
         at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
     if (ex->lesson->params & LESSON_PARAM_BLOCK)
         at = cat(keys, n, at, "B                    block size 4, 8, 16\n");
+    if (ex->lesson->params & LESSON_PARAM_SAMPLES)
+        at = cat(keys, n, at, "M                    samples per pixel 1, 4, 8\n");
     if (ex->lesson->params & LESSON_PARAM_AFFINE)
         at = cat(keys, n, at, "P                    affine / perspective-correct\n");
     at = cat(keys, n, at,

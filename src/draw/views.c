@@ -310,8 +310,11 @@ static uint32_t lesson_cell(const struct view_ctx *v, int x, int y)
     const struct lesson_view *lv = &ex->side->views[ex->view - VIEW_BUILTIN_COUNT];
     const struct cell *c = cur_cell(ex, x, y);
     int f = c ? c->flags : 0;
-    if (!(f & (CELL_TESTED | CELL_WRITTEN)))
+    if (!(f & (CELL_TESTED | CELL_WRITTEN | CELL_INSIDE)))
         return dim(v, x, y);
+    /* covered without a test of its own (a full block, a span): a test event
+     * with the pixel and TRACE_INSIDE, its aux zero */
+    bool tested = f & (CELL_TESTED | CELL_INSIDE);
     struct trace_event test = { .kind = TRACE_PIXEL_TEST, .x = x, .y = y,
                                 .flags = (f & CELL_INSIDE) ? TRACE_INSIDE : 0 };
     memcpy(test.e, c->e, sizeof test.e);
@@ -320,7 +323,7 @@ static uint32_t lesson_cell(const struct view_ctx *v, int x, int y)
                                  .rgba = c->rgba,
                                  .flags = (f & CELL_DEPTH_PASS) ? TRACE_DEPTH_PASS : 0 };
     double rgb[3];
-    if (!lv->cell(&ex->tri, (f & CELL_TESTED) ? &test : NULL, (f & CELL_WRITTEN) ? &write : NULL,
+    if (!lv->cell(&ex->tri, tested ? &test : NULL, (f & CELL_WRITTEN) ? &write : NULL,
                   rgb))
         return dim(v, x, y);
     return from_rgb(rgb[0], rgb[1], rgb[2]);

@@ -34,7 +34,7 @@
 
 struct guard *check_guard;
 
-
+/* One check: its name in the report, what it compares, its scenes. */
 struct check {
     const char *name;
     enum check_kind kind;

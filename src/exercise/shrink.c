@@ -1,10 +1,13 @@
 /* shrink.c - the smallest counterexample: fewest triangles, then the
  * smallest, roundest coordinates, while the check still fails. */
+#define _POSIX_C_SOURCE 200809L   /* alarm */
+
 #include "checker.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 
 struct shrinker {
@@ -17,8 +20,13 @@ static bool still_fails(struct shrinker *S, const struct scene *s)
     if (S->budget <= 0)
         return false;
     S->budget--;
+    if (check_guard)
+        alarm(SCENE_SECONDS);   /* a candidate may loop where the original did not */
     struct verdict v;
-    return !evaluate(S->C, s, &v);
+    bool failed = !evaluate(S->C, s, &v);
+    if (check_guard)
+        alarm(0);
+    return failed;
 }
 
 /* Keep candidate c in place of s when it still fails. */

@@ -9,6 +9,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "front/front.h"
+
 /* --- replaying a step ------------------------------------------------------- */
 
 static struct cell *explorer_cell_mut(struct explorer *ex, int x, int y)
@@ -83,21 +85,23 @@ static void take_event(void *ctx, const struct trace_event *ev)
         }
         break;
     case TRACE_SETUP:
+    case TRACE_FRONT:           /* a step of the 3-D front end: no pixel of the grid */
     case TRACE_KIND_COUNT:
         break;
     }
 }
 
-/* The cells cover the triangle's box widened to 16-pixel alignment, so the
- * blocks of a block lesson (q <= 16) fit too. */
+/* The cells cover the triangle's box widened by a pixel (lesson 08's samples
+ * reach beyond the box of centres) and to 16-pixel alignment, so the blocks
+ * of a block lesson (q <= 16) fit too. */
 static bool prepare_cells(struct explorer *ex, const struct tri_setup *t)
 {
     ex->cell_w = ex->cell_h = 0;
     ex->cell_x0 = ex->cell_y0 = 0;
     if (t->minx > t->maxx || t->miny > t->maxy)
         return true;
-    int x0 = t->minx & ~15, y0 = t->miny & ~15;
-    int x1 = t->maxx | 15, y1 = t->maxy | 15;
+    int x0 = (t->minx > 0 ? t->minx - 1 : 0) & ~15, y0 = (t->miny > 0 ? t->miny - 1 : 0) & ~15;
+    int x1 = (t->maxx + 1) | 15, y1 = (t->maxy + 1) | 15;
     if (x1 >= ex->scene.w) x1 = ex->scene.w - 1;
     if (y1 >= ex->scene.h) y1 = ex->scene.h - 1;
     size_t n = (size_t)(x1 - x0 + 1) * (size_t)(y1 - y0 + 1);
@@ -150,6 +154,33 @@ static bool advance_exact(struct explorer *ex, int upto)
     return true;
 }
 
+/* An exhibit with a front end of its own (lesson 06) makes other triangles
+ * than variants[0]: its exact picture is the whole scene as variants[0]
+ * projects and draws it, compared once every triangle is finished. */
+static bool own_front(const struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    return ex->scene.world.camera_line
+           && lesson_front(ex->lesson, v) != lesson_front(ex->lesson, ex->lesson->variants);
+}
+
+static bool exact_whole_scene(struct explorer *ex)
+{
+    if (ex->exact_upto == INT_MAX)
+        return true;
+    struct scene s;
+    if (!scene_copy(&s, &ex->scene))
+        return false;
+    const struct lesson_variant *v0 = &ex->lesson->variants[0];
+    struct raster_params p = ex->params;
+    p.scene = &s;
+    target_free(&ex->exact);
+    bool ok = lesson_front(ex->lesson, v0)(&s) && render_scene(&s, v0, &p, &ex->exact);
+    scene_free(&s);
+    ex->exact_upto = ok ? INT_MAX : -1;
+    return ok;
+}
+
 /* An exhibit: compare the coverage counts of the finished triangles with
  * what variants[0] gives for the same triangles. */
 struct exact_mask {
@@ -197,13 +228,25 @@ static bool compare_exhibit(struct explorer *ex)
     /* the picture of exactly the finished triangles */
     const struct target *have_fb = ex->cur >= 0 && done > ex->cur ? &ex->fb : &ex->replay.base;
     const uint8_t *count = have_fb->count;
-    if (!advance_exact(ex, done))
+    if (own_front(ex)) {
+        if (done < ex->replay.ntris) {      /* other triangles: only the whole picture compares */
+            memset(ex->diff, 0, n);
+            return true;
+        }
+        if (!exact_whole_scene(ex))
+            return false;
+    } else if (!advance_exact(ex, done)) {
         return false;
+    }
     ex->diff_done = done;
+    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
+        /* a buffer holding another depth than z (lesson 06's storages) is
+         * compared by its colours */
+        float want_z = other_depth ? have_fb->depth[i] : ex->exact.depth[i];
         bool colour = have == want && want > 0
-            && !pixel_close(ex->exact.color[i], ex->exact.depth[i], have_fb->color[i], have_fb->depth[i]);
+            && !pixel_close(ex->exact.color[i], want_z, have_fb->color[i], have_fb->depth[i]);
         ex->diff[i] = have > want ? EXHIBIT_EXTRA : have < want ? EXHIBIT_MISSING
                     : colour ? EXHIBIT_COLOUR : 0;
         ex->extra += have > want;
@@ -308,7 +351,6 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
 
 /* --- variants, params, vertices ---------------------------------------------- */
 
-/* The scene, variant or params changed: count again, keep the step. */
 /* Run the lessons named by lesson->compare on the same scene and params. */
 static bool compare_init(struct explorer *ex)
 {
@@ -387,8 +429,36 @@ static bool count_to(struct explorer *ex, uint64_t step)
     return true;
 }
 
+/* A 3-D scene's screen triangles as the current variant makes them (an
+ * exhibit may make them its own way): made again only when the variant's
+ * way differs from the one that made them, so dragged vertices stay. */
+static bool project_scene(struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    ex->params.scene = &ex->scene;
+    front_fn f = lesson_front(ex->lesson, v);
+    if (!ex->scene.world.camera_line || f == ex->projected_by)
+        return true;
+    ex->projected_by = f;
+    ex->focus = 0;
+    return ex->projected_by(&ex->scene);
+}
+
+/* The lesson's own run, first counted (at least as far as `step`), keeping
+ * pictures along the way for stepping back. */
+static bool begin_replay(struct explorer *ex, uint64_t step)
+{
+    if (!replay_begin(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+        return false;
+    replay_keep_pictures(&ex->replay);
+    return count_to(ex, step);
+}
+
+/* The scene, variant or params changed: count again, keep the step. */
 static bool rerun(struct explorer *ex, uint64_t step)
 {
+    if (!project_scene(ex))
+        return false;
     ex->replay.variant = &ex->lesson->variants[ex->variant];
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
@@ -433,9 +503,15 @@ bool explorer_cycle_exhibit(struct explorer *ex)
         /* the exhibits are made to be seen on the lesson's exhibit scene */
         struct scene s;
         char err[256];
-        if (scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err)) {
+        bool ok = scene_builtin(&s, ex->lesson->exhibit_scene, err, sizeof err);
+        if (ok && !front_scene(&s)) {   /* a 3-D scene: its screen triangles */
+            scene_free(&s);
+            ok = false;
+        }
+        if (ok) {
             scene_free(&ex->scene);
             ex->scene = s;
+            ex->projected_by = front_scene;
             ex->scene_is_default = false;
             snprintf(ex->scene_name, sizeof ex->scene_name, "builtin:%s", ex->lesson->exhibit_scene);
             ex->params.checker = s.checker;
@@ -539,11 +615,9 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
         uint64_t step = d->step_end ? UINT64_MAX : d->step;
-        bool begun = replay_begin(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
-                                  &ex->params);
-        if (begun)
-            replay_keep_pictures(&ex->replay);
-        if (!begun || !count_to(ex, step))
+        if (!project_scene(ex))
+            failed = "projecting the 3-D scene";
+        else if (!begin_replay(ex, step))
             failed = "counting the scene's events";
         else if (!compare_init(ex))
             failed = "running the lessons compared with this one";

@@ -104,6 +104,7 @@ struct explorer {
     bool scene_is_default;
     char scene_name[128];
     int variant;                    /* index into lesson->variants */
+    front_fn projected_by;          /* what made a 3-D scene's screen triangles (NULL: not yet) */
     struct raster_params params;
     struct replay replay;
     uint64_t step;

@@ -17,7 +17,11 @@ static void undo_clear(struct replay *r);
 
 static size_t target_bytes(const struct target *t)
 {
-    return (size_t)t->w * (size_t)t->h * (sizeof *t->color + sizeof *t->depth + 1);
+    size_t n = (size_t)t->w * (size_t)t->h;
+    size_t each = sizeof *t->color + sizeof *t->depth + 1;
+    if (t->samples)             /* lesson 08's samples are copied too */
+        each += (size_t)t->samples->n * (sizeof *t->samples->color + sizeof *t->samples->depth);
+    return n * each;
 }
 
 static uint64_t check_step(const struct replay *r, int k)
@@ -113,8 +117,11 @@ bool replay_restart(struct replay *r)
 bool replay_count(struct replay *r, int n)
 {
     if (r->counted < r->ntris && !r->counting.color
-        && !target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene)))
+        && (!target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene))
+            || !target_multisample(&r->counting, r->params.samples))) {   /* lesson 08's samples */
+        target_free(&r->counting);
         return false;
+    }
     struct trace tr = { 0 };
     for (; n > 0 && r->counted < r->ntris; n--) {
         int i = r->counted;
@@ -238,13 +245,14 @@ static void box_pixels(struct target *t, const struct replay_undo *u, unsigned c
 /* Before triangle base_upto is drawn into base: keep what its box holds.
  * An exact variant writes only the pixels the reference covers (the tests
  * hold every one to that), all inside the box that setup computed; an
- * exhibit may stray outside it, so its steps back redraw instead. When the
+ * exhibit may stray outside it, and lesson 08's samples are not in the
+ * record, so their steps back redraw instead. When the
  * room is full the older half goes; a box too large for it ends the history
  * (stepping back then starts from a checkpoint). */
 static void undo_save(struct replay *r, const struct tri_setup *t)
 {
-    if (r->variant->exhibit) {
-        undo_clear(r);
+    if (r->variant->exhibit || r->base.samples) {
+        undo_clear(r);          /* the record holds colour, depth and count, not samples */
         return;
     }
     struct replay_undo u = { .x0 = t->minx, .y0 = t->miny, .at = r->undo_used };
@@ -327,7 +335,8 @@ static bool advance_base(struct replay *r, int upto)
         undo_clear(r);
     } else if (!base_ok) {
         target_free(&r->base);
-        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene)))
+        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
+            || !target_multisample(&r->base, r->params.samples))
             return false;
         r->base_upto = 0;
         undo_clear(r);
@@ -368,6 +377,10 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
 {
     if (!target_init(fb, s->w, s->h, scene_background(s)))
         return false;
+    if (!target_multisample(fb, p->samples)) {     /* lesson 08: memory for its samples */
+        target_free(fb);
+        return false;
+    }
     int bits = p->subpixel_bits;           /* 0..8, taken as given: 0 is whole pixels */
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;

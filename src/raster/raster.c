@@ -132,6 +132,20 @@ void target_clear(struct target *fb)
         fb->depth[i] = INFINITY;
     }
     memset(fb->count, 0, n);
+    if (fb->samples)
+        for (size_t i = 0; i < n * (size_t)fb->samples->n; i++) {
+            fb->samples->color[i] = fb->background;
+            fb->samples->depth[i] = INFINITY;
+        }
+}
+
+static void samples_free(struct target_samples *ms)
+{
+    if (ms) {
+        free(ms->color);
+        free(ms->depth);
+        free(ms);
+    }
 }
 
 void target_free(struct target *fb)
@@ -139,7 +153,64 @@ void target_free(struct target *fb)
     free(fb->color);
     free(fb->depth);
     free(fb->count);
+    samples_free(fb->samples);
     memset(fb, 0, sizeof *fb);
+}
+
+/* Storage for n samples of every pixel of fb, not yet cleared. */
+static struct target_samples *samples_alloc(const struct target *fb, int n)
+{
+    size_t m = (size_t)fb->w * (size_t)fb->h * (size_t)n;
+    struct target_samples *ms = calloc(1, sizeof *ms);
+    if (!ms)
+        return NULL;
+    ms->n = n;
+    ms->color = malloc(m * sizeof *ms->color);
+    ms->depth = malloc(m * sizeof *ms->depth);
+    if (!ms->color || !ms->depth) {
+        samples_free(ms);
+        return NULL;
+    }
+    return ms;
+}
+
+bool target_multisample(struct target *fb, int n)
+{
+    if (n <= 1) {
+        samples_free(fb->samples);
+        fb->samples = NULL;
+        return true;
+    }
+    if (n > SAMPLES_MAX || !fb->color)
+        return false;
+    struct target_samples *ms = samples_alloc(fb, n);
+    if (!ms)
+        return false;
+    samples_free(fb->samples);
+    fb->samples = ms;
+    size_t m = (size_t)fb->w * (size_t)fb->h * (size_t)n;
+    for (size_t i = 0; i < m; i++) {
+        ms->color[i] = fb->background;
+        ms->depth[i] = INFINITY;
+    }
+    return true;
+}
+
+const struct sample_pattern *sample_pattern(int n)
+{
+    static const struct sample_pattern one = { 1, { 128 }, { 128 } };
+    static const struct sample_pattern four = { 4, { 96, 224, 32, 160 }, { 32, 96, 160, 224 } };
+    static const struct sample_pattern eight = {
+        8, { 144, 112, 208, 80, 48, 16, 176, 240 }, { 80, 176, 144, 48, 208, 112, 240, 16 } };
+    return n == 1 ? &one : n == 4 ? &four : n == 8 ? &eight : NULL;
+}
+
+const struct sample_pattern *sample_grid(int n)
+{
+    static const struct sample_pattern four = { 4, { 64, 192, 64, 192 }, { 64, 64, 192, 192 } };
+    static const struct sample_pattern eight = {
+        8, { 32, 96, 160, 224, 32, 96, 160, 224 }, { 64, 64, 64, 64, 192, 192, 192, 192 } };
+    return n == 4 ? &four : n == 8 ? &eight : sample_pattern(n);
 }
 
 bool target_copy(struct target *dst, const struct target *src)
@@ -154,6 +225,18 @@ bool target_copy(struct target *dst, const struct target *src)
     memcpy(dst->depth, src->depth, n * sizeof *dst->depth);
     memcpy(dst->count, src->count, n);
     dst->background = src->background;
+    if (!src->samples)
+        return target_multisample(dst, 1);
+    if (!dst->samples || dst->samples->n != src->samples->n) {
+        struct target_samples *ms = samples_alloc(dst, src->samples->n);
+        if (!ms)
+            return false;
+        samples_free(dst->samples);
+        dst->samples = ms;
+    }
+    size_t m = n * (size_t)src->samples->n;
+    memcpy(dst->samples->color, src->samples->color, m * sizeof *dst->samples->color);
+    memcpy(dst->samples->depth, src->samples->depth, m * sizeof *dst->samples->depth);
     return true;
 }
 
@@ -163,6 +246,64 @@ bool target_copy(struct target *dst, const struct target *src)
 static int64_t cross_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int64_t px, int64_t py)
 {
     return ((int64_t)x1 - x0) * (py - y0) - (px - x0) * ((int64_t)y1 - y0);
+}
+
+bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy)
+{
+    const int32_t *X = t->x, *Y = t->y;
+    if (cross_at(X[0], Y[0], X[1], Y[1], X[2], Y[2]) <= 0)
+        return false;   /* degenerate (setup normalised the orientation) */
+    for (int k = 0; k < 3; k++) {
+        int a = k, b = (k + 1) % 3;
+        int64_t f = cross_at(X[a], Y[a], X[b], Y[b], sx, sy);
+        bool on_edge_ok = f == 0 && is_top_left((int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
+        if (!(f > 0 || on_edge_ok))
+            return false;
+    }
+    return true;
+}
+
+/* Sutherland-Hodgman: keep the part of polygon p (n points) where
+ * sign * (coordinate axis) <= sign * bound; returns the new count. */
+static int clip_polygon(double (*p)[2], int n, int axis, double bound, double sign)
+{
+    double out[10][2];
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const double *a = p[i], *b = p[(i + 1) % n];
+        double da = sign * (a[axis] - bound), db = sign * (b[axis] - bound);
+        if (da <= 0)
+            out[m][0] = a[0], out[m][1] = a[1], m++;
+        if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+            double s = da / (da - db);
+            out[m][0] = a[0] + s * (b[0] - a[0]);
+            out[m][1] = a[1] + s * (b[1] - a[1]);
+            m++;
+        }
+    }
+    for (int i = 0; i < m; i++)
+        p[i][0] = out[i][0], p[i][1] = out[i][1];
+    return m;
+}
+
+double reference_pixel_area(const struct tri_setup *t, int px, int py)
+{
+    if (t->area2 <= 0)
+        return 0;
+    /* a triangle clipped by four half-planes has at most 7 corners */
+    double p[10][2];
+    for (int i = 0; i < 3; i++)
+        p[i][0] = t->x[i] / (double)SUBPIXEL_ONE, p[i][1] = t->y[i] / (double)SUBPIXEL_ONE;
+    int n = 3;
+    n = clip_polygon(p, n, 0, px, -1);
+    n = clip_polygon(p, n, 0, px + 1, 1);
+    n = clip_polygon(p, n, 1, py, -1);
+    n = clip_polygon(p, n, 1, py + 1, 1);
+    double a = 0;
+    for (int i = 0; i < n; i++)
+        a += p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1];
+    a = a < 0 ? -a / 2 : a / 2;
+    return a > 1 ? 1 : a;
 }
 
 void reference_coverage(const struct tri_setup *t,
@@ -188,14 +329,7 @@ void reference_coverage(const struct tri_setup *t,
         for (int64_t px = x0; px <= x1; px++) {
             int64_t cx = px * SUBPIXEL_ONE + SUBPIXEL_HALF;
             int64_t cy = py * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            bool inside = true;
-            for (int k = 0; k < 3 && inside; k++) {
-                int a = k, b = (k + 1) % 3;
-                int64_t f = cross_at(X[a], Y[a], X[b], Y[b], cx, cy);
-                bool on_edge_ok = f == 0 && is_top_left((int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
-                inside = f > 0 || on_edge_ok;
-            }
-            if (inside)
+            if (reference_point_covered(t, cx, cy))
                 cover(ctx, (int)px, (int)py);
         }
     }

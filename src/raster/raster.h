@@ -160,7 +160,44 @@ struct target {
     float *depth;
     uint8_t *count;
     uint32_t background;
+    struct target_samples *samples;     /* NULL: one sample per pixel (every lesson but 08) */
 };
+
+/* --- samples (lesson 08) --------------------------------------------------- */
+
+/* Sample positions inside pixel (px, py), in 1/256 pixel from its top-left
+ * corner: the standard patterns of Direct3D and Vulkan (CONVENTIONS.md,
+ * "Samples"). A sample is decided exactly like a pixel centre: the edge
+ * value at (256 px + x, 256 py + y), the top-left rule. */
+#define SAMPLES_MAX 8
+
+struct sample_pattern {
+    int n;
+    uint8_t x[SAMPLES_MAX], y[SAMPLES_MAX];
+};
+
+/* The standard pattern of n = 1, 4 or 8 samples (anything else: NULL). */
+const struct sample_pattern *sample_pattern(int n);
+/* A regular grid of n = 1, 4 or 8 samples, lesson 08's exhibit: the centre,
+ * the quarter points (64 or 192, 64 or 192), a 4 x 2 grid. */
+const struct sample_pattern *sample_grid(int n);
+
+/* Per-sample storage of a multisample target: n colours and n depths per
+ * pixel, sample s of pixel i at index i * n + s. target_write() never looks
+ * at it, so the one-sample lessons pay nothing for it; lesson 08 writes the
+ * samples and resolves each pixel it touches into color (the mean of its
+ * samples), depth (the nearest sample) and count (covered samples). */
+struct target_samples {
+    int n;
+    uint32_t *color;
+    float *depth;
+};
+
+/* Give fb per-sample storage of n samples (2..SAMPLES_MAX), cleared to the
+ * background; n <= 1 drops it. False when memory runs out (fb unchanged).
+ * The drivers (render_scene, replay) call it with the run's params.samples;
+ * lesson 08 also makes it on a target that has none. */
+bool target_multisample(struct target *fb, int n);
 
 bool target_init(struct target *fb, int w, int h, uint32_t background);
 void target_clear(struct target *fb);
@@ -223,6 +260,16 @@ static inline bool pixel_close(uint32_t want_rgba, float want_z, uint32_t got_rg
 }
 
 /* --- the reference ---------------------------------------------------------- */
+
+/* Is the point (sx, sy), in 1/256 pixel units, covered by t? Edge values
+ * from the snapped vertices and the top-left rule, as for a pixel centre
+ * (lesson 08's samples; the explorer's drawing of them). */
+bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy);
+
+/* The exact area of pixel (px, py) that t covers, in square pixels (0..1):
+ * the snapped triangle clipped against the pixel's square, in double
+ * precision. What a pixel's samples estimate (lesson 08's "area" view). */
+double reference_pixel_area(const struct tri_setup *t, int px, int py);
 
 /* The oracle of every test: bounding box, every pixel centre evaluated
  * directly from the snapped vertices with the cross product of seed 001

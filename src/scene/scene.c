@@ -1,5 +1,6 @@
 /* scene.c - the scene file parser and writer. */
 #include "scene.h"
+#include "parse.h"      /* struct parser; the 3-D lines (scene3.c) */
 
 #include <errno.h>
 #include <float.h>
@@ -10,14 +11,7 @@
 
 #define MAX_TOKENS 32   /* more than the longest line needs (tri + 24 numbers) */
 
-struct parser {
-    const char *name;
-    int line;
-    char *err;
-    size_t errlen;
-};
-
-static bool fail(struct parser *p, const char *fmt, ...)
+bool scene_fail(struct parser *p, const char *fmt, ...)
 {
     int n = snprintf(p->err, p->errlen, "%s:%d: ", p->name, p->line);
     if (n < 0 || (size_t)n >= p->errlen)
@@ -28,6 +22,7 @@ static bool fail(struct parser *p, const char *fmt, ...)
     va_end(ap);
     return false;
 }
+#define fail scene_fail     /* its short name in this file */
 
 /* Decimal numbers only: [sign] digits [. digits] [e [sign] digits], with at
  * least one digit before the exponent. strtod alone would also take "nan",
@@ -215,9 +210,15 @@ static bool parse_line(struct parser *p, struct scene *s, char **tok, int n,
     if (strcmp(kw, "tri") == 0) {
         if (!*size_line)
             return fail(p, "'tri' before 'size' (the size must come first)");
+        if (s->world.camera_line)
+            return fail(p, "'tri' in a 3-D scene (it has a camera on line %d: use tri3)",
+                        s->world.camera_line);
         return parse_tri(p, s, tok + 1, n - 1);
     }
-    return fail(p, "unknown keyword '%.40s' (expected size, background, texture or tri)", kw);
+    if (scene3_keyword(kw))
+        return scene3_line(p, s, tok, n);
+    return fail(p, "unknown keyword '%.40s' (expected size, background, texture, tri, "
+                   "or camera, cull, tri3, obj)", kw);
 }
 
 /* One reading of a scene: where messages point, and what was seen so far. */
@@ -278,6 +279,8 @@ static bool reader_finish(struct reader *r, bool ok)
             r->p.line = 1;
         ok = fail(&r->p, "missing 'size W H' (the framebuffer size is required)");
     }
+    if (ok)
+        ok = scene3_finish(&r->p, r->s);    /* a 3-D scene's camera and triangles */
     if (!ok) {
         scene_free(r->s);
         return false;
@@ -430,6 +433,8 @@ bool scene_write(const struct scene *s, FILE *out)
 void scene_free(struct scene *s)
 {
     free(s->tris);
+    free(s->world.tris);
+    free(s->world.from);
     memset(s, 0, sizeof *s);
 }
 
@@ -438,15 +443,33 @@ bool scene_copy(struct scene *dst, const struct scene *src)
     *dst = *src;
     dst->tris = NULL;
     dst->ntris = dst->cap = 0;
+    dst->world.tris = NULL;
+    dst->world.from = NULL;
+    dst->world.ntris = dst->world.cap = 0;
     for (int i = 0; i < src->ntris; i++)
-        if (!scene_add(dst, src->tris[i].v)) {
-            scene_free(dst);
-            return false;
-        }
+        if (!scene_add(dst, src->tris[i].v))
+            goto oom;
+    for (int i = 0; i < src->world.ntris; i++)
+        if (!world_add(&dst->world, &src->world.tris[i]))
+            goto oom;
+    if (src->world.from) {
+        dst->world.from = malloc((size_t)(src->ntris ? src->ntris : 1) * sizeof *dst->world.from);
+        if (!dst->world.from)
+            goto oom;
+        memcpy(dst->world.from, src->world.from, (size_t)src->ntris * sizeof *dst->world.from);
+    }
     return true;
+oom:
+    scene_free(dst);
+    return false;
 }
 
 uint32_t scene_background(const struct scene *s)
 {
     return pack_rgb(s->background[0], s->background[1], s->background[2]);
+}
+
+bool scene_number(struct parser *p, const char *tok, double *out)
+{
+    return parse_number(p, tok, out);
 }

@@ -8,6 +8,14 @@
  * Extensions every lesson program accepts (lesson 04 uses them):
  *     texture checker N        a procedural checkerboard of N x N squares
  *     tri with 24 numbers      x y z r g b s t, three times
+ *
+ * 3-D scenes (lesson 06 onward, read by scene3.c and obj.c): instead of `tri`,
+ *     camera  0 1 5   0 0 0   0 1 0   60  0.1 100   eye, target, up, fovy, near, far
+ *     cull none                                      none (default), back or front
+ *     tri3  x y z r g b  (three times, world space)
+ *     obj   model.obj  0.8 0.8 0.8                   Wavefront OBJ beside the scene, colour
+ * The 3-D front end (src/front/) turns them into the screen-space triangles
+ * below, which is all a lesson ever rasterizes.
  */
 #ifndef TRISTEP_SCENE_H
 #define TRISTEP_SCENE_H
@@ -21,13 +29,44 @@ struct scene_tri {
     struct vertex v[3];
 };
 
+/* --- 3-D scenes (CONVENTIONS.md, "3-D scenes") ----------------------------- */
+
+#define WORLD_LIMIT 1e6     /* |world coordinate| <= 10^6 */
+
+struct camera {
+    double eye[3], target[3], up[3];   /* gluLookAt's */
+    double fovy;                       /* vertical field of view, degrees, in (0, 180) */
+    double near, far;                  /* clipping planes, view depths, 0 < near < far */
+};
+
+/* Which facing the front end drops; facing is decided on each drawn triangle
+ * (front-facing = counter-clockwise as the viewer sees it, OpenGL's default). */
+enum cull { CULL_NONE, CULL_BACK, CULL_FRONT };
+
+struct world_tri {
+    double p[3][3];                    /* world-space positions */
+    double rgb[3][3];                  /* colours in [0, 1] */
+};
+
+struct world {
+    int camera_line;                   /* line of `camera`; 0 = not a 3-D scene */
+    struct camera cam;
+    enum cull cull;
+    int cull_line;                     /* line of `cull`, 0 when absent */
+    int ntris, cap;
+    struct world_tri *tris;
+    int *from;                         /* front end output: the world triangle each
+                                        * screen triangle of the scene came from */
+};
+
 struct scene {
     int w, h;
     double background[3];     /* default opaque black */
     int checker;              /* texture checker N; 0 = no texture */
     bool has_st;              /* some triangle gave texture coordinates */
     int ntris, cap;
-    struct scene_tri *tris;
+    struct scene_tri *tris;   /* screen space; in a 3-D scene, what the front end made */
+    struct world world;       /* a 3-D scene's camera and triangles (world.camera_line > 0) */
 };
 
 /* Parse a whole scene text. `name` is used in messages ("FILE:LINE: ...").
@@ -38,12 +77,15 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
 /* Read and parse a file ("-" is standard input), a chunk at a time: the
  * text is never held whole (a 2,000,000-triangle scene is some 330 MB of it). */
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
-/* Write a scene that scene_parse reads back to the same values. */
+/* Write a scene that scene_parse reads back to the same values (a 3-D scene
+ * is written as the screen-space triangles the front end made of it). */
 bool scene_write(const struct scene *s, FILE *out);
 void scene_free(struct scene *s);
-/* A copy with triangles of its own; false (dst empty) when out of memory. */
+/* A copy with triangles (and a 3-D world) of its own; false (dst empty)
+ * when out of memory. */
 bool scene_copy(struct scene *dst, const struct scene *src);
 bool scene_add(struct scene *s, const struct vertex v[3]);
+bool world_add(struct world *w, const struct world_tri *t);
 uint32_t scene_background(const struct scene *s);
 
 /* Built-in scenes, by name ("builtin:NAME" is accepted wherever a scene file is). */

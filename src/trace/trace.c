@@ -38,6 +38,7 @@ static void count(struct trace_counters *c, const struct trace_event *ev)
         c->rows++;
         break;
     case TRACE_SETUP:
+    case TRACE_FRONT:
     case TRACE_KIND_COUNT:
         break;
     }

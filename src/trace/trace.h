@@ -38,6 +38,9 @@ enum trace_kind {
     TRACE_BLOCK,        /* a q x q block at (x, y), size x1 - x + 1, class in klass */
     TRACE_PIXEL_TEST,   /* pixel (x, y) tested: edge values e, flags & TRACE_INSIDE */
     TRACE_PIXEL_WRITE,  /* pixel (x, y) written: z, rgba, flags & TRACE_DEPTH_PASS */
+    TRACE_FRONT,        /* a step of the 3-D front end (lesson 06): klass = what
+                           (enum front_step), (x, y) the pixel of a projected
+                           vertex, aux[] its values */
     TRACE_KIND_COUNT
 };
 
@@ -47,6 +50,20 @@ enum trace_flags {
 };
 
 enum block_class { BLOCK_EMPTY, BLOCK_FULL, BLOCK_PARTIAL, BLOCK_CLASS_COUNT };
+
+/* What a TRACE_FRONT event says happened to a world triangle on its way to
+ * the screen. */
+enum front_step {
+    FRONT_VIEW,         /* a vertex in view space: aux x_v, y_v, d */
+    FRONT_PLANE,        /* clipping against a plane begins: aux the plane's value */
+    FRONT_KEEP,         /* a vertex inside the plane is kept */
+    FRONT_DROP,         /* a vertex outside is dropped */
+    FRONT_NEW,          /* a new vertex on an edge: aux x, y, d, t */
+    FRONT_PROJECT,      /* a vertex projected: (x, y) its pixel, aux x_s, y_s, d */
+    FRONT_GUARD,        /* the guard band test: flags & TRACE_INSIDE when inside */
+    FRONT_TRIANGLE,     /* a triangle of the fan: flags & TRACE_INSIDE when drawn (not culled) */
+    FRONT_STEP_COUNT
+};
 
 /* What one operation costs: multiplications (a division or a reciprocal
  * counts as one) and additions or subtractions. Each operation names its

@@ -76,6 +76,7 @@ static double frame_ms = -1;     /* explorer frame, < 0 not measured */
 static struct big_result big[MAX_BIG];
 static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
+static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
 
 static double now(void)
 {
@@ -122,15 +123,53 @@ static void draw_scene(const struct scene *s, const struct lesson_variant *v,
     }
 }
 
+/* Lesson 08's exact answer at n samples: for every pixel, the samples the
+ * scene's triangles cover (saturating at 255), each sample decided by the
+ * reference (raster.h: reference_point_covered) over a generous box. Made
+ * once per scene and sample count, untimed. */
+static uint8_t *sample_reference(const struct scene *s, int n)
+{
+    const struct sample_pattern *sp = sample_pattern(n);
+    uint8_t *cov = calloc((size_t)s->w * (size_t)s->h, 1);
+    if (!cov || !sp) {
+        fprintf(stderr, "tristep-bench: out of memory\n");
+        exit(1);
+    }
+    for (int i = 0; i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        int64_t lo[2] = { t.x[0], t.y[0] }, hi[2] = { t.x[0], t.y[0] };
+        for (int k = 1; k < 3; k++) {
+            lo[0] = t.x[k] < lo[0] ? t.x[k] : lo[0], hi[0] = t.x[k] > hi[0] ? t.x[k] : hi[0];
+            lo[1] = t.y[k] < lo[1] ? t.y[k] : lo[1], hi[1] = t.y[k] > hi[1] ? t.y[k] : hi[1];
+        }
+        int64_t x0 = floor_div(lo[0], SUBPIXEL_ONE) - 1, x1 = floor_div(hi[0], SUBPIXEL_ONE) + 1;
+        int64_t y0 = floor_div(lo[1], SUBPIXEL_ONE) - 1, y1 = floor_div(hi[1], SUBPIXEL_ONE) + 1;
+        x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0;
+        x1 = x1 >= s->w ? s->w - 1 : x1, y1 = y1 >= s->h ? s->h - 1 : y1;
+        for (int64_t y = y0; y <= y1; y++)
+            for (int64_t x = x0; x <= x1; x++)
+                for (int k = 0; k < n; k++)
+                    if (reference_point_covered(&t, x * SUBPIXEL_ONE + sp->x[k], y * SUBPIXEL_ONE + sp->y[k])) {
+                        uint8_t *c = &cov[y * s->w + x];
+                        *c += *c < 255;
+                    }
+    }
+    return cov;
+}
+
+/* samples > 1: lesson 08's samples per pixel (its rows "msaa 4 samples", ...),
+ * checked against sample_reference() instead of the pixel-centre coverage. */
 static void time_variant(struct row *row, const struct lesson_variant *v,
                          struct bench_scene *sc, uint8_t *const peer_cov[],
-                         const struct options *o)
+                         const struct options *o, int samples)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = samples };
     for (int i = 0; i < NSCENES; i++) {
         const struct scene *s = &sc[i].s;
         struct target fb;
-        if (!target_init(&fb, s->w, s->h, scene_background(s))) {
+        if (!target_init(&fb, s->w, s->h, scene_background(s))
+            || !target_multisample(&fb, samples)) {
             fprintf(stderr, "tristep-bench: out of memory\n");
             exit(1);
         }
@@ -152,8 +191,16 @@ static void time_variant(struct row *row, const struct lesson_variant *v,
         target_clear(&fb);
         draw_scene(s, v, &p, &fb);
         size_t n = (size_t)s->w * (size_t)s->h;
-        bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
-        bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
+        if (samples > 1) {      /* llvmpipe is not asked for samples */
+            static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
+            if (!ref[i][samples])
+                ref[i][samples] = sample_reference(s, samples);
+            bt->diff_ref = count_diff(fb.count, ref[i][samples], n);
+            bt->diff_peer = -1;
+        } else {
+            bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
+            bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
+        }
         target_free(&fb);
     }
 }
@@ -408,6 +455,11 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
             fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1\n", b->ntris,
                     b->program, m[k].what, m[k].v);
     }
+    /* the 3-D front end: world triangles per second, no pixels */
+    if (front.t.runs > 0)
+        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
+                front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
+                front.in / front.t.median * 1e-6);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -738,7 +790,18 @@ int main(int argc, char **argv)
             struct row *r = &rows[nrows++];
             *r = (struct row){ (*l)->id, var->name, var->exhibit, false, { { .runs = 0 } } };
             fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
-            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o);
+            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, 1);
+            /* a lesson with samples: its exact variants at 4 and 8 samples too */
+            for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !var->exhibit
+                            && nrows < MAX_ROWS; n += 4) {
+                static char names[MAX_ROWS][48];
+                snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);
+                r = &rows[nrows];
+                *r = (struct row){ (*l)->id, names[nrows], false, false, { { .runs = 0 } } };
+                nrows++;
+                fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
+                time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, n);
+            }
         }
     }
 
@@ -795,6 +858,16 @@ int main(int argc, char **argv)
             printf("make figures: %s\n", note);
         }
     }
+
+    if (bench_front_run(&front, o.runs))
+        printf("\n3-D front end (lesson 06), a %d-triangle torus seen from inside its tube at "
+               "1920 x 1080:\n  %.2f Mtri/s through look-at, near/far clipping, projection, guard "
+               "band, fan and cull\n  (median %.1f ms, min %.1f ms; %d cut by near or far, %d "
+               "wholly outside them, %d past the guard band; %d screen triangles out)\n",
+               front.in, front.in / front.t.median * 1e-6, front.t.median * 1e3, front.t.lo * 1e3,
+               front.depth_clipped, front.culled_whole, front.guard_clipped, front.out);
+    else
+        printf("\n3-D front end: could not be measured (out of memory)\n");
 
     print_targets(sc, limit);
 

@@ -45,6 +45,17 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup
 /* "Mesa 22.3.6 llvmpipe (LLVM 15, 256 bits)" after a successful peer_run. */
 extern char peer_renderer[160];
 
+/* The 3-D front end (front.c): a 100,000-triangle torus seen from inside
+ * its tube, through look-at, clipping, projection, guard band, fan and cull. */
+struct bench_front {
+    int in, out;                /* world triangles in, screen triangles out */
+    int depth_clipped;          /* cut by the near or the far plane */
+    int culled_whole;           /* wholly behind near or beyond far */
+    int guard_clipped;          /* reaching past the guard band */
+    struct bench_timing t;      /* seconds for the whole mesh */
+};
+bool bench_front_run(struct bench_front *bf, int runs);
+
 /* A bar of the chart: one program on one scene. */
 struct chart_bar {
     const char *label;

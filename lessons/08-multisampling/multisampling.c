@@ -1,0 +1,516 @@
+/* Lesson 08: anti-aliasing with coverage samples (MSAA), exact per sample.
+ *
+ * What it shows: one sample per pixel is exactly what makes edges jagged. A
+ * pixel is either in or out, however little of it the triangle covers. So
+ * decide coverage at N points of the pixel instead of one (the standard
+ * positions of Direct3D and Vulkan, src/raster/raster.h: sample_pattern),
+ * keep a coverage MASK of N bits per pixel, a depth per sample, and resolve
+ * the pixel to the mean of its samples' colours.
+ *
+ *     pixel (px, py), N = 4          F0k at a sample = F0k at the centre
+ *     +-------------------+                          + I0k dx_s + J0k dy_s
+ *     |      o            |
+ *     |               o   |          dx_s, dy_s: the sample's offset from
+ *     |   o     +         |          the centre, the same in every pixel,
+ *     |            o      |          so I0k dx_s + J0k dy_s is a constant:
+ *     +-------------------+          ONE addition per sample and edge
+ *
+ * Each sample is decided exactly like a pixel centre in lessons 02 to 05:
+ * integer edge values, the top-left bias. So everything that made those
+ * lessons exact holds per sample: in a mesh of triangles sharing edges every
+ * sample is covered exactly once, and a pixel inside the mesh holds exactly
+ * N samples.
+ *
+ * Builds on lesson 05 (block classification): the blocks are classified by
+ * the corners of their SAMPLES' extent, not of their pixel centres, since a
+ * pixel's samples reach out to 1/16 pixel from its border. Lesson 07 (tiles
+ * and threads) would carry this over unchanged to every tile.
+ *
+ * Two ways of shading what the mask covers:
+ *   MSAA (multisampling, Akeley's RealityEngine): ONE colour per pixel,
+ *        evaluated at the centre, written to every covered sample; depth
+ *        per sample, so intersecting triangles are still resolved per sample;
+ *   SSAA (supersampling): a colour per covered sample, N times the shading.
+ * Both count what they cost (COUNT, named costs), so the explorer's
+ * counters and make bench show the difference.
+ *
+ * This file reads: the sample patterns, the edges at the samples, the box,
+ * shading and resolving one pixel, the blocks, the variants.
+ */
+#include "lesson.h"
+#include "shade/quad.h"      /* struct planes: lesson 04's planes of 1/z and a/z */
+
+static const char *const pseudocode[] = {
+    "setup: F0k at pixel centres, O_sk = I0k dx_s + J0k dy_s per sample s",   /* 0 */
+    "box = pixels with a sample that may be covered, clipped to the screen",  /* 1 */
+    "loop over the q x q blocks: corners of the blocks' SAMPLE extent",        /* 2 */
+    "  outside one edge at all four corners: skip          (empty)",         /* 3 */
+    "  inside every edge at all four: every sample covered (full)",          /* 4 */
+    "  else loop over the block's pixels:                  (partial)",       /* 5 */
+    "    mask = { s : F0k + O_sk >= 0 for k = 1, 2, 3 }",                     /* 6 */
+    "    if mask: shade (once, or per sample), depth test each sample, resolve", /* 7 */
+    NULL,
+};
+
+enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
+
+/* trace_event.aux[] of this lesson: samples per pixel, how many of them the
+ * pixel test found covered, the coverage mask (bit s = sample s; also in
+ * mask[0]), and 1 when the samples lie on the exhibit's regular grid. */
+static const char *const aux_names[] = { "samples", "covered", "mask", "grid", NULL };
+
+#define Q_DEFAULT 8
+
+/* Named costs of this lesson (trace/trace.h):
+ *   SAMPLE_EDGE_COST   a sample's edge value: the pixel's plus its offset
+ *   EXTENT_CORNERS_COST  one edge at the four corners of a block's sample
+ *                      extent: F at the top-left corner (2 mul, 2 add), its
+ *                      offset, then the other three corners from it
+ *   PLANE_AT_COST      a plane (1/z, a/z) at a pixel: P0 + Px dx + Py dy
+ *   ATTRIBUTE_COST     one attribute a = (a/z) * z
+ *   RESOLVE_COST       one sample's r, g, b added to the pixel's sums (the
+ *                      division by N = 4 or 8 is a shift) */
+#define SAMPLE_EDGE_COST { .mul = 0, .add = 1 }
+#define EXTENT_CORNERS_COST { .mul = 4, .add = 9 }
+#define PLANE_AT_COST { .mul = 2, .add = 2 }
+#define ATTRIBUTE_COST { .mul = 1, .add = 0 }
+#define RESOLVE_COST { .mul = 0, .add = 3 }
+
+/* --- the samples ------------------------------------------------------------ */
+
+/* A sample pattern as the loops use it: each sample's offset from the pixel
+ * CENTRE, in 1/256 pixel (the standard positions are given from the pixel's
+ * corner), and the extent of the pattern. */
+struct pattern {
+    int n;
+    int dx[SAMPLES_MAX], dy[SAMPLES_MAX];
+    int lo_x, hi_x, lo_y, hi_y;     /* smallest and largest dx, dy */
+};
+
+static void pattern_setup(struct pattern *pt, const struct sample_pattern *sp)
+{
+    pt->n = sp->n;
+    pt->lo_x = pt->lo_y = SUBPIXEL_ONE;
+    pt->hi_x = pt->hi_y = -SUBPIXEL_ONE;
+    for (int s = 0; s < sp->n; s++) {
+        pt->dx[s] = sp->x[s] - SUBPIXEL_HALF;
+        pt->dy[s] = sp->y[s] - SUBPIXEL_HALF;
+        pt->lo_x = pt->dx[s] < pt->lo_x ? pt->dx[s] : pt->lo_x;
+        pt->hi_x = pt->dx[s] > pt->hi_x ? pt->dx[s] : pt->hi_x;
+        pt->lo_y = pt->dy[s] < pt->lo_y ? pt->dy[s] : pt->lo_y;
+        pt->hi_y = pt->dy[s] > pt->hi_y ? pt->dy[s] : pt->hi_y;
+    }
+}
+
+/* --- the edges at the samples ---------------------------------------------- */
+
+/* Seed 001's edge functions with the fill rule folded into the constant, as
+ * in lesson 05: a sample is covered when F0k + bias_k + O_sk >= 0 for all
+ * three edges, a plain sign test. O_sk = I0k dx_s + J0k dy_s is sample s's
+ * offset on edge k: the same in every pixel, computed once per triangle. */
+struct edges {
+    int64_t f0[3];                  /* F0k + bias_k at the centre of pixel (0, 0) */
+    int64_t dx[3], dy[3];           /* one pixel right: 256 I0k, one row down: 256 J0k */
+    int64_t bias[3];                /* to narrate F0k itself */
+    int64_t off[SAMPLES_MAX][3];    /* O_sk */
+    int64_t ext0[3];                /* the extent's top-left corner from the centre */
+    int64_t ext_w[3], ext_h[3];     /* the extent's width and height, on edge k */
+};
+
+static void edges_setup(struct edges *e, const struct tri_setup *t, const struct pattern *pt,
+                        bool fill_rule)
+{
+    for (int k = 0; k < 3; k++) {
+        e->bias[k] = fill_rule ? t->bias[k] : 0;
+        e->dx[k] = t->I[k] * SUBPIXEL_ONE;
+        e->dy[k] = t->J[k] * SUBPIXEL_ONE;
+        e->f0[k] = edge_value(t, k, 0, 0) + e->bias[k];
+        for (int s = 0; s < pt->n; s++)
+            e->off[s][k] = t->I[k] * pt->dx[s] + t->J[k] * pt->dy[s];
+        e->ext0[k] = t->I[k] * pt->lo_x + t->J[k] * pt->lo_y;
+        e->ext_w[k] = t->I[k] * (pt->hi_x - pt->lo_x);
+        e->ext_h[k] = t->J[k] * (pt->hi_y - pt->lo_y);
+    }
+}
+
+/* F0k + bias_k at the centre of pixel (x, y): exact. */
+static int64_t edge_at(const struct edges *e, int k, int x, int y)
+{
+    return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
+}
+
+/* --- one triangle's run ------------------------------------------------------- */
+
+struct run {
+    const struct tri_setup *t;
+    const struct raster_params *p;
+    struct target *fb;
+    struct trace *tr;
+    struct pattern pt;
+    struct edges e;
+    struct planes pl;
+    int nplanes;                        /* 1/z, r, g, b (and s, t with a checker) */
+    double plane_off[SAMPLES_MAX][PL_COUNT];    /* a plane's offset at sample s */
+    bool per_sample;                    /* SSAA: shade every covered sample */
+    float grid;                         /* 1: the exhibit's grid (narrated, for the explorer) */
+    uint32_t *scolor;                   /* the samples: n per pixel, or the pixels */
+    float *sdepth;                      /*   themselves when n = 1 */
+};
+
+/* Writes of a step that has not happened must not reach the target. */
+static bool frozen(const struct trace *tr)
+{
+    return NARRATING && tr && tr->frozen;
+}
+
+/* --- the box ------------------------------------------------------------------ */
+
+/* Pixels any sample of which may be covered: sample s of pixel px sits at
+ * 256 px + 128 + dx_s, so px reaches from the leftmost vertex minus the
+ * rightmost sample to the rightmost vertex minus the leftmost sample. Wider
+ * than the box of centres (tri_setup's) by up to a pixel each side. */
+static bool sample_box(const struct tri_setup *t, const struct pattern *pt, int box[4])
+{
+    int64_t xs[2] = { t->x[0], t->x[0] }, ys[2] = { t->y[0], t->y[0] };
+    for (int i = 1; i < 3; i++) {
+        xs[0] = t->x[i] < xs[0] ? t->x[i] : xs[0], xs[1] = t->x[i] > xs[1] ? t->x[i] : xs[1];
+        ys[0] = t->y[i] < ys[0] ? t->y[i] : ys[0], ys[1] = t->y[i] > ys[1] ? t->y[i] : ys[1];
+    }
+    int64_t x0 = ceil_div(xs[0] - SUBPIXEL_HALF - pt->hi_x, SUBPIXEL_ONE);
+    int64_t x1 = floor_div(xs[1] - SUBPIXEL_HALF - pt->lo_x, SUBPIXEL_ONE);
+    int64_t y0 = ceil_div(ys[0] - SUBPIXEL_HALF - pt->hi_y, SUBPIXEL_ONE);
+    int64_t y1 = floor_div(ys[1] - SUBPIXEL_HALF - pt->lo_y, SUBPIXEL_ONE);
+    box[0] = (int)(x0 < 0 ? 0 : x0);
+    box[1] = (int)(y0 < 0 ? 0 : y0);
+    box[2] = (int)(x1 > t->target_w - 1 ? t->target_w - 1 : x1);
+    box[3] = (int)(y1 > t->target_h - 1 ? t->target_h - 1 : y1);
+    return t->area2 > 0 && box[0] <= box[2] && box[1] <= box[3];
+}
+
+/* --- shading and resolving one pixel ------------------------------------------ */
+
+/* What one pixel's covered samples receive: a colour and a depth each. */
+struct fragment {
+    unsigned mask;
+    uint32_t color[SAMPLES_MAX];
+    float z[SAMPLES_MAX];
+};
+
+/* The colour at plane values v[] (1/z, 255 r/z, ...) and depth z = 1 / (1/z):
+ * each attribute (a/z) * z, then src/shade/'s checker and packing. */
+static uint32_t colour_of(const struct run *r, const double v[PL_COUNT], double z)
+{
+    COUNT(r->tr, r->nplanes - 1, ATTRIBUTE_COST);
+    return shade_scaled(r->p, r->tr, v[PL_R] * z, v[PL_G] * z, v[PL_B] * z, v[PL_S] * z,
+                        v[PL_T] * z);
+}
+
+/* Shade pixel (x, y) for the samples of `mask`: the planes at the centre,
+ * then per covered sample its depth (1/z at the sample: the centre's plus a
+ * constant offset) and, for MSAA, the centre's colour; for SSAA every plane
+ * at the sample and a colour of its own. */
+static void shade(const struct run *r, int x, int y, unsigned mask, struct fragment *f)
+{
+    const struct planes *pl = &r->pl;
+    double v[PL_COUNT] = { 0 };
+    for (int q = 0; q < r->nplanes; q++)
+        v[q] = pl->p0[q] + pl->px[q] * (x - pl->x0) + pl->py[q] * (y - pl->y0);
+    COUNT(r->tr, r->nplanes, PLANE_AT_COST);
+    uint32_t centre = 0;
+    if (!r->per_sample) {
+        centre = colour_of(r, v, 1.0 / v[PL_INV_Z]);
+        COUNT(r->tr, 1, RECIPROCAL_COST);
+    }
+    f->mask = mask;
+    for (int s = 0; s < r->pt.n; s++) {
+        if (!(mask >> s & 1))
+            continue;
+        double vs[PL_COUNT] = { 0 };
+        int used = r->per_sample ? r->nplanes : 1;     /* MSAA: only 1/z per sample */
+        for (int q = 0; q < used; q++)
+            vs[q] = v[q] + r->plane_off[s][q];
+        COUNT(r->tr, used, PLANE_STEP_COST);
+        double z = 1.0 / vs[PL_INV_Z];
+        COUNT(r->tr, 1, RECIPROCAL_COST);
+        f->z[s] = (float)z;
+        f->color[s] = r->per_sample ? colour_of(r, vs, z) : centre;
+    }
+}
+
+/* A pixel after a fragment: its N samples depth-tested (nearer wins) and
+ * resolved. The pixel's colour is the mean of its N samples' colours
+ * (rounded), its depth the nearest sample's. */
+struct outcome {
+    uint32_t color[SAMPLES_MAX];
+    float z[SAMPLES_MAX];
+    uint32_t rgba;          /* resolved */
+    float nearest;
+    bool passed;            /* a sample passed the depth test */
+};
+
+static void resolve(const struct run *r, int x, int y, const struct fragment *f, struct outcome *o)
+{
+    int n = r->pt.n;
+    size_t base = ((size_t)y * (size_t)r->fb->w + (size_t)x) * (size_t)n;
+    o->passed = false;
+    for (int s = 0; s < n; s++) {
+        o->color[s] = r->scolor[base + (size_t)s];
+        o->z[s] = r->sdepth[base + (size_t)s];
+        if ((f->mask >> s & 1) && f->z[s] < o->z[s]) {
+            o->color[s] = f->color[s];
+            o->z[s] = f->z[s];
+            o->passed = true;
+        }
+    }
+    o->rgba = o->color[0];
+    o->nearest = o->z[0];
+    if (n == 1)
+        return;                 /* one sample: it is the pixel */
+    unsigned sum[3] = { 0, 0, 0 };
+    for (int s = 0; s < n; s++) {
+        for (int c = 0; c < 3; c++)
+            sum[c] += o->color[s] >> (16 - 8 * c) & 0xff;
+        o->nearest = o->z[s] < o->nearest ? o->z[s] : o->nearest;
+    }
+    COUNT(r->tr, n, RESOLVE_COST);
+    o->rgba = 0xff000000u;
+    for (int c = 0; c < 3; c++)
+        o->rgba |= (sum[c] + (unsigned)n / 2) / (unsigned)n << (16 - 8 * c);
+}
+
+/* Write the outcome: the samples, the resolved pixel, and the count of
+ * covered samples (saturating, CONVENTIONS.md "Samples"). */
+static void store(const struct run *r, int x, int y, unsigned mask, const struct outcome *o)
+{
+    int n = r->pt.n;
+    size_t i = (size_t)y * (size_t)r->fb->w + (size_t)x, base = i * (size_t)n;
+    for (int s = 0; s < n; s++) {
+        r->scolor[base + (size_t)s] = o->color[s];
+        r->sdepth[base + (size_t)s] = o->z[s];
+    }
+    if (n > 1) {
+        r->fb->color[i] = o->rgba;
+        r->fb->depth[i] = o->nearest;
+    }
+    if (r->fb->count) {
+        unsigned c = r->fb->count[i] + (unsigned)__builtin_popcount(mask);
+        r->fb->count[i] = (uint8_t)(c > 255 ? 255 : c);
+    }
+}
+
+/* --- the blocks ------------------------------------------------------------------ */
+
+/* Which samples of pixel (x, y) are covered, from the pixel's centre values
+ * cx[] (bias folded in) plus each sample's offsets. */
+static unsigned sample_mask(const struct run *r, const int64_t cx[3])
+{
+    unsigned mask = 0;
+    for (int s = 0; s < r->pt.n; s++) {
+        const int64_t *o = r->e.off[s];
+        if (cx[0] + o[0] >= 0 && cx[1] + o[1] >= 0 && cx[2] + o[2] >= 0)
+            mask |= 1u << s;
+    }
+    COUNT(r->tr, 3 * r->pt.n, SAMPLE_EDGE_COST);
+    return mask;
+}
+
+/* FULL: every sample of every pixel is covered; no test, no narration per
+ * pixel (as lesson 05's RenderBlock). */
+static void full_block(const struct run *r, int x0, int y0, int x1, int y1)
+{
+    unsigned all = (1u << r->pt.n) - 1;
+    for (int y = y0; y <= y1; y++)
+        for (int x = x0; x <= x1; x++) {
+            struct fragment f;
+            struct outcome o;
+            shade(r, x, y, all, &f);
+            resolve(r, x, y, &f, &o);
+            store(r, x, y, all, &o);
+        }
+}
+
+/* PARTIAL: pixel by pixel, the centre values stepped from the block's corner
+ * (+256 I0k right, +256 J0k down), each sample one addition away. */
+static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
+{
+    const struct edges *e = &r->e;
+    int64_t cy[3] = { edge_at(e, 0, x0, y0), edge_at(e, 1, x0, y0), edge_at(e, 2, x0, y0) };
+    for (int y = y0; y <= y1; y++) {
+        int64_t cx[3] = { cy[0], cy[1], cy[2] };
+        for (int x = x0; x <= x1; x++) {
+            unsigned mask = sample_mask(r, cx);
+            NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_MASK, .x = x, .y = y,
+                    .e = { cx[0] - e->bias[0], cx[1] - e->bias[1], cx[2] - e->bias[2] },
+                    .flags = mask ? TRACE_INSIDE : 0, .mask = { (uint16_t)mask },
+                    .aux = { (float)r->pt.n, (float)__builtin_popcount(mask), (float)mask, r->grid });
+            if (mask) {
+                struct fragment f;
+                struct outcome o;
+                shade(r, x, y, mask, &f);
+                resolve(r, x, y, &f, &o);
+                NARRATE(r->tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y,
+                        .z = o.nearest, .rgba = o.rgba, .flags = o.passed ? TRACE_DEPTH_PASS : 0,
+                        .mask = { (uint16_t)mask },
+                        .aux = { (float)r->pt.n, (float)__builtin_popcount(mask), (float)mask, r->grid });
+                if (!frozen(r->tr))
+                    store(r, x, y, mask, &o);
+            }
+            for (int k = 0; k < 3; k++)
+                cx[k] += e->dx[k];
+            COUNT(r->tr, 3, EDGE_STEP_COST);
+        }
+        for (int k = 0; k < 3; k++)
+            cy[k] += e->dy[k];
+    }
+}
+
+/* Classify the block of pixels x0..x1, y0..y1 by the corners of its samples'
+ * extent (lesson 05's corners, moved out to the outermost samples: with one
+ * sample they are the corner pixels' centres, as there), narrate, act. */
+static void block(const struct run *r, int x0, int y0, int x1, int y1)
+{
+    const struct edges *e = &r->e;
+    unsigned m[3];
+    for (int k = 0; k < 3; k++) {
+        int64_t tl = edge_at(e, k, x0, y0) + e->ext0[k];
+        int64_t tr = tl + e->dx[k] * (x1 - x0) + e->ext_w[k];
+        int64_t bl = tl + e->dy[k] * (y1 - y0) + e->ext_h[k];
+        int64_t br = tr + (bl - tl);
+        m[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
+             | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
+    }
+    COUNT(r->tr, 3, EXTENT_CORNERS_COST);
+    enum block_class klass = m[0] == 0 || m[1] == 0 || m[2] == 0 ? BLOCK_EMPTY
+                           : m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL
+                           : BLOCK_PARTIAL;
+    NARRATE(r->tr, .kind = TRACE_BLOCK,
+            .line = klass == BLOCK_EMPTY ? L_EMPTY : klass == BLOCK_FULL ? L_FULL : L_PARTIAL,
+            .x = x0, .y = y0, .x1 = x1, .y1 = y1, .klass = (uint8_t)klass,
+            .mask = { (uint16_t)m[0], (uint16_t)m[1], (uint16_t)m[2] },
+            .e = { edge_at(e, 0, x0, y0) - e->bias[0], edge_at(e, 1, x0, y0) - e->bias[1],
+                   edge_at(e, 2, x0, y0) - e->bias[2] },
+            .aux = { (float)r->pt.n, 0, 0, r->grid });
+    if (klass == BLOCK_FULL && !frozen(r->tr))
+        full_block(r, x0, y0, x1, y1);
+    else if (klass == BLOCK_PARTIAL)
+        partial_block(r, x0, y0, x1, y1);
+}
+
+/* --- the rasterizer ------------------------------------------------------------- */
+
+struct ms_options {
+    bool per_sample;        /* SSAA: shade every sample */
+    bool grid;              /* exhibit: a regular grid instead of the standard pattern */
+    bool fill_rule;         /* false: exhibit, a sample on an edge is covered by both sides */
+};
+
+static void rasterize_ms(const struct tri_setup *t, const struct raster_params *p,
+                         struct target *fb, struct trace *tr, struct ms_options o)
+{
+    struct run r;       /* set field by field: an initializer would clear all of it, per triangle */
+    int n = p->samples > 1 ? p->samples : 1;
+    const struct sample_pattern *sp = sample_pattern(n);
+    if (!sp)
+        sp = sample_pattern(n = 1);
+    if (o.grid)
+        sp = sample_grid(n);    /* the exhibit's regular grid instead */
+    /* The target's per-sample storage: made by the driver (render_scene,
+     * replay), or here for a target that has none; without memory for it,
+     * the pixel centre alone. One sample needs none: it is the pixel. */
+    if (n == 1)
+        target_multisample(fb, 1);
+    else if ((!fb->samples || fb->samples->n != n) && !target_multisample(fb, n))
+        sp = sample_pattern(n = 1);
+    pattern_setup(&r.pt, sp);
+    r.scolor = n > 1 ? fb->samples->color : fb->color;
+    r.sdepth = n > 1 ? fb->samples->depth : fb->depth;
+
+    int box[4];
+    bool any = sample_box(t, &r.pt, box);
+    NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = box[0], .y = box[1], .x1 = box[2],
+            .y1 = box[3], .e = { t->area2, 0, 0 }, .aux = { (float)n, 0, 0, o.grid && n > 1 });
+    if (!any)
+        return;
+    r.t = t;
+    r.p = p;
+    r.fb = fb;
+    r.tr = tr;
+    r.per_sample = o.per_sample;
+    r.grid = o.grid && n > 1;
+    edges_setup(&r.e, t, &r.pt, o.fill_rule);
+    planes_setup(&r.pl, t, p);
+    r.nplanes = p->checker > 0 ? PL_COUNT : PL_S;
+    for (int s = 0; s < n; s++)
+        for (int q = 0; q < PL_COUNT; q++)
+            r.plane_off[s][q] = (r.pl.px[q] * r.pt.dx[s] + r.pl.py[q] * r.pt.dy[s]) / SUBPIXEL_ONE;
+
+    /* lesson 05's grid of q x q blocks, aligned on the screen, clipped to the box */
+    int q = p->block_size > 0 ? p->block_size : Q_DEFAULT;
+    for (int by = box[1] - box[1] % q; by <= box[3]; by += q) {
+        int ya = by < box[1] ? box[1] : by, yb = by + q - 1 > box[3] ? box[3] : by + q - 1;
+        for (int bx = box[0] - box[0] % q; bx <= box[2]; bx += q) {
+            int xa = bx < box[0] ? box[0] : bx, xb = bx + q - 1 > box[2] ? box[2] : bx + q - 1;
+            block(&r, xa, ya, xb, yb);
+        }
+    }
+}
+
+/* --- the variants ----------------------------------------------------------------- */
+
+static void rasterize_msaa(const struct tri_setup *t, const struct raster_params *p,
+                           struct target *fb, struct trace *tr)
+{
+    rasterize_ms(t, p, fb, tr, (struct ms_options){ .fill_rule = true });
+}
+
+static void rasterize_ssaa(const struct tri_setup *t, const struct raster_params *p,
+                           struct target *fb, struct trace *tr)
+{
+    rasterize_ms(t, p, fb, tr, (struct ms_options){ .per_sample = true, .fill_rule = true });
+}
+
+static void rasterize_grid(const struct tri_setup *t, const struct raster_params *p,
+                           struct target *fb, struct trace *tr)
+{
+    rasterize_ms(t, p, fb, tr, (struct ms_options){ .grid = true, .fill_rule = true });
+}
+
+static void rasterize_no_fill_rule(const struct tri_setup *t, const struct raster_params *p,
+                                   struct target *fb, struct trace *tr)
+{
+    rasterize_ms(t, p, fb, tr, (struct ms_options){ .fill_rule = false });
+}
+
+static const struct lesson_variant variants[] = {
+    { "msaa", "multisampling: coverage and depth per sample, colour once per pixel",
+      rasterize_msaa, false },
+    { "ssaa", "supersampling: colour shaded at every covered sample", rasterize_ssaa, false },
+    { "grid", "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern",
+      rasterize_grid, true },
+    { "no-fill-rule", "exhibit: a sample exactly on an edge is covered by both triangles",
+      rasterize_no_fill_rule, true },
+};
+
+static const char *const compare[] = { "05-block-classification", NULL };
+
+const struct lesson lesson_08 = {
+    .id = "08-multisampling",
+    .title = "Anti-aliasing with coverage samples, exact per sample",
+    .pseudocode = pseudocode,
+    .builtin_scene = "samples",
+    .exhibit_scene = "samples-exhibits",
+    .perspective = true,
+    .variants = variants,
+    .nvariants = sizeof variants / sizeof variants[0],
+    .aux_names = aux_names,
+    .params = LESSON_PARAM_BLOCK | LESSON_PARAM_SAMPLES,
+    /* at one sample (what the recount runs): the edges at the sample and the
+     * step to the next pixel; covered: four planes at the centre, the colour,
+     * the sample's depth */
+    .cost_tested = (const struct cost_term[]){
+        COST_TERM(3, SAMPLE_EDGE_COST), COST_TERM(3, EDGE_STEP_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(4, PLANE_AT_COST), COST_TERM(2, RECIPROCAL_COST), COST_TERM(3, ATTRIBUTE_COST),
+        COST_TERM(1, PACK_SCALED_COST), COST_TERM(1, PLANE_STEP_COST), { 0 } },
+    .compare = compare,
+};

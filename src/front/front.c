@@ -1,0 +1,275 @@
+/* front.c - the 3-D front end, stage by stage (see front.h). */
+#include "front.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* --- world to view: gluLookAt ------------------------------------------------ */
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross(double out[3], const double a[3], const double b[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void normalize(double v[3])
+{
+    double len = sqrt(dot(v, v));
+    for (int i = 0; i < 3; i++)
+        v[i] = v[i] / len;
+}
+
+void frustum_init(struct frustum *v, const struct camera *c, int w, int h)
+{
+    /*            u (up)
+     *            |   f (forward, to the target)
+     *            |  /
+     *     eye    | /
+     *            +------ s (side, to the right)
+     *
+     * f = normalize(target - eye), s = normalize(f x up), u = s x f. */
+    memcpy(v->eye, c->eye, sizeof v->eye);
+    for (int i = 0; i < 3; i++)
+        v->f[i] = c->target[i] - c->eye[i];
+    normalize(v->f);
+    cross(v->s, v->f, c->up);
+    normalize(v->s);
+    cross(v->u, v->s, v->f);
+    const double pi = 3.14159265358979323846;
+    v->g = 1.0 / tan(c->fovy * pi / 360.0);
+    v->aspect = (double)w / (double)h;
+    v->half_w = w / 2.0;
+    v->half_h = h / 2.0;
+    v->near = c->near;
+    v->far = c->far;
+}
+
+struct pvert view_vertex(const struct frustum *v, const double p[3], const double rgb[3])
+{
+    double q[3] = { p[0] - v->eye[0], p[1] - v->eye[1], p[2] - v->eye[2] };
+    struct pvert out = { .pos = { dot(v->s, q), dot(v->u, q), dot(v->f, q) } };
+    memcpy(out.rgb, rgb, sizeof out.rgb);
+    return out;
+}
+
+/* --- clipping: Sutherland-Hodgman, one plane at a time -------------------------- */
+
+struct plane depth_plane(const struct frustum *v, enum plane_id id)
+{
+    if (id == PLANE_FAR)
+        return (struct plane){ PLANE_FAR, "d <= far", 2, v->far, -1, false };
+    return (struct plane){ PLANE_NEAR, "d >= near", 2, v->near, +1, false };
+}
+
+const struct plane guard_planes[4] = {
+    { PLANE_LEFT, "x >= -16384", 0, -GUARD_BAND, +1, true },
+    { PLANE_RIGHT, "x <= 16383", 0, GUARD_BAND - 1, -1, true },
+    { PLANE_TOP, "y >= -16384", 1, -GUARD_BAND, +1, true },
+    { PLANE_BOTTOM, "y <= 16383", 1, GUARD_BAND - 1, -1, true },
+};
+
+static bool inside(const struct plane *pl, const struct pvert *v)
+{
+    double c = v->pos[pl->axis];
+    return pl->keep > 0 ? c >= pl->at : c <= pl->at;
+}
+
+/* The canonical order of an edge's ends: lexicographic on the position. */
+static bool before(const struct pvert *a, const struct pvert *b)
+{
+    for (int i = 0; i < 3; i++)
+        if (a->pos[i] != b->pos[i])
+            return a->pos[i] < b->pos[i];
+    return false;
+}
+
+/* The point where the edge p0 -> p1 meets the plane: p0 + t (p1 - p0). In
+ * view space everything is linear along the edge. In screen space x and y
+ * are, but d is not: 1/d and colour/d are, so those are interpolated and
+ * divided back (what keeps the colours perspective-correct). */
+static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
+                               const struct pvert *p1, double *t_out)
+{
+    int a = pl->axis;
+    double t = (pl->at - p0->pos[a]) / (p1->pos[a] - p0->pos[a]);
+    struct pvert n;
+    if (!pl->screen) {
+        for (int i = 0; i < 3; i++) {
+            n.pos[i] = p0->pos[i] + t * (p1->pos[i] - p0->pos[i]);
+            n.rgb[i] = p0->rgb[i] + t * (p1->rgb[i] - p0->rgb[i]);
+        }
+    } else {
+        for (int i = 0; i < 2; i++)
+            n.pos[i] = p0->pos[i] + t * (p1->pos[i] - p0->pos[i]);
+        double w0 = 1.0 / p0->pos[2], w1 = 1.0 / p1->pos[2];
+        double w = w0 + t * (w1 - w0);
+        n.pos[2] = 1.0 / w;
+        for (int i = 0; i < 3; i++)
+            n.rgb[i] = (p0->rgb[i] * w0 + t * (p1->rgb[i] * w1 - p0->rgb[i] * w0)) / w;
+    }
+    n.pos[a] = pl->at;          /* on the plane exactly */
+    *t_out = t;
+    return n;
+}
+
+static void watch(const struct clip_watch *w, struct clip_step s)
+{
+    if (w && w->step)
+        w->step(w->ctx, &s);
+}
+
+void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
+                  const struct clip_watch *w)
+{
+    out->n = 0;
+    for (int i = 0; i < in->n; i++) {
+        const struct pvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
+        bool ina = inside(pl, a), inb = inside(pl, b);
+        if (ina) {
+            out->v[out->n++] = *a;
+            watch(w, (struct clip_step){ .what = CLIP_KEEP, .plane = pl, .v = a });
+        } else {
+            watch(w, (struct clip_step){ .what = CLIP_DROP, .plane = pl, .v = a });
+        }
+        /* a new vertex only where the edge really crosses: an end lying on
+         * the plane is itself the crossing, and is kept as it is */
+        const struct pvert *in_end = ina ? a : b;
+        if (ina != inb && in_end->pos[pl->axis] != pl->at) {
+            const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;
+            double t;
+            out->v[out->n] = edge_point(pl, p0, p1, &t);
+            watch(w, (struct clip_step){ .what = CLIP_NEW, .plane = pl, .v = &out->v[out->n],
+                                         .p0 = p0, .p1 = p1, .t = t });
+            out->n++;
+        }
+    }
+}
+
+/* --- projection and the guard band ------------------------------------------------ */
+
+void project(const struct frustum *v, struct poly *p)
+{
+    for (int i = 0; i < p->n; i++) {
+        double *c = p->v[i].pos;
+        double x = v->half_w * (1 + v->g * c[0] / (v->aspect * c[2]));
+        double y = v->half_h * (1 - v->g * c[1] / c[2]);
+        c[0] = x;
+        c[1] = y;
+    }
+}
+
+bool in_guard_band(const struct poly *p)
+{
+    for (int i = 0; i < p->n; i++)
+        for (int a = 0; a < 2; a++)
+            if (!(p->v[i].pos[a] >= -GUARD_BAND && p->v[i].pos[a] < GUARD_BAND))
+                return false;
+    return true;
+}
+
+void clip_guard_band(struct poly *p, const struct clip_watch *w)
+{
+    for (int k = 0; k < 4 && p->n > 0; k++) {
+        struct poly out;
+        clip_polygon(&out, p, &guard_planes[k], w);
+        *p = out;
+    }
+}
+
+/* --- fan and cull --------------------------------------------------------------- */
+
+int64_t facing_area(const struct vertex v[3])
+{
+    int64_t x[3], y[3];
+    for (int i = 0; i < 3; i++) {
+        x[i] = snap_coord(v[i].x, SUBPIXEL_BITS);
+        y[i] = snap_coord(v[i].y, SUBPIXEL_BITS);
+    }
+    return (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+}
+
+bool culled(enum cull cull, const struct vertex v[3])
+{
+    if (cull == CULL_NONE)
+        return false;
+    bool front = facing_area(v) < 0;    /* counter-clockwise as seen, in y-down space */
+    return cull == CULL_BACK ? !front : front;
+}
+
+static struct vertex screen_vertex(const struct pvert *p)
+{
+    return (struct vertex){ .x = p->pos[0], .y = p->pos[1], .z = p->pos[2],
+                            .r = p->rgb[0], .g = p->rgb[1], .b = p->rgb[2] };
+}
+
+int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
+{
+    int n = 0;
+    for (int i = 1; i + 1 < p->n; i++) {
+        struct vertex t[3] = { screen_vertex(&p->v[0]), screen_vertex(&p->v[i]),
+                               screen_vertex(&p->v[i + 1]) };
+        if (!culled(cull, t))
+            memcpy(out[n++], t, sizeof t);
+    }
+    return n;
+}
+
+/* --- the pipeline ------------------------------------------------------------------ */
+
+int front_triangle(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                   struct vertex out[][3])
+{
+    struct poly world = { .n = 3 }, near_clipped, clipped;
+    for (int i = 0; i < 3; i++)
+        world.v[i] = view_vertex(v, t->p[i], t->rgb[i]);        /* world -> view */
+    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
+    clip_polygon(&near_clipped, &world, &near, NULL);           /* d >= near */
+    if (near_clipped.n == 0)
+        return 0;                                               /* wholly behind near */
+    clip_polygon(&clipped, &near_clipped, &far, NULL);          /* d <= far */
+    project(v, &clipped);                                       /* view -> screen */
+    if (!in_guard_band(&clipped))
+        clip_guard_band(&clipped, NULL);                        /* only beyond the band */
+    return fan(&clipped, cull, out);                            /* triangles, culled */
+}
+
+bool front_scene(struct scene *s)
+{
+    return front_scene_with(s, front_triangle);
+}
+
+bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+{
+    struct world *w = &s->world;
+    if (!w->camera_line)
+        return true;
+    struct frustum v;
+    frustum_init(&v, &w->cam, s->w, s->h);
+    s->ntris = 0;
+    int from_cap = 0;
+    for (int i = 0; i < w->ntris; i++) {
+        struct vertex tris[POLY_MAX - 2][3];
+        int n = pipeline(&v, w->cull, &w->tris[i], tris);
+        for (int k = 0; k < n; k++) {
+            if (!scene_add(s, tris[k]))
+                return false;
+            if (s->ntris > from_cap) {
+                int cap = s->cap;
+                int *nf = realloc(w->from, (size_t)cap * sizeof *nf);
+                if (!nf)
+                    return false;
+                w->from = nf;
+                from_cap = cap;
+            }
+            w->from[s->ntris - 1] = i;
+        }
+    }
+    return true;
+}

@@ -1,0 +1,131 @@
+/* front.h - the 3-D front end: the world triangles of a 3-D scene become the
+ * screen-space triangles every lesson rasterizes (CONVENTIONS.md, "3-D scenes").
+ *
+ *   world --look-at--> view --clip d >= near, d <= far--> --project--> screen
+ *         --guard band (only what reaches beyond [-16384, 16384))--> --fan, cull--> 2-D triangles
+ *
+ * Every stage is a function of its own, so lesson 06 can run them one by one
+ * and narrate them; front_scene() runs them all for every other program.
+ */
+#ifndef TRISTEP_FRONT_H
+#define TRISTEP_FRONT_H
+
+#include <stdbool.h>
+
+#include "raster/raster.h"
+#include "scene/scene.h"
+
+/* A vertex of a polygon on its way through the pipeline. In view space pos
+ * is (x_v, y_v, d), in screen space (x_s, y_s, d): d, the positive view
+ * depth, is the vertex's z from projection on. */
+struct pvert {
+    double pos[3];
+    double rgb[3];
+};
+
+/* A triangle grows by at most one vertex per plane it is clipped against:
+ * 3 + 2 (near, far) + 4 (guard band) = 9. */
+#define POLY_MAX 12
+
+struct poly {
+    int n;
+    struct pvert v[POLY_MAX];
+};
+
+/* The camera made ready: gluLookAt's basis (f forward, s to the right, u up)
+ * and the projection's constants, for a W x H framebuffer. */
+struct frustum {
+    double eye[3], s[3], u[3], f[3];
+    double g;                    /* 1 / tan(fovy / 2) */
+    double aspect;               /* W / H */
+    double half_w, half_h;       /* W / 2, H / 2 */
+    double near, far;
+};
+
+void frustum_init(struct frustum *v, const struct camera *c, int w, int h);
+
+/* World to view space: q = p - eye, x_v = s.q, y_v = u.q, d = f.q. */
+struct pvert view_vertex(const struct frustum *v, const double p[3], const double rgb[3]);
+
+/* A clipping plane: keeps the vertices whose pos[axis] is >= at (keep = +1)
+ * or <= at (keep = -1). Depth planes clip in view space, where every value
+ * is linear along an edge; guard-band planes clip in screen space, where
+ * 1/d and colour/d are (so the colours stay perspective-correct). */
+enum plane_id { PLANE_NEAR, PLANE_FAR, PLANE_LEFT, PLANE_RIGHT, PLANE_TOP, PLANE_BOTTOM };
+
+struct plane {
+    enum plane_id id;
+    const char *name;            /* "d >= near", "x >= -16384", ... */
+    int axis;                    /* 0 x, 1 y, 2 d */
+    double at;
+    int keep;                    /* +1 or -1 */
+    bool screen;                 /* clips in screen space */
+};
+
+struct plane depth_plane(const struct frustum *v, enum plane_id id);   /* PLANE_NEAR or PLANE_FAR */
+
+/* The guard band: x >= -16384, x <= 16383, y >= -16384, y <= 16383, in this order. */
+#define GUARD_BAND COORD_LIMIT
+extern const struct plane guard_planes[4];
+
+/* What the clipper does, for a narrator (every pointer valid during the call):
+ * a vertex kept or dropped, or a new vertex made on the edge p0 -> p1 (in
+ * canonical order) at p0 + t (p1 - p0). */
+enum clip_event { CLIP_KEEP, CLIP_DROP, CLIP_NEW };
+
+struct clip_step {
+    enum clip_event what;
+    const struct plane *plane;
+    const struct pvert *v;       /* the vertex kept, dropped or made */
+    const struct pvert *p0, *p1; /* CLIP_NEW: the edge, canonical order */
+    double t;                    /* CLIP_NEW */
+};
+
+struct clip_watch {
+    void (*step)(void *ctx, const struct clip_step *s);
+    void *ctx;
+};
+
+/* Sutherland-Hodgman against one plane: walks the edges v[0] -> v[1], ...,
+ * v[n-1] -> v[0]; a vertex inside is kept; an edge with one end strictly
+ * inside and the other outside gets a new vertex, computed from the edge's
+ * ends in canonical (lexicographic) order, so that two triangles sharing the
+ * edge make the very same vertex; its clipped coordinate is set to the plane
+ * exactly. w may be NULL. */
+void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
+                  const struct clip_watch *w);
+
+/* View to screen: x_s = W/2 (1 + g x_v / (a d)), y_s = H/2 (1 - g y_v / d). */
+void project(const struct frustum *v, struct poly *p);
+
+/* Does every vertex lie in [-16384, 16384) on both axes (then it is used as
+ * it is)? If not, clip_guard_band clips against the four guard planes. */
+bool in_guard_band(const struct poly *p);
+void clip_guard_band(struct poly *p, const struct clip_watch *w);
+
+/* Snapped twice the signed area of a screen triangle, as the facing rule
+ * reads it: (x1-x0)(y2-y0) - (x2-x0)(y1-y0) on the 1/256 grid; negative means
+ * counter-clockwise to the viewer, front-facing. */
+int64_t facing_area(const struct vertex v[3]);
+bool culled(enum cull cull, const struct vertex v[3]);
+
+/* The polygon as a fan from its first vertex, culled: writes at most
+ * POLY_MAX - 2 triangles into out and returns how many. */
+int fan(const struct poly *p, enum cull cull, struct vertex out[][3]);
+
+/* The whole pipeline for one world triangle. */
+int front_triangle(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                   struct vertex out[][3]);
+
+/* A 3-D scene's screen triangles: replaces s->tris with what the pipeline
+ * makes of s->world (and fills s->world.from). A 2-D scene is left as it is.
+ * False only when out of memory. */
+bool front_scene(struct scene *s);
+
+/* The same with another pipeline for each world triangle (lesson 06's
+ * exhibits of the classic slips), writing at most POLY_MAX - 2 triangles. */
+typedef int (*pipeline_fn)(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                           struct vertex out[][3]);
+bool front_scene_with(struct scene *s, pipeline_fn pipeline);
+
+#endif

@@ -1,0 +1,408 @@
+/* test_lesson06.c - lesson 06: the narrated front end and its exhibits.
+ *
+ *   - the narration: every world triangle that reaches the screen is told
+ *     (view, each plane, each kept, dropped or new vertex, projection, guard
+ *     band, fan) before the rasterizer's steps, which point at the last line;
+ *     every new vertex lies on its plane with its t in [0, 1], and there are
+ *     as many as the stages make when run here, untold;
+ *   - the exact variants cover what the reference covers on the built-in
+ *     3-D scenes;
+ *   - every exhibit is counted, and the numbers are the ones the lesson's
+ *     README quotes (README_* below).
+ */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "explore/replay.h"     /* render_scene */
+#include "front/front.h"
+#include "testlib.h"
+
+extern const struct lesson lesson_06;
+
+/* Numbers quoted in lessons/06-clipping/README.md. */
+#define README_ROOM_TRIANGLES 18        /* builtin:room: 12 world triangles -> 18 on screen */
+#define README_PROJECT_FIRST_WRONG 3072 /* builtin:room, project-first: pixels not covered once */
+#define README_VIEWPORT_CUT 8           /* builtin:room, viewport: world triangles cut in x, y */
+#define README_VIEWPORT_MADE 12         /* ... and the new vertices on the screen's border */
+#define README_NO_GUARD_WRONG 175       /* builtin:room, no-guard-32: pixels not covered once */
+#define README_DEPTH_WRONG_NDC24 3072   /* builtin:depth-pair: pixels showing the wrong wall */
+#define README_MODEL_TRIANGLES 266     /* builtin:model, cull back: 576 world triangles -> 266 */
+#define README_NDC24_STEP 0.95          /* units of depth per 24-bit step at d = 400, n = 0.01, f = 1000 */
+#define README_FRUSTUM_T0 0.114         /* figure 06-frustum: the t of the two new vertices */
+#define README_FRUSTUM_T1 0.917
+#define README_DEPTH_WRONG_D 0
+#define README_DEPTH_WRONG_INVERSE 0
+#define README_DEPTH_WRONG_REVERSED 0
+
+static struct scene load(const char *name, const struct lesson_variant *v)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, name, err, sizeof err), "%s", err);
+    cr_assert(lesson_front(&lesson_06, v)(&s));
+    return s;
+}
+
+static const struct lesson_variant *variant(const char *name)
+{
+    const struct lesson_variant *v = lesson_variant(&lesson_06, name);
+    cr_assert_not_null(v, "lesson 06 has no variant %s", name);
+    return v;
+}
+
+static struct target render(const struct scene *s, const struct lesson_variant *v)
+{
+    struct raster_params p = default_params();
+    p.scene = s;
+    struct target fb;
+    cr_assert(render_scene(s, v, &p, &fb));
+    return fb;
+}
+
+/* --- the narration --------------------------------------------------------------- */
+
+struct told {
+    int front, raster, news, views, triangles;
+    bool raster_seen;           /* in the current screen triangle */
+    bool order_ok;
+    int bad_line;
+    double near, far;
+    bool t_ok, on_plane;
+};
+
+static void listen(void *ctx, const struct trace_event *ev)
+{
+    struct told *t = ctx;
+    if (ev->kind == TRACE_FRONT) {
+        t->front++;
+        t->order_ok = t->order_ok && !t->raster_seen;   /* the front end comes first */
+        if (ev->klass == FRONT_VIEW)
+            t->views++;
+        if (ev->klass == FRONT_TRIANGLE)
+            t->triangles++;
+        if (ev->klass == FRONT_NEW && ev->x <= PLANE_FAR) {
+            t->news++;
+            t->t_ok = t->t_ok && ev->aux[3] >= 0 && ev->aux[3] <= 1;
+            float plane = (float)(ev->x == PLANE_NEAR ? t->near : t->far);
+            t->on_plane = t->on_plane && ev->aux[2] == plane;
+        }
+    } else {
+        t->raster++;
+        t->raster_seen = true;
+        if (ev->line != 7)
+            t->bad_line++;
+    }
+}
+
+static void count_made(void *ctx, const struct clip_step *s)
+{
+    *(int *)ctx += s->what == CLIP_NEW;
+}
+
+Test(lesson06, the_front_end_is_told_before_the_rasterizer)
+{
+    static const char *const names[] = { "room", "horizon", "model" };
+    for (int k = 0; k < 3; k++) {
+        const struct lesson_variant *v = &lesson_06.variants[0];
+        struct scene s = load(names[k], v);
+        struct raster_params p = default_params();
+        p.scene = &s;
+        struct target fb;
+        cr_assert(target_init(&fb, s.w, s.h, 0));
+        struct told told = { .order_ok = true, .near = s.world.cam.near, .far = s.world.cam.far,
+                             .t_ok = true, .on_plane = true };
+        struct trace tr = { .sink = listen, .ctx = &told };
+        int worlds = 0;
+        for (int i = 0; i < s.ntris; i++) {
+            struct tri_setup t;
+            tri_setup(&t, s.tris[i].v, s.w, s.h);
+            trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+            told.raster_seen = false;
+            v->rasterize(&t, &p, &fb, &tr);
+            worlds += i == 0 || s.world.from[i] != s.world.from[i - 1];
+        }
+        /* the same world triangles through the stages, untold */
+        struct frustum fr;
+        frustum_init(&fr, &s.world.cam, s.w, s.h);
+        int made = 0;
+        struct clip_watch w = { count_made, &made };
+        for (int i = 0; i < s.ntris; i++) {
+            if (i > 0 && s.world.from[i] == s.world.from[i - 1])
+                continue;
+            const struct world_tri *wt = &s.world.tris[s.world.from[i]];
+            struct poly a = { .n = 3 }, b, c;
+            for (int j = 0; j < 3; j++)
+                a.v[j] = view_vertex(&fr, wt->p[j], wt->rgb[j]);
+            struct plane pn = depth_plane(&fr, PLANE_NEAR), pf = depth_plane(&fr, PLANE_FAR);
+            clip_polygon(&b, &a, &pn, &w);
+            clip_polygon(&c, &b, &pf, &w);
+        }
+        cr_expect(told.order_ok, "%s: a front-end step after the rasterizer's", names[k]);
+        cr_expect_eq(told.views, 3 * worlds, "%s: three vertices to view space per world triangle",
+                     names[k]);
+        cr_expect_eq(told.news, made, "%s: %d new vertices told, the stages make %d", names[k],
+                     told.news, made);
+        cr_expect_geq(told.triangles, s.ntris, "%s: every drawn triangle told", names[k]);
+        cr_expect(told.t_ok, "%s: a t outside [0, 1]", names[k]);
+        cr_expect(told.on_plane, "%s: a new vertex off its plane", names[k]);
+        cr_expect_gt(told.raster, 0);
+        cr_expect_eq(told.bad_line, 0, "%s: rasterizer steps must point at line 8", names[k]);
+        if (k == 0)
+            cr_expect_gt(made, 0, "the room's walls are cut by the near plane");
+        target_free(&fb);
+        scene_free(&s);
+    }
+}
+
+/* --- the exact variants --------------------------------------------------------- */
+
+Test(lesson06, the_lesson_and_its_storages_cover_what_the_reference_covers)
+{
+    static const char *const names[] = { "room", "horizon", "model", "depth-pair" };
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i < lesson_06.nvariants; i++) {
+            const struct lesson_variant *v = &lesson_06.variants[i];
+            /* the lesson, and the storages: their coverage is exact too */
+            if (v->exhibit && strcmp(v->name, "inverse") != 0 && strcmp(v->name, "reversed") != 0)
+                continue;
+            struct scene s = load(names[k], v);
+            uint8_t *ref = calloc((size_t)s.w * s.h, 1);
+            for (int j = 0; j < s.ntris; j++) {
+                struct tri_setup t;
+                tri_setup(&t, s.tris[j].v, s.w, s.h);
+                reference_mask(&t, ref);
+            }
+            struct target fb = render(&s, v);
+            char what[128];
+            snprintf(what, sizeof what, "06 %s on builtin:%s", v->name, names[k]);
+            struct case_info info = { what, 0, 0, NULL, 0 };
+            cr_assert(coverage_equal(ref, fb.count, s.w, s.h, &info));
+            target_free(&fb);
+            free(ref);
+            scene_free(&s);
+        }
+}
+
+/* --- the exhibits ------------------------------------------------------------------ */
+
+/* Pixels of the room not covered exactly once (the room is closed). */
+static int not_once(const char *variant_name, int *triangles)
+{
+    struct scene s = load("room", variant(variant_name));
+    struct target fb = render(&s, variant(variant_name));
+    int n = 0;
+    for (int i = 0; i < s.w * s.h; i++)
+        n += fb.count[i] != 1;
+    if (triangles)
+        *triangles = s.ntris;
+    target_free(&fb);
+    scene_free(&s);
+    return n;
+}
+
+Test(lesson06, exhibits_on_the_room_are_counted)
+{
+    int tris;
+    cr_expect_eq(not_once("clip", &tris), 0, "the exact front end: every pixel once");
+    cr_expect_eq(tris, README_ROOM_TRIANGLES);
+    int wrong = not_once("project-first", NULL);
+    cr_expect_eq(wrong, README_PROJECT_FIRST_WRONG, "project-first: %d pixels not covered once", wrong);
+    cr_expect_eq(not_once("viewport", NULL), 0, "viewport: the same picture");
+    wrong = not_once("no-guard-32", NULL);
+    cr_expect_eq(wrong, README_NO_GUARD_WRONG, "no-guard-32: %d pixels not covered once", wrong);
+}
+
+/* The x, y clipping a front end did: world triangles with a vertex on the
+ * screen's border exactly (where a clipped coordinate is set), and the
+ * distinct such vertices. */
+static void border_work(const struct scene *s, int *cut, int *made)
+{
+    *cut = *made = 0;
+    int last = -1;      /* the fan of a world triangle is consecutive */
+    for (int i = 0; i < s->ntris; i++) {
+        bool any = false;
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s->tris[i].v[k];
+            if (!(v->x == 0 || v->x == s->w || v->y == 0 || v->y == s->h))
+                continue;
+            any = true;
+            bool seen = false;      /* the same vertex used before? */
+            for (int j = 0; j < 3 * i + k && !seen; j++) {
+                const struct vertex *u = &s->tris[j / 3].v[j % 3];
+                seen = u->x == v->x && u->y == v->y && u->z == v->z;
+            }
+            *made += !seen;
+        }
+        if (any && s->world.from[i] != last) {
+            (*cut)++;
+            last = s->world.from[i];
+        }
+    }
+}
+
+Test(lesson06, viewport_clipping_does_work_the_guard_band_does_not)
+{
+    struct scene exact = load("room", variant("clip")), vp = load("room", variant("viewport"));
+    int cut, made;
+    border_work(&exact, &cut, &made);
+    cr_expect(cut == 0 && made == 0, "the guard band cuts nothing on the room");
+    border_work(&vp, &cut, &made);
+    cr_log_info("viewport on the room: %d triangles out, %d cut, %d new vertices", vp.ntris, cut, made);
+    cr_expect_eq(cut, README_VIEWPORT_CUT, "viewport: %d world triangles cut in x, y", cut);
+    cr_expect_eq(made, README_VIEWPORT_MADE, "viewport: %d new vertices", made);
+    scene_free(&exact);
+    scene_free(&vp);
+}
+
+/* Screen vertices that should be one and are two: closer than 10^-6 px
+ * but not the same bits. */
+static int near_twins(const struct scene *s)
+{
+    int n = 0;
+    for (int i = 0; i < 3 * s->ntris; i++)
+        for (int j = i + 1; j < 3 * s->ntris; j++) {
+            const struct vertex *a = &s->tris[i / 3].v[i % 3], *b = &s->tris[j / 3].v[j % 3];
+            double dx = fabs(a->x - b->x), dy = fabs(a->y - b->y);
+            n += dx < 1e-6 && dy < 1e-6 && (a->x != b->x || a->y != b->y);
+        }
+    return n;
+}
+
+Test(lesson06, walk_order_clipping_splits_shared_vertices)
+{
+    static const char *const names[] = { "room", "horizon" };
+    int twins = 0;
+    for (int k = 0; k < 2; k++) {
+        struct scene exact = load(names[k], variant("clip"));
+        struct scene walk = load(names[k], variant("walk-order"));
+        cr_expect_eq(near_twins(&exact), 0, "%s: the canonical order makes every shared vertex once",
+                     names[k]);
+        twins += near_twins(&walk);
+        scene_free(&exact);
+        scene_free(&walk);
+    }
+    cr_expect_gt(twins, 0, "walk-order: no shared vertex came out twice");
+}
+
+/* Which wall each pixel of builtin:depth-pair shows against the exact
+ * answer (the smaller exact d wins): pixels showing the wrong wall. */
+static int wrong_wall(const char *variant_name)
+{
+    const struct lesson_variant *v = variant(variant_name);
+    struct scene s = load("depth-pair", v);
+    struct target fb = render(&s, v);
+    int wrong = 0;
+    for (int y = 0; y < s.h; y++)
+        for (int x = 0; x < s.w; x++) {
+            double best = INFINITY;
+            bool red = false;
+            for (int i = 0; i < s.ntris; i++) {
+                struct tri_setup t;
+                if (!tri_setup(&t, s.tris[i].v, s.w, s.h))
+                    continue;
+                bool in = true;
+                for (int k = 0; k < 3; k++)
+                    in = in && edge_inside(&t, k, edge_value(&t, k, x, y));
+                double d, rgb[3], st[2];
+                if (!in)
+                    continue;
+                reference_shade(&t, x, y, true, &d, rgb, st);
+                if (d < best)
+                    best = d, red = rgb[0] > rgb[2];
+            }
+            uint32_t c = fb.color[(size_t)y * s.w + x];
+            bool shows_red = ((c >> 16) & 0xff) > (c & 0xff);
+            wrong += isfinite(best) && shows_red != red;
+        }
+    target_free(&fb);
+    scene_free(&s);
+    return wrong;
+}
+
+Test(lesson06, depth_precision_exhibit_is_counted)
+{
+    int ndc = wrong_wall("ndc24"), d = wrong_wall("clip"), inv = wrong_wall("inverse"),
+        rev = wrong_wall("reversed");
+    cr_log_info("depth-pair wrong pixels: ndc24 %d, d %d, 1/d %d, reversed %d", ndc, d, inv, rev);
+    cr_expect_eq(ndc, README_DEPTH_WRONG_NDC24, "24-bit NDC z: %d wrong pixels", ndc);
+    cr_expect_eq(d, README_DEPTH_WRONG_D, "float d: %d wrong pixels", d);
+    cr_expect_eq(inv, README_DEPTH_WRONG_INVERSE, "float 1/d: %d wrong pixels", inv);
+    cr_expect_eq(rev, README_DEPTH_WRONG_REVERSED, "reversed float: %d wrong pixels", rev);
+}
+
+/* --- the other numbers of the text --------------------------------------------------- */
+
+struct ts {
+    int n;
+    double t[4];
+};
+
+static void keep_t(void *ctx, const struct trace_event *ev)
+{
+    struct ts *ts = ctx;
+    if (ev->kind == TRACE_FRONT && ev->klass == FRONT_NEW && ts->n < 4)
+        ts->t[ts->n++] = ev->aux[3];
+}
+
+Test(lesson06, the_numbers_of_the_text)
+{
+    struct scene s = load("model", &lesson_06.variants[0]);
+    cr_expect_eq(s.world.ntris, 576);
+    cr_expect_eq(s.ntris, README_MODEL_TRIANGLES, "model: %d screen triangles", s.ntris);
+    scene_free(&s);
+
+    /* one step of a 24-bit window depth, in units of depth, at d = 400:
+     * the smallest change of d that changes the stored integer, from the
+     * NDC formula of the issue, z = (f+n)/(f-n) - 2fn/((f-n) d) */
+    double n = 0.01, f = 1000, d = 400;
+    double window = ((f + n) / (f - n) - 2 * f * n / ((f - n) * d) + 1) / 2;
+    double slope = f * n / ((f - n) * d * d);           /* d(window)/dd */
+    double step = 1.0 / 16777215 / slope;
+    cr_expect(window > 0.99 && fabs(step - README_NDC24_STEP) < 0.005, "step %.4f", step);
+
+    /* the t of the new vertices of the frustum figure (room, first triangle) */
+    s = load("room", &lesson_06.variants[0]);
+    struct raster_params p = default_params();
+    p.scene = &s;
+    struct target fb;
+    cr_assert(target_init(&fb, s.w, s.h, 0));
+    struct ts ts = { 0 };
+    struct trace tr = { .sink = keep_t, .ctx = &ts };
+    struct tri_setup t;
+    tri_setup(&t, s.tris[0].v, s.w, s.h);
+    trace_begin(&tr, 0, TRACE_UNLIMITED);
+    lesson_06.variants[0].rasterize(&t, &p, &fb, &tr);
+    cr_assert_geq(ts.n, 2);
+    cr_expect(fabs(ts.t[0] - README_FRUSTUM_T0) < 0.0005 && fabs(ts.t[1] - README_FRUSTUM_T1) < 0.0005,
+              "t = %.4f and %.4f", ts.t[0], ts.t[1]);
+    target_free(&fb);
+    scene_free(&s);
+}
+
+/* lessons/06-clipping/ANSWERS.md */
+Test(lesson06, the_numbers_of_the_answers)
+{
+    /* 4: the 24-bit step at d = 400, f = 1000, for n = 0.01 and n = 1 */
+    double f = 1000, d = 400, steps[2], ns[2] = { 0.01, 1 };
+    for (int i = 0; i < 2; i++)
+        steps[i] = 1.0 / 16777215 / (f * ns[i] / ((f - ns[i]) * d * d));
+    cr_expect(fabs(steps[0] - 0.95) < 0.005 && fabs(steps[1] - 0.0095) < 0.00005,
+              "steps %.5f %.6f", steps[0], steps[1]);
+    /* 5: an edge from d = 1 (red 0) to d = 100 (red 1), cut at t = 0.5 on
+     * the screen, through the guard band's own interpolation */
+    struct poly p = { 3, { { .pos = { 0, 0, 1 }, .rgb = { 0, 0, 0 } },
+                           { .pos = { 2 * (GUARD_BAND - 1), 0, 100 }, .rgb = { 1, 0, 0 } },
+                           { .pos = { 0, 50, 1 }, .rgb = { 0, 0, 0 } } } };
+    clip_guard_band(&p, NULL);
+    const struct pvert *cut = NULL;
+    for (int i = 0; i < p.n; i++)
+        if (p.v[i].pos[0] == GUARD_BAND - 1 && p.v[i].pos[1] == 0)
+            cut = &p.v[i];
+    cr_assert_not_null(cut);
+    /* the plane sits a hair past the middle: 16383 of 32766 */
+    cr_expect(fabs(cut->pos[2] - 1.98) < 0.01, "d = %.4f", cut->pos[2]);
+    cr_expect(fabs(cut->rgb[0] - 0.0099) < 0.0005, "red = %.5f", cut->rgb[0]);
+    cr_expect_eq((int)lrint((0.5 - cut->rgb[0]) * 255), 125);
+}
