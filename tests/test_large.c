@@ -122,3 +122,88 @@ Test(large, memory_per_triangle_fits_two_million_in_2_gib, .timeout = 240)
     cr_assert_leq(fixed, FIXED_MIB * SANITIZER_FACTOR, "%.0f MiB besides the triangles (at most %.0f)",
                   fixed, FIXED_MIB * SANITIZER_FACTOR);
 }
+
+static const struct lesson *lesson_numbered(const char *id)
+{
+    for (int i = 0; all_lessons[i]; i++)
+        if (strncmp(all_lessons[i]->id, id, 2) == 0)
+            return all_lessons[i];
+    cr_assert_fail("no lesson %s", id);
+    return NULL;
+}
+
+/* The window hands a loaded scene over (.give_scene) rather than copying
+ * it: a 3-D scene's world goes along, the source is left empty, and the
+ * explorer runs exactly as with a copy. */
+Test(large, a_given_3d_scene_carries_its_world)
+{
+    char err[512];
+    struct scene given, copied;
+    cr_assert(scene_builtin(&given, "model", err, sizeof err), "%s", err);
+    cr_assert(scene_builtin(&copied, "model", err, sizeof err), "%s", err);
+    int world = given.world.ntris;
+    cr_assert_gt(world, 0);
+    const struct lesson *l = lesson_numbered("06");
+    struct explorer a, b;
+    struct explorer_desc da = { .lesson = l, .give_scene = &given, .step_end = true };
+    struct explorer_desc db = { .lesson = l, .scene = &copied, .step_end = true };
+    cr_assert(explorer_init(&a, &da, err, sizeof err), "%s", err);
+    cr_assert(explorer_init(&b, &db, err, sizeof err), "%s", err);
+    cr_assert(given.tris == NULL && given.world.tris == NULL && given.world.ntris == 0,
+              "the given scene is left empty");
+    cr_assert_eq(a.scene.world.ntris, world);
+    cr_assert_eq(a.scene.world.camera_line, copied.world.camera_line);
+    cr_assert_gt(a.scene.ntris, 0, "the front end made screen triangles");
+    cr_assert_eq(a.scene.ntris, b.scene.ntris);
+    cr_assert_eq(a.replay.total, b.replay.total);
+    cr_assert_gt(a.replay.total, 0);
+    explorer_free(&a);
+    explorer_free(&b);
+    scene_free(&copied);
+}
+
+/* Lesson 08 keeps samples the step-back record does not hold: stepping
+ * back a triangle at a time from the end must give, at every triangle,
+ * the picture (pixels and every sample) of a fresh run to that triangle. */
+Test(large, stepping_back_with_samples_matches_a_fresh_run)
+{
+    char err[512];
+    struct scene s;
+    cr_assert(scene_builtin(&s, "samples", err, sizeof err), "%s", err);
+    const struct lesson *l = lesson_numbered("08");
+    struct explorer ex;
+    struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = LESSON_SAMPLES_DEFAULT };
+    struct explorer_desc d = { .lesson = l, .scene = &s, .params = &p, .step_end = true };
+    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+    cr_assert_eq(ex.params.samples, 4);
+    int checked = 0;
+    for (int i = ex.scene.ntris - 1; i > 0; i--) {
+        cr_assert(explorer_set_step(&ex, ex.replay.start[i] + 1));    /* triangle i's first event */
+        if (ex.replay.base_upto != i)
+            continue;                   /* triangle i has no events */
+        struct replay fresh;
+        cr_assert(replay_init(&fresh, &ex.scene, ex.replay.variant, &ex.params));
+        struct target t;
+        cr_assert(target_init(&t, s.w, s.h, scene_background(&s)));
+        cr_assert(target_multisample(&t, ex.params.samples));
+        for (int k = 0; k < i; k++) {
+            struct tri_setup ts;
+            replay_setup(&fresh, k, &ts);
+            fresh.variant->rasterize(&ts, &fresh.params, &t, NULL);
+        }
+        const struct target *b = &ex.replay.base;
+        size_t n = (size_t)s.w * (size_t)s.h, m = n * (size_t)ex.params.samples;
+        cr_assert(b->samples, "the base picture keeps its samples");
+        cr_assert(memcmp(b->color, t.color, n * sizeof *t.color) == 0, "colour at triangle %d", i);
+        cr_assert(memcmp(b->samples->color, t.samples->color, m * sizeof *t.samples->color) == 0,
+                  "samples at triangle %d", i);
+        cr_assert(memcmp(b->samples->depth, t.samples->depth, m * sizeof *t.samples->depth) == 0,
+                  "sample depths at triangle %d", i);
+        checked++;
+        target_free(&t);
+        replay_free(&fresh);
+    }
+    cr_assert_gt(checked, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+}
