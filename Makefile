@@ -1,10 +1,10 @@
-# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench | make clean
+# tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
-#          make soak [MINUTES=10]
+#          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
-B        := $(BUILD)$(if $(SANITIZE),/sanitize)
+B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
 PROGRAMS := $(LESSONS:%=$(B)/%)
 LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c,$(wildcard src/*.c src/*/*.c)))
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
@@ -18,10 +18,27 @@ nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 # CFLAGS, LDFLAGS and LDLIBS are the user's (make CFLAGS=-O0 still builds);
 # what tristep needs goes into TS_* beside them.
 CFLAGS   ?= -O2 -g
-ifdef SANITIZE
-SAN      := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+SANITIZERS := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
+              -fno-omit-frame-pointer
+ifneq ($(SANITIZE),)
+SAN      := $(SANITIZERS)
 endif
-TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN)
+ifdef FUZZ                # make fuzz: libFuzzer needs clang
+override CC := clang
+SAN      := $(SANITIZERS) -fsanitize=fuzzer-no-link
+endif
+ifeq ($(PORT),aarch64)    # make aarch64: Debian's cross compiler, SSE2 through SIMDe to NEON
+override CC := aarch64-linux-gnu-gcc
+SAN      :=
+TS_PORT  := -I$(B)/include
+LDFLAGS  += -static
+RUN      := qemu-aarch64
+endif
+ifeq ($(PORT),simde)      # make simde-test: SSE2 through SIMDe's portable C, sanitized
+SAN      := $(SANITIZERS)
+TS_PORT  := -DTRISTEP_SIMDE -DSIMDE_NO_NATIVE
+endif
+TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN) $(TS_PORT)
 CC_ALL    = $(CC) $(CFLAGS) $(TS_CFLAGS)
 LD_ALL    = $(CC) $(LDFLAGS) $(SAN)
 LIBS      = $(LDLIBS) $(PKG_LIBS)
@@ -30,21 +47,24 @@ LIBS      = $(LDLIBS) $(PKG_LIBS)
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak clean deps-test deps-bench exercise check FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
 include $(B)/config.mk
 endif
-$(B)/config.mk: src/deps.sh ; @sh src/deps.sh build $@
+$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),build) $@
 deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
+# The compiler and its flags, rewritten only when they change (make CC=clang
+# after make rebuilds everything with clang).
+$(B)/cc.flag: FORCE | $(B)/config.mk ; @echo '$(CC_ALL)' | cmp -s - $@ || echo '$(CC_ALL)' > $@
 # Lessons are compiled twice: narrated for the programs and tests, fast
 # (narration compiled out, descriptor renamed lesson_NN_fast) for the bench.
 # What the explorer adds for a lesson (NAME_explorer.c) only narrated.
-$(B)/obj/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
-$(B)/fast/%.o: %.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
-$(B)/obj/main-%.o: src/cli/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
+$(B)/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -c $< -o $@
+$(B)/fast/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -Dlesson_$(call nn,$<)=lesson_$(call nn,$<)_fast -c $< -o $@
+$(B)/obj/main-%.o: src/cli/main.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -c $< -o $@
 # The library anew when its list of objects changes (lib.list, rewritten
 # only then): no member is left over from a file moved away.
 $(B)/lib.list: FORCE ; @echo '$(LIB_OBJ)' | cmp -s - $@ || echo '$(LIB_OBJ)' > $@
@@ -55,12 +75,12 @@ $(PROGRAMS): $(B)/%: $(B)/obj/main-$$(firstword $$(subst -, ,$$*)).o $(B)/obj/le
 # Every lesson, both builds, listed for the tests and the bench (again when
 # a lesson folder appears: that changes the mtime of lessons/).
 $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
-	@printf '#include "lesson_explorer.h"\n' > $@
+	@printf '#include "%s"\n' $(if $(PORT),lesson.h,lesson_explorer.h) > $@
 	@for n in $(foreach l,$(LESSONS),$(call nn,$(l)/x)); do printf 'extern const struct lesson lesson_%s, lesson_%s_fast;\n' $$n $$n; done >> $@
 	@printf 'const struct lesson *const all_lessons[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x),)" >> $@
 	@printf 'const struct lesson *const all_lessons_fast[] = { %s NULL };\n' "$(foreach l,$(LESSONS),&lesson_$(call nn,$(l)/x)_fast,)" >> $@
-	@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@
-	@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@
+	$(if $(PORT),,@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@)
+	$(if $(PORT),,@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@)
 $(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
 $(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
@@ -75,6 +95,36 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
 $(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
+
+# Fuzzing (tests/fuzz/fuzz.h): one libFuzzer program per harness, and a
+# replay of the committed corpus that needs no libFuzzer (run by make test).
+FUZZERS  := $(patsubst tests/fuzz/corpus/%,%,$(wildcard tests/fuzz/corpus/*))
+FUZZ_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(filter-out %/libfuzzer.c %/replay.c,$(wildcard tests/fuzz/*.c))) \
+            $(B)/obj/tests/testlib.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+$(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DFUZZ_HARNESS=fuzz_$* -c $< -o $@
+$(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(LD_ALL) -fsanitize=fuzzer $^ $(LIBS) -o $@
+$(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(LD_ALL) $^ $(LIBS) -o $@
+SECONDS  ?= 60
+fuzz: deps-test ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
+fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
+	@for f in $(FUZZERS); do mkdir -p $(B)/corpus/$$f $(B)/crashes; \
+	  echo "fuzz: $$f for $(SECONDS) s (new inputs in $(B)/corpus/$$f, failures in $(B)/crashes)"; \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp nice -n 10 $(B)/fuzz-$$f -max_total_time=$(SECONDS) -print_final_stats=1 -artifact_prefix=$(B)/crashes/$$f- \
+	    $$([ -f tests/fuzz/$$f.dict ] && echo -dict=tests/fuzz/$$f.dict) $(B)/corpus/$$f tests/fuzz/corpus/$$f || exit 1; done
+
+# Portable (issue 17): the core, the lessons (both builds) and the
+# exactness driver tests/portable/exact.c, no SDL, cairo or Criterion:
+# `make aarch64` cross-compiles them statically and runs them under qemu,
+# `make simde-test` runs them natively through SIMDe's portable code.
+CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster scene front trace shade,src/$(d)/*.c)))
+ALG_SRC  := $(filter-out $(EXP_SRC),$(LES_SRC))
+$(B)/exact: $(patsubst %.c,$(B)/obj/%.o,tests/portable/exact.c tests/testlib.c $(CORE_SRC)) \
+            $(B)/obj/lessons.o $(ALG_SRC:%.c=$(B)/obj/%.o) $(ALG_SRC:%.c=$(B)/fast/%.o)
+	$(LD_ALL) $^ -lm -o $@
+$(B)/include/simde: ; @mkdir -p $(@D) && ln -sfn /usr/include/simde $@   # without the rest of /usr/include
+aarch64 simde-test: ; @$(MAKE) --no-print-directory PORT=$(@:-test=) port-run
+port-run: $(if $(filter aarch64,$(PORT)),$(B)/include/simde) $(B)/exact ; $(RUN) $(B)/exact
+
 # Exercises (lessons/NN-name/exercise.c): the student's FILE, compiled with
 # src/exercise/student.h in front, linked into build/exercise-NN; the tests
 # link every skeleton and answer under its own name (build/exercises.c).
@@ -104,6 +154,9 @@ check: $(B)/exercise-$(LESSON)
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
+	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus
+	@$(MAKE) --no-print-directory aarch64 simde-test
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --markdown BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'

@@ -267,6 +267,17 @@ static const struct bad_scene bad_scenes[] = {
     { "texture checker 0", "size 8 8\ntexture checker 0\n", 0, 2 },
     { "texture of another kind", "size 8 8\ntexture stripes 4\n", 0, 2 },
     { "error after CRLF lines", "size 8 8\r\n\r\n# c\r\nbogus 1\r\n", 0, 4 },
+    /* regression: any positive z was taken; 1/z of z = 1e-300 overflows the
+     * floats lesson 04 interpolates it in, and a NaN colour reached an
+     * undefined float-to-int conversion */
+    { "z_tiny_overflowed_inverse_depth", "size 8 8\ntri 1 1 1e-300 1 1 1  6 1 1 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "z just below 1e-6", "size 8 8\ntri 1 1 1 1 1 1  6 1 9.99e-7 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    { "z_huge_beyond_float_depth", "size 8 8\ntri 1 1 1 1 1 1  6 1 1e300 1 1 1  1 6 1 1 1 1\n", 0, 2 },
+    /* regression: texture coordinates were not checked at all; s = 1e300
+     * times the checker count went through an undefined cast to long */
+    { "texture_coordinate_huge_overflowed_checker_square", "size 8 8\ntexture checker 4\n"
+      "tri 1 1 1 1 1 1 1e300 0  6 1 1 1 1 1 0 0  1 6 1 1 1 1 0 1\n", 0, 3 },
+    { "t below -1e6", "size 8 8\ntri 1 1 1 1 1 1 0 0  6 1 1 1 1 1 0 -1000001  1 6 1 1 1 1 0 1\n", 0, 2 },
     { "error after good triangles", "size 8 8\ntri " TRI_OK "\ntri " TRI_OK "\n\ntri " TRI_OK " 7\n", 0, 5 },
 };
 #define N_BAD_SCENES (sizeof bad_scenes / sizeof bad_scenes[0])

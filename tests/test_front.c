@@ -736,3 +736,28 @@ Test(front, a_triangle_wholly_behind_the_eye_or_beyond_far_draws_nothing)
         for (int k = 0; k < 3; k++)
             cr_expect(tris[i][k].z >= 1 && tris[i][k].z <= 10, "z = %.17g", tris[i][k].z);
 }
+
+/* regression (found by make fuzz): clipping against the guard band
+ * interpolates 1/d, and the rounded result could land one ulp past the
+ * edge's ends: a depth below near (0.054999999999999993 with near = 0.055),
+ * which a scene written from the screen triangles could not read back at
+ * near = 10^-6. A point on an edge now stays between the edge's ends. */
+Test(front, guard_band_clip_depth_below_near)
+{
+    static const char text[] = "size 4 836\n"     /* so narrow that x leaves the guard band */
+                               "camera 0 1 1e-6  0 0 1  0 1 0  70 .055 1\n"
+                               "obj builtin:torus.obj 0 0 0\n";
+    struct scene s;
+    char err[256];
+    cr_assert(scene_parse(&s, "t.scene", text, sizeof text - 1, err, sizeof err), "%s", err);
+    cr_assert(front_scene(&s));
+    cr_assert_gt(s.ntris, 100, "the torus is drawn");
+    for (int i = 0; i < s.ntris; i++)
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s.tris[i].v[k];
+            cr_assert(v->z >= 0.055 && v->z <= 1, "triangle %d: z = %.17g", i, v->z);
+            cr_assert(v->r >= 0 && v->r <= 1 && v->g >= 0 && v->g <= 1 && v->b >= 0 && v->b <= 1,
+                      "triangle %d: colour %.17g %.17g %.17g", i, v->r, v->g, v->b);
+        }
+    scene_free(&s);
+}

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shade/shade.h"
 #include "testlib.h"
 
 /* one unit of F is 1/65536 px^2 */
@@ -444,4 +445,29 @@ Test(reference, agrees_with_the_rule_as_defined)
                 }
             }
     }
+}
+
+/* regression: pack_rgb clamped with "c < 0 ? 0 : c > 1 ? 1 : c", which lets
+ * a NaN through to an undefined float-to-int conversion; a NaN channel is 0 */
+Test(target, pack_rgb_nan_reached_an_undefined_cast)
+{
+    cr_expect_eq(pack_rgb(NAN, 1, 0.5), 0xff00ff80u);
+    cr_expect_eq(pack_rgb(-INFINITY, INFINITY, -0.0), 0xff00ff00u);
+    cr_expect_eq(pack_rgb(1e300, -1e300, 0.2), 0xffff0033u);
+}
+
+/* regression: shade_pixel's checker square went through (long)floor(s * n),
+ * undefined for a NaN or a huge s; such squares are light (parity 0) now,
+ * and ordinary ones keep their parity, negative ones included */
+Test(target, checker_parity_of_nan_and_huge_coordinates)
+{
+    struct raster_params p = { .checker = 4 };
+    uint32_t light = pack_rgb(1, 1, 1), dark = pack_rgb(CHECKER_DARK, CHECKER_DARK, CHECKER_DARK);
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, NAN, 0.1), light);
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 1e300, 0.1), light);
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 0.1, 0.1), light);      /* square (0, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, 0.3, 0.1), dark);       /* square (1, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.1, 0.1), dark);      /* square (-1, 0) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.3, -0.1), dark);     /* square (-2, -1) */
+    cr_expect_eq(shade_pixel(&p, NULL, 1, 1, 1, -0.3, -0.3), light);    /* square (-2, -2) */
 }

@@ -159,6 +159,11 @@ static const struct bad3 bad[] = {
     { "target nan", "size 8 8\ncamera 0 0 5  nan 0 0  0 1 0  60 0.1 100\n", NULL, "scene", 2 },
     { "up inf", "size 8 8\ncamera 0 0 5  0 0 0  0 inf 0  60 0.1 100\n", NULL, "scene", 2 },
     { "camera twice", "size 8 8\n" CAMERA CAMERA, NULL, "scene", 3 },
+    /* regression: any near > 0 was taken; clipped vertices at d = near = 1e-9
+     * reached lesson 04's float 1/z as 1e9 and 1e-30 as infinity */
+    { "near_tiny_overflowed_inverse_depth", "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  60 1e-30 100\n", NULL, "scene", 2 },
+    { "near below 1e-6", "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  60 9.9e-7 100\n", NULL, "scene", 2 },
+    { "far beyond 1e6", "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  60 0.1 1.1e6\n", NULL, "scene", 2 },
     { "magnified beyond doubles", "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  1e-200 1e-200 100\n", NULL, "scene", 2 },
     { "tri3 before camera", "size 8 8\n" TRI3 CAMERA, NULL, "scene", 2 },
     { "tri3 before size", CAMERA TRI3 "size 8 8\n", NULL, "scene", 2 },

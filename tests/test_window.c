@@ -466,6 +466,20 @@ Test(window, keys_file_missing_is_a_usage_error, .fini = cleanup, .timeout = 30)
     cr_assert_eq(st, 2, "exit status %d", st);
 }
 
+/* A script is untrusted input, checked whole before the window opens:
+ * FILE:LINE and exit status 2, like a bad scene. */
+Test(window, keys_unknown_key_is_an_input_error_with_its_line, .fini = cleanup, .timeout = 30)
+{
+    make_dir();
+    write_text(in_dir("keys"), "# steps\nRight\nShift+Nokey\nq\n");
+    char *argv[] = { (char *)program(), "--keys", "keys", NULL };
+    int st = run(argv, dummy_env, NULL, "err", 20000);
+    cr_assert_eq(st, 2, "exit status %d", st);
+    char *err = read_all(in_dir("err"), NULL);
+    cr_assert(err && strstr(err, "keys:3: unknown key 'Nokey'"), "stderr: %s", err ? err : "");
+    free(err);
+}
+
 /* --- under Xvfb, with xdotool ----------------------------------------------------------- */
 
 static int xdotool(const char *display, const char *const args[])

@@ -11,8 +11,8 @@
  * register, (F00, F01, F02, F03) / Area2 = (1/z, w, u, v), and walks the
  * bounding box with one vector add per pixel (Cx += I) and one per row
  * (Cy += J). That register walk is written twice, side by side: once with
- * SSE intrinsics and once as its scalar twin on four floats (the code
- * non-x86 builds run). A second layout closes the lesson: four PIXELS per
+ * SSE intrinsics and once as its scalar twin on four floats (the tests
+ * hold the two equal). A second layout closes the lesson: four PIXELS per
  * register instead of four quantities of one pixel.
  *
  * New since lesson 03: the fourth lane (1/z, formulas 16 to 22), the
@@ -225,10 +225,9 @@ static void rasterize_scalar(const struct tri_setup *t, const struct raster_para
 
 /* --- SSE ------------------------------------------------------------------------------
  *
- * One #if chooses what the SIMD variants run: SSE2 on x86 (the baseline of
- * every x86-64 compiler), their scalar twins elsewhere. */
-#if defined(__SSE2__)
-#include "simd.h"        /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
+ * SSE2 is the baseline of every x86-64 compiler; on other CPUs (ARM64)
+ * simd.h translates the same intrinsics (SIMDe), so every CPU runs this code. */
+#include "simd.h"   /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
 
 /* The lanes of one register, broadcast: lane i copied into all four. */
 #define BROADCAST(r, i) _mm_shuffle_ps((r), (r), _MM_SHUFFLE(i, i, i, i))
@@ -440,16 +439,11 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
         COUNT(tr, 4 * 3, EDGE_STEP_COST);
     }
 }
-#else
-/* No SSE: both SIMD variants run the scalar twin of the source's layout. */
-#define rasterize_sse rasterize_scalar
-#define rasterize_row4_sse rasterize_scalar
-#endif
 
 static const struct lesson_variant variants[] = {
     { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
       rasterize_sse, false },
-    { "scalar", "the same steps on four floats: the twin that non-x86 builds run",
+    { "scalar", "the same steps on four plain floats: the SSE code's twin",
       rasterize_scalar, false },
     { "row4", "four pixels per register, one register per quantity", rasterize_row4_sse, false },
 };

@@ -268,7 +268,6 @@ static double store_depth(enum depth_store how, double d, double n, double f)
     return (double)(float)d;
 }
 
-#if NARRATING
 /* What a stored value says the depth is. */
 static double stored_as_d(enum depth_store how, double v, double n, double f)
 {
@@ -293,7 +292,6 @@ static double stored_fraction(enum depth_store how, double d, double n, double f
     double at_n = store_depth(how, n, n, f), at_f = store_depth(how, f, n, f);
     return (store_depth(how, d, n, f) - at_n) / (at_f - at_n);
 }
-#endif
 
 /* The pixel loop of lesson 02 with exact edge values, shaded in double
  * precision (perspective-correct), storing the chosen depth: what matters

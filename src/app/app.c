@@ -16,8 +16,6 @@
 
 #include <SDL.h>
 #include <cairo.h>
-#include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +25,7 @@
 #include "params.h"
 #include "pointer.h"
 #include "draw/paint.h"
+#include "script.h"
 #include "util/file.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -65,8 +64,9 @@ struct app {
     Uint64 play_last;
 
     /* --keys */
-    char **script;
-    size_t nscript, at;
+    struct script script;
+    size_t at;
+    bool scripted;
 };
 
 /* --- SDL errors ------------------------------------------------------------------- */
@@ -357,68 +357,6 @@ static void wheel(struct app *a, int dy)
 
 static void play(struct app *a);
 
-#define SCRIPT_LINE_MAX 255     /* a key name, "wait" or a drag: short */
-
-/* Read the --keys file into a->script, one step a line (blank lines and
- * "#" comments skipped). Returns -1, or the exit status after saying why:
- * the file is input like a scene, so nothing in it is cut short silently. */
-static int read_script(struct app *a, const char *path)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "%s:0: cannot open the --keys file: %s\n", path, strerror(errno));
-        return EXIT_USAGE;
-    }
-    char line[SCRIPT_LINE_MAX + 2];     /* the line, its newline, the NUL */
-    size_t cap = 0;
-    int status = -1;
-    for (int no = 1; status < 0 && fgets(line, sizeof line, f); no++) {
-        size_t len = strlen(line);
-        if (len == sizeof line - 1 && line[len - 1] != '\n' && !feof(f)) {
-            fprintf(stderr, "%s:%d: line longer than %d characters\n", path, no, SCRIPT_LINE_MAX);
-            status = EXIT_USAGE;
-            break;
-        }
-        char *s = line, *e = line + strcspn(line, "\r\n");
-        *e = '\0';
-        while (isspace((unsigned char)*s))
-            s++;
-        while (e > s && isspace((unsigned char)e[-1]))
-            *--e = '\0';
-        if (!*s || *s == '#')
-            continue;
-        if (a->nscript == cap) {
-            cap = cap ? 2 * cap : 32;
-            char **n = realloc(a->script, cap * sizeof *n);
-            if (!n) {
-                status = EXIT_RUN;
-                break;
-            }
-            a->script = n;
-        }
-        if (!(a->script[a->nscript] = SDL_strdup(s))) {
-            status = EXIT_RUN;
-            break;
-        }
-        a->nscript++;
-    }
-    if (status == EXIT_RUN)
-        fprintf(stderr, "%s: out of memory reading the --keys file\n", path);
-    if (status < 0 && ferror(f)) {
-        fprintf(stderr, "%s:0: cannot read the --keys file: %s\n", path, strerror(errno));
-        status = EXIT_USAGE;
-    }
-    fclose(f);
-    return status;
-}
-
-static void free_script(struct app *a)
-{
-    for (size_t i = 0; i < a->nscript; i++)
-        SDL_free(a->script[i]);
-    free(a->script);
-}
-
 static bool push_key(SDL_Keycode k, Uint16 mod)
 {
     SDL_Event ev = { .type = SDL_KEYDOWN };
@@ -444,13 +382,27 @@ static bool push_mouse(Uint32 type, int x, int y)
     return SDL_PushEvent(&ev) >= 0;
 }
 
-/* Turn the next script line into events. "Shift+Right", "Ctrl+Left", "v",
- * "PageDown" (SDL's key names), "wait" (a frame and 100 ms), "drag X1 Y1 X2 Y2". */
+/* Every key name of the script is one SDL knows (after SDL_Init: the names
+ * of keys come from the keyboard map); an unknown one is an input error. */
+static bool check_script_keys(struct app *a)
+{
+    for (size_t i = 0; i < a->script.n; i++) {
+        const struct script_cmd *c = &a->script.cmd[i];
+        if (c->kind == SCRIPT_KEY && SDL_GetKeyFromName(c->key) == SDLK_UNKNOWN) {
+            fprintf(stderr, "%s:%d: unknown key '%s' (SDL's key names: Right, PageDown, v, ...)\n",
+                    a->script.name, c->line, c->key);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Turn the next script command into events (script.h). */
 static void next_script_line(struct app *a)
 {
-    const char *line = a->script[a->at++];
-    int x1, y1, x2, y2;
-    if (strcmp(line, "wait") == 0) {
+    const struct script_cmd *c = &a->script.cmd[a->at++];
+    switch (c->kind) {
+    case SCRIPT_WAIT:
         a->dirty = true;            /* one frame, and a tenth of a second to play in */
         if (!present(a))
             a->quit = true;
@@ -458,35 +410,18 @@ static void next_script_line(struct app *a)
         if (a->ex.playing)
             play(a);
         return;
-    }
-    if (sscanf(line, "drag %d %d %d %d", &x1, &y1, &x2, &y2) == 4) {
-        push_mouse(SDL_MOUSEBUTTONDOWN, x1, y1);
+    case SCRIPT_DRAG:
+        push_mouse(SDL_MOUSEBUTTONDOWN, c->x1, c->y1);
         for (int i = 1; i <= 4; i++)
-            push_mouse(SDL_MOUSEMOTION, x1 + (x2 - x1) * i / 4, y1 + (y2 - y1) * i / 4);
-        push_mouse(SDL_MOUSEBUTTONUP, x2, y2);
+            push_mouse(SDL_MOUSEMOTION, c->x1 + (c->x2 - c->x1) * i / 4,
+                       c->y1 + (c->y2 - c->y1) * i / 4);
+        push_mouse(SDL_MOUSEBUTTONUP, c->x2, c->y2);
+        return;
+    case SCRIPT_KEY:
+        push_key(SDL_GetKeyFromName(c->key), (c->mods & SCRIPT_SHIFT ? KMOD_LSHIFT : 0)
+                                             | (c->mods & SCRIPT_CTRL ? KMOD_LCTRL : 0));
         return;
     }
-    Uint16 mod = 0;
-    const char *name = line;
-    for (;;) {
-        if (SDL_strncasecmp(name, "Shift+", 6) == 0)
-            mod |= KMOD_LSHIFT, name += 6;
-        else if (SDL_strncasecmp(name, "Ctrl+", 5) == 0)
-            mod |= KMOD_LCTRL, name += 5;
-        else
-            break;
-    }
-    static const char *const alias[][2] = {
-        { "PgDn", "PageDown" }, { "PgUp", "PageUp" }, { "Esc", "Escape" },
-    };
-    for (size_t i = 0; i < sizeof alias / sizeof alias[0]; i++)
-        if (SDL_strcasecmp(name, alias[i][0]) == 0)
-            name = alias[i][1];
-    SDL_Keycode k = SDL_GetKeyFromName(name);
-    if (k == SDLK_UNKNOWN)
-        fprintf(stderr, "%s: --keys: unknown key '%s' (ignored)\n", a->lesson->id, line);
-    else
-        push_key(k, mod);
 }
 
 /* --- the loop --------------------------------------------------------------------- */
@@ -574,11 +509,11 @@ static void run(struct app *a)
             count_some(a);      /* before a script's next line: scripts see every step */
             continue;
         }
-        if (a->at < a->nscript && !SDL_PollEvent(NULL)) {
+        if (a->at < a->script.n && !SDL_PollEvent(NULL)) {
             next_script_line(a);
             continue;
         }
-        if (a->script && a->at >= a->nscript && !SDL_PollEvent(NULL)) {
+        if (a->scripted && a->at >= a->script.n && !SDL_PollEvent(NULL)) {
             a->quit = true;             /* the script ran out without "q" */
             break;
         }
@@ -640,13 +575,19 @@ int explorer_run(const struct app_desc *d)
 {
     const struct lesson *l = d->explorer.lesson;
     struct app a = { .lesson = l, .dirty = true };
-    int status = d->keys ? read_script(&a, d->keys) : -1;
-    if (status >= 0) {
-        free_script(&a);
-        return status;
-    }
-    status = EXIT_OK;
     char err[512];
+    if (d->keys) {
+        if (!script_load(&a.script, d->keys, err, sizeof err)) {
+            fprintf(stderr, "%s\n", err);
+            return EXIT_USAGE;
+        }
+        a.scripted = true;
+        if (!check_script_keys(&a)) {
+            script_free(&a.script);
+            return EXIT_USAGE;
+        }
+    }
+    int status = EXIT_OK;
     if (!explorer_fonts(err, sizeof err))
         fprintf(stderr, "%s: %s; the text will not look as in the figures\n", l->id, err);
     if (!display_init(l->id)) {
@@ -669,7 +610,7 @@ int explorer_run(const struct app_desc *d)
         SDL_DestroyRenderer(a.ren);
     if (a.win)
         SDL_DestroyWindow(a.win);
-    free_script(&a);
+    script_free(&a.script);
     frame_times_write(&a.frames, l->id);
 #ifdef TRISTEP_LSAN
     /* everything of ours is freed: look for leaks now, while the libraries

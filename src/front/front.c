@@ -90,6 +90,13 @@ static bool before(const struct pvert *a, const struct pvert *b)
     return false;
 }
 
+/* v kept between a and b: a point on an edge lies between its ends, and
+ * rounding must not step past them (a depth below near, a colour above 1). */
+static double between(double v, double a, double b)
+{
+    return fmin(fmax(v, fmin(a, b)), fmax(a, b));
+}
+
 /* The point where the edge p0 -> p1 meets the plane: p0 + t (p1 - p0). In
  * view space everything is linear along the edge. In screen space x and y
  * are, but d is not: 1/d and colour/d are, so those are interpolated and
@@ -113,6 +120,10 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
         n.pos[2] = 1.0 / w;
         for (int i = 0; i < 3; i++)
             n.rgb[i] = (p0->rgb[i] * w0 + t * (p1->rgb[i] * w1 - p0->rgb[i] * w0)) / w;
+    }
+    for (int i = 0; i < 3; i++) {
+        n.pos[i] = between(n.pos[i], p0->pos[i], p1->pos[i]);
+        n.rgb[i] = between(n.rgb[i], p0->rgb[i], p1->rgb[i]);
     }
     n.pos[a] = pl->at;          /* on the plane exactly */
     *t_out = t;

@@ -210,11 +210,11 @@ bool target_copy(struct target *dst, const struct target *src); /* same size or 
 static inline uint32_t pack_rgb(double r, double g, double b)
 {
     /* clamp then round to nearest: colours interpolate inside [0, 1] but
-     * rounding error may step just outside */
+     * rounding error may step just outside (and a NaN becomes 0) */
     double c[3] = { r, g, b };
     uint32_t out = 0xff000000u;
     for (int i = 0; i < 3; i++) {
-        double v = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
+        double v = c[i] > 0 ? (c[i] < 1 ? c[i] : 1) : 0;
         out |= (uint32_t)(v * 255.0 + 0.5) << (16 - 8 * i);
     }
     return out;

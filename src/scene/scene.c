@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -142,9 +143,16 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
                             i + 1, names[c], d[c], COORD_LIMIT, COORD_LIMIT);
         if (!(d[2] > 0))
             return fail(p, "vertex %d: z = %g must be positive (view-space depth)", i + 1, d[2]);
+        if (!(d[2] >= SCENE_Z_MIN && d[2] <= SCENE_Z_MAX))
+            return fail(p, "vertex %d: z = %g is outside [%g, %g]", i + 1, d[2], SCENE_Z_MIN,
+                        SCENE_Z_MAX);
         for (int c = 3; c < 6; c++)
             if (!in_unit(d[c]))
                 return fail(p, "vertex %d: %c = %g is outside [0, 1]", i + 1, names[c], d[c]);
+        for (int c = 6; c < per; c++)
+            if (!(fabs(d[c]) <= SCENE_ST_MAX))
+                return fail(p, "vertex %d: %c = %g is outside [-%g, %g]", i + 1, names[c], d[c],
+                            SCENE_ST_MAX, SCENE_ST_MAX);
         v[i] = (struct vertex){ .x = d[0], .y = d[1], .z = d[2],
                                 .r = d[3], .g = d[4], .b = d[5],
                                 .s = per == 8 ? d[6] : 0, .t = per == 8 ? d[7] : 0 };
@@ -159,9 +167,9 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
 bool scene_add(struct scene *s, const struct vertex v[3])
 {
     if (s->ntris == s->cap) {
-        int cap = s->cap ? s->cap * 2 : 64;
-        if (cap < s->cap)
+        if (s->cap > INT_MAX / 2)
             return false;
+        int cap = s->cap ? s->cap * 2 : 64;
         struct scene_tri *t = realloc(s->tris, (size_t)cap * sizeof *t);
         if (!t)
             return false;
@@ -238,6 +246,8 @@ static bool is_blank(char c)
 static bool read_line(struct reader *r, char *line, size_t n)
 {
     struct parser *p = &r->p;
+    if (p->line == INT_MAX)
+        return fail(p, "more lines than a scene may have");
     p->line++;
     if (memchr(line, '\0', n))
         return fail(p, "NUL byte in the line (is this a text file?)");

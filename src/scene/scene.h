@@ -25,6 +25,14 @@
 
 #include "raster/raster.h"
 
+/* Ranges every value of a scene is checked against where it is read (beyond
+ * CONVENTIONS.md's coordinates and colours): they keep every quantity a
+ * lesson derives (1/z, z, colours over z, checker squares) finite and
+ * representable in the floats and integers it uses. */
+#define SCENE_Z_MIN 1e-6        /* z in [SCENE_Z_MIN, SCENE_Z_MAX] */
+#define SCENE_Z_MAX 1e6
+#define SCENE_ST_MAX 1e6        /* |s|, |t| <= SCENE_ST_MAX */
+
 struct scene_tri {
     struct vertex v[3];
 };

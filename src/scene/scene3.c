@@ -95,6 +95,11 @@ static bool parse_camera(struct parser *p, struct scene *s, char **tok, int n)
         return scene_fail(p, "near = %g must be positive (a view depth in front of the eye)", c.near);
     if (!(c.far > c.near))
         return scene_fail(p, "far = %g must be beyond near = %g", c.far, c.near);
+    /* every depth the front end makes lies in [near, far]: the range of a
+     * 2-D scene's z, which keeps 1/z and z finite in every lesson's floats */
+    if (!(c.near >= SCENE_Z_MIN && c.far <= SCENE_Z_MAX))
+        return scene_fail(p, "near = %g and far = %g must lie in [%g, %g]", c.near, c.far,
+                          SCENE_Z_MIN, SCENE_Z_MAX);
     double f[3] = { c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2] };
     if (f[0] == 0 && f[1] == 0 && f[2] == 0)
         return scene_fail(p, "eye and target are the same point (no view direction)");

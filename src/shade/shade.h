@@ -32,6 +32,14 @@
 #define CHECKER_DARK_COST { .mul = 3, .add = 0 }
 #define PACK_SCALED_COST { .mul = 0, .add = 3 }
 
+/* Whether square (floor s, floor t) of the checker is a dark one: the parity
+ * of the sum, with NaN and out-of-range sums kept out of the integer cast. */
+static inline bool checker_dark(double s, double t)
+{
+    double k = floor(s) + floor(t);
+    return fabs(k) < 0x1p62 && ((long long)k & 1);
+}
+
 /* Colour of a covered pixel from interpolated values: r, g, b in [0, 1], and
  * texture coordinates s, t in [0, 1] when the scene has a checker. */
 static inline uint32_t shade_pixel(const struct raster_params *p, struct trace *tr, double r,
@@ -39,8 +47,7 @@ static inline uint32_t shade_pixel(const struct raster_params *p, struct trace *
 {
     if (p->checker > 0) {
         COUNT(tr, 1, CHECKER_COST);
-        long i = (long)floor(s * p->checker), j = (long)floor(t * p->checker);
-        if ((i + j) & 1) {
+        if (checker_dark(s * p->checker, t * p->checker)) {
             COUNT(tr, 1, CHECKER_DARK_COST);
             r *= CHECKER_DARK;
             g *= CHECKER_DARK;
@@ -67,7 +74,7 @@ static inline uint32_t shade_scaled(const struct raster_params *p, struct trace 
 {
     if (p->checker > 0) {
         COUNT(tr, 1, CHECKER_SCALED_COST);
-        if (((long)floor(s) + (long)floor(t)) & 1) {
+        if (checker_dark(s, t)) {
             COUNT(tr, 1, CHECKER_DARK_COST);
             r *= CHECKER_DARK;
             g *= CHECKER_DARK;
@@ -78,7 +85,7 @@ static inline uint32_t shade_scaled(const struct raster_params *p, struct trace 
     double c[3] = { r, g, b };
     uint32_t out = 0xff000000u;
     for (int i = 0; i < 3; i++) {
-        double v = c[i] < 0 ? 0 : c[i] > 255 ? 255 : c[i];
+        double v = c[i] > 0 ? (c[i] < 255 ? c[i] : 255) : 0;   /* a NaN becomes 0 */
         out |= (uint32_t)(v + 0.5) << (16 - 8 * i);
     }
     return out;

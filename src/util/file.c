@@ -1,4 +1,4 @@
-/* file.c - writing output files all or nothing (file.h). */
+/* file.c - reading input files whole, writing output files all or nothing (file.h). */
 #define _POSIX_C_SOURCE 200809L   /* mkstemp, fdopen */
 
 #include "file.h"
@@ -60,4 +60,48 @@ bool has_suffix(const char *name, const char *suffix)
 {
     size_t n = strlen(name), m = strlen(suffix);
     return n > m && strcmp(name + n - m, suffix) == 0;
+}
+
+bool read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen)
+{
+    *text = NULL;
+    *len = 0;
+    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
+        return false;
+    }
+    char *buf = NULL;
+    size_t n = 0, cap = 0;
+    bool ok = true;
+    for (;;) {
+        if (n == cap) {
+            size_t ncap = cap ? cap * 2 : 65536;
+            char *nb = ncap > cap ? realloc(buf, ncap) : NULL;
+            if (!nb) {
+                ok = false;
+                snprintf(err, errlen, "%s:0: out of memory", path);
+                break;
+            }
+            buf = nb;
+            cap = ncap;
+        }
+        size_t got = fread(buf + n, 1, cap - n, f);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    if (ok && ferror(f)) {
+        ok = false;
+        snprintf(err, errlen, "%s:0: cannot read: %s", path, strerror(errno));
+    }
+    if (f != stdin)
+        fclose(f);
+    if (!ok) {
+        free(buf);
+        return false;
+    }
+    *text = buf;
+    *len = n;
+    return true;
 }

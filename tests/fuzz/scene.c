@@ -1,0 +1,122 @@
+/* scene.c - fuzz harness: scene text -> scene_parse (fuzz.h). */
+#define _POSIX_C_SOURCE 200809L   /* open_memstream */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "front/front.h"
+#include "fuzz.h"
+#include "scene/scene.h"
+
+static bool unit(double v)
+{
+    return v >= 0 && v <= 1;
+}
+
+/* What every accepted scene holds (CONVENTIONS.md, "Scene files"). */
+static void check_ranges(const struct scene *s)
+{
+    if (s->w < 1 || s->w > TARGET_MAX || s->h < 1 || s->h > TARGET_MAX)
+        fuzz_fail("accepted size %d x %d", s->w, s->h);
+    for (int i = 0; i < 3; i++)
+        if (!unit(s->background[i]))
+            fuzz_fail("accepted background %g", s->background[i]);
+    if (s->ntris < 0 || s->ntris > s->cap || (s->ntris && !s->tris))
+        fuzz_fail("inconsistent triangle list");
+    for (int i = 0; i < s->ntris; i++)
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s->tris[i].v[k];
+            if (!(v->x >= -COORD_LIMIT && v->x < COORD_LIMIT && v->y >= -COORD_LIMIT
+                  && v->y < COORD_LIMIT))
+                fuzz_fail("triangle %d: accepted vertex (%g, %g)", i, v->x, v->y);
+            if (!(v->z >= SCENE_Z_MIN && v->z <= SCENE_Z_MAX))
+                fuzz_fail("triangle %d: accepted z = %g", i, v->z);
+            if (!unit(v->r) || !unit(v->g) || !unit(v->b))
+                fuzz_fail("triangle %d: accepted colour %g %g %g", i, v->r, v->g, v->b);
+            if (!(fabs(v->s) <= SCENE_ST_MAX && fabs(v->t) <= SCENE_ST_MAX))
+                fuzz_fail("triangle %d: accepted texture coordinates %g %g", i, v->s, v->t);
+        }
+}
+
+/* scene_write then scene_parse gives back the very same values (a 3-D scene
+ * as the screen triangles the front end made). */
+static void check_round_trip(const struct scene *s)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *out = open_memstream(&text, &len);
+    if (!out)
+        return;   /* out of memory: nothing to check */
+    bool wrote = scene_write(s, out);
+    fclose(out);
+    struct scene back;
+    char err[512];
+    if (!wrote)
+        fuzz_fail("scene_write failed");
+    if (!scene_parse(&back, "written", text, len, err, sizeof err))
+        fuzz_fail("the written scene does not read back: %s", err);
+    if (back.w != s->w || back.h != s->h || back.checker != s->checker || back.ntris != s->ntris
+        || memcmp(back.background, s->background, sizeof s->background) != 0)
+        fuzz_fail("the written scene reads back different");
+    for (int i = 0; i < s->ntris; i++)
+        for (int k = 0; k < 3; k++) {
+            struct vertex a = s->tris[i].v[k], b = back.tris[i].v[k];
+            if (!s->has_st)
+                a.s = a.t = 0;
+            if (a.x != b.x || a.y != b.y || a.z != b.z || a.r != b.r || a.g != b.g
+                || a.b != b.b || a.s != b.s || a.t != b.t)
+                fuzz_fail("triangle %d vertex %d reads back different", i, k);
+        }
+    scene_free(&back);
+    free(text);
+}
+
+/* A 3-D scene's world: camera as CONVENTIONS.md requires, world points
+ * within 10^6, colours in [0, 1]; what the front end makes of it, screen
+ * triangles inside the guard band at depths in [near, far]. */
+static void check_world(struct scene *s)
+{
+    const struct world *w = &s->world;
+    const struct camera *c = &w->cam;
+    if (!(c->fovy > 0 && c->fovy < 180 && c->near >= SCENE_Z_MIN && c->far > c->near
+          && c->far <= SCENE_Z_MAX))
+        fuzz_fail("accepted camera fovy %g near %g far %g", c->fovy, c->near, c->far);
+    for (int i = 0; i < w->ntris; i++)
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++)
+                if (!(fabs(w->tris[i].p[k][j]) <= WORLD_LIMIT) || !unit(w->tris[i].rgb[k][j]))
+                    fuzz_fail("world triangle %d: accepted %g / colour %g", i,
+                              w->tris[i].p[k][j], w->tris[i].rgb[k][j]);
+    if (!front_scene(s))
+        return;   /* out of memory */
+    for (int i = 0; i < s->ntris; i++) {
+        if (w->from[i] < 0 || w->from[i] >= w->ntris || (i && w->from[i] < w->from[i - 1]))
+            fuzz_fail("screen triangle %d comes from world triangle %d", i, w->from[i]);
+        for (int k = 0; k < 3; k++) {
+            const struct vertex *v = &s->tris[i].v[k];
+            if (!(v->z >= c->near && v->z <= c->far))
+                fuzz_fail("screen triangle %d: depth %.17g outside [%g, %g]", i, v->z, c->near,
+                          c->far);
+        }
+    }
+}
+
+int fuzz_scene(const uint8_t *data, size_t size)
+{
+    struct scene s;
+    char err[512];
+    if (!scene_parse(&s, "fuzz.scene", (const char *)data, size, err, sizeof err)) {
+        fuzz_check_message(err, "fuzz.scene");
+        if (s.ntris != 0 || s.tris)
+            fuzz_fail("a rejected scene keeps triangles");
+        return 0;
+    }
+    if (s.world.camera_line)
+        check_world(&s);
+    check_ranges(&s);
+    check_round_trip(&s);
+    scene_free(&s);
+    return 0;
+}
