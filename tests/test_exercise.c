@@ -82,7 +82,7 @@ static void run_free(struct run *run)
 
 /* --- what passes ------------------------------------------------------------ */
 
-Test(exercise, every_lessons_own_algorithm_passes_its_check, .timeout = 120)
+Test(exercise, every_lessons_own_algorithm_passes_its_check, .timeout = 180)
 {
     int n = 0;
     for (int i = 0; all_lessons[i]; i++) {
