@@ -1,5 +1,5 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
-#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
@@ -147,7 +147,7 @@ $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
-exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP))
+exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
 check: $(B)/exercise-$(LESSON)
 	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
 
