@@ -26,6 +26,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "util/file.h"
 #include "draw/paint.h"
 #include "testlib.h"
 
@@ -155,29 +156,16 @@ static const char *program(void)
     return p;
 }
 
+/* A whole file, or NULL (the project's own reader: src/util/file.h). */
 static char *read_all(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    char *text = NULL, err[256];
+    size_t n = 0;
+    if (!read_text_file(path, &text, &n, err, sizeof err))
         return NULL;
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap + 1);
-    size_t got;
-    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            char *b = realloc(buf, 2 * cap + 1);
-            if (!b)
-                free(buf);
-            buf = b, cap *= 2;
-        }
-    }
-    fclose(f);
-    if (buf)
-        buf[n] = '\0';
     if (len)
         *len = n;
-    return buf;
+    return text;
 }
 
 static void write_text(const char *path, const char *text)
