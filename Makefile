@@ -1,6 +1,6 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
-#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
-#          make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
+#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
@@ -10,7 +10,7 @@ LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c)) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o)
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
@@ -47,7 +47,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -98,6 +98,9 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
 $(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
+
+# The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
+$(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
 
 # Fuzzing (tests/fuzz/fuzz.h): one libFuzzer program per harness, and a
 # replay of the committed corpus that needs no libFuzzer (run by make test).
@@ -150,12 +153,12 @@ $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
-exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP))
+exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
 check: $(B)/exercise-$(LESSON)
 	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus
@@ -163,6 +166,10 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --markdown BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+MINUTES  ?= 10
+soak: deps-test
+	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(BUILD)/sanitize/tristep-soak --build $(BUILD)/sanitize --minutes $(MINUTES)
 # Every figure of figures/list into $(FIGURES), one process each (cairo's SVG ids count per process).
 FIGURES  ?= figures
 figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)

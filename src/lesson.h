@@ -111,6 +111,11 @@ struct lesson_exercise {
     /* ... every block narrated FULL covered in full, every block covered
      * in full narrated FULL (lesson 05) */
     bool full_blocks;
+    /* the sample counts every scene of the check is drawn at, in order,
+     * 0-terminated (lesson 08: 4, 8, 1); NULL: one sample per pixel. At
+     * n > 1 the exact rule decides every sample (reference_point_covered)
+     * and the check compares each pixel's covered samples and resolve */
+    const int *samples;
 };
 
 struct lesson {

@@ -342,6 +342,110 @@ Test(explorer, replay_equals_frozen_run)
         }
 }
 
+/* --- counted a part at a time, with checkpoints and steps back -------------------- */
+
+/* A scene of many small triangles, counted later a part at a time (as the
+ * window does) with a checkpoint budget of five pictures and a tiny undo
+ * room, so that checkpoints are thinned out and the undo history overflows
+ * and breaks: every picture must still be the lesson stopped there. */
+Test(explorer, counted_later_with_checkpoints_and_steps_back, .timeout = 120)
+{
+    struct scene s = { .w = 160, .h = 120 };
+    struct rng r = rng_for(0xc4ec);
+    for (int i = 0; i < 600; i++) {
+        struct vertex v[3];
+        random_tri(&r, i % 50 == 0 ? CAT_LARGE : CAT_GENERIC, s.w, s.h, v);
+        cr_assert(scene_add(&s, v));
+    }
+    size_t picture = (size_t)s.w * (size_t)s.h * 9;
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct explorer ex, at_once;
+        struct explorer_desc d = { .lesson = l, .scene = &s, .count_later = true };
+        char err[256];
+        cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+        cr_assert_eq(ex.replay.counted, 0, "%s: nothing counted before the first step", l->id);
+        ex.replay.check_bytes = 5 * picture;
+        ex.replay.check_gap = 1000;
+        ex.replay.undo_bytes = 64 << 10;
+        int slices = 0;
+        while (explorer_counting(&ex)) {
+            cr_assert(explorer_count(&ex, 0.2));
+            slices++;
+        }
+        cr_assert_gt(slices, 1, "%s: counted in more than one part", l->id);
+        cr_assert(ex.replay.nchecks >= 3 && ex.replay.nchecks <= 5, "%s: %d checkpoints", l->id,
+                  ex.replay.nchecks);
+        int units = ex.replay.ntris;    /* triangles, or lesson 07's (tile, triangle) units */
+        cr_assert_geq(units, s.ntris, "%s", l->id);
+        cr_assert_eq(ex.replay.checks[ex.replay.nchecks - 1].upto, replay_end_checkpoint(units),
+                     "%s: a checkpoint near the end (End)", l->id);
+        cr_assert(replay_end_checkpoint(units) < units - 1);
+
+        /* the same counts as counting all at once */
+        open_explorer(&at_once, l, &s);
+        cr_assert_eq(ex.replay.total, at_once.replay.total);
+        cr_assert(memcmp(ex.replay.start, at_once.replay.start,
+                         ((size_t)units + 1) * sizeof *ex.replay.start) == 0, "%s: start[]", l->id);
+        cr_assert(memcmp(ex.replay.sums, at_once.replay.sums,
+                         ((size_t)units + 1) * sizeof *ex.replay.sums) == 0, "%s: sums[]", l->id);
+        for (int k = 0; k < ex.ncompare; k++)
+            cr_assert(memcmp(ex.compare_replay[k].sums, at_once.compare_replay[k].sums,
+                             ((size_t)s.ntris + 1) * sizeof *ex.replay.sums) == 0,
+                      "%s: the counts of %s", l->id, ex.compare[k]->id);
+        explorer_free(&at_once);
+
+        /* jumps anywhere, then steps back a triangle at a time */
+        uint64_t total = ex.replay.total;
+        for (int i = 0; i < 12; i++) {
+            uint64_t step = i == 0 ? total : i == 1 ? total - 1 : (uint64_t)rng_int(&r, 0, (int)total);
+            cr_assert(explorer_set_step(&ex, step));
+            int back = i % 3 == 0 ? 8 : 1;
+            for (int b = 0; b <= back; b++) {
+                if (b > 0)
+                    cr_assert(explorer_move(&ex, STEP_TRIANGLE, -1));
+                struct target fb;
+                run_frozen(l, 0, &s, ex.step, &fb, NULL);
+                cr_assert(targets_equal(&ex.fb, &fb), "%s: picture at step %llu (jump %d, back %d)",
+                          l->id, (unsigned long long)ex.step, i, b);
+                target_free(&fb);
+            }
+        }
+        explorer_free(&ex);
+    }
+    scene_free(&s);
+}
+
+/* Found by the soak test: a pixel pinned in the lesson's scene, then X
+ * switching to the smaller exhibit scene, and the watch panel read the
+ * pinned pixel outside the new scene's target. */
+Test(explorer, exhibit_scene_switch_unpins_a_pixel_outside_it)
+{
+    int tried = 0;
+    for (int li = 0; all_lessons[li]; li++) {
+        const struct lesson *l = all_lessons[li];
+        struct scene s;
+        if (!l->exhibit_scene || !load_scene(l, SCENE_BUILTIN, &s))
+            continue;
+        struct explorer ex;
+        struct explorer_desc d = { .lesson = l, .scene = &s, .scene_name = "test",
+                                   .scene_is_default = true };
+        char err[256];
+        cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
+        ex.pinned = true;
+        ex.pin_x = s.w - 1, ex.pin_y = s.h - 1;
+        cr_assert(explorer_cycle_exhibit(&ex));
+        cr_assert(!ex.pinned || (ex.pin_x < ex.scene.w && ex.pin_y < ex.scene.h),
+                  "%s: pinned (%d, %d) in a %d x %d scene", l->id, ex.pin_x, ex.pin_y,
+                  ex.scene.w, ex.scene.h);
+        cr_assert_geq(explorer_frame_ms(&ex, 640, 400, 1), 0);  /* the sanitizers watch */
+        explorer_free(&ex);
+        scene_free(&s);
+        tried++;
+    }
+    cr_assert_gt(tried, 0);
+}
+
 /* --- stepping back from the end reproduces every picture ---------------------------- */
 
 Test(explorer, back_from_end_reproduces_every_picture)
@@ -453,6 +557,10 @@ static size_t explorer_bytes(const struct explorer *ex)
     n += (size_t)ex->scene.cap * sizeof *ex->scene.tris;
     n += (size_t)(ex->replay.ntris + 1) * (sizeof *ex->replay.start + sizeof *ex->replay.sums);
     n += ex->cell_cap * sizeof *ex->cells + ex->marks_cap * sizeof *ex->marks;
+    for (int k = 0; k < ex->replay.nchecks; k++)
+        n += (size_t)ex->replay.checks[k].t.w * (size_t)ex->replay.checks[k].t.h * px;
+    if (ex->replay.undo_data)
+        n += ex->replay.undo_bytes + (size_t)ex->replay.undo_cap * sizeof *ex->replay.undo;
     if (ex->diff)
         n += (size_t)ex->scene.w * (size_t)ex->scene.h;
     return n;

@@ -1,11 +1,16 @@
 /* test_scene.c - the scene parser and writer (CONVENTIONS.md, scene files).
  * Malformed scenes are tested in test_cli.c, in-process and through every
  * lesson program. */
+#define _POSIX_C_SOURCE 200809L   /* mkstemp, fdopen */
+
 #include <criterion/criterion.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "scene/parse.h"   /* scene_number */
 #include "testlib.h"
 
 static struct scene parse_ok(const char *text)
@@ -226,4 +231,193 @@ Test(scene, write_then_parse_gives_identical_values)
         scene_free(&a);
         scene_free(&b);
     }
+}
+
+/* --- reading numbers: the same doubles as strtod, bit for bit ---------------------- */
+
+/* A decimal token of the scene grammar: a sign sometimes, 1 to 24 digits
+ * (leading zeros too) with or without a point, an exponent sometimes. */
+static void random_token(struct rng *r, char *out, size_t len, bool sign)
+{
+    char digits[32];
+    int n = rng_int(r, 1, 24);
+    for (int i = 0; i < n; i++)
+        digits[i] = (char)('0' + (rng_chance(r, 0.15) ? 0 : rng_int(r, 0, 9)));
+    digits[n] = '\0';
+    int point = rng_chance(r, 0.7) ? rng_int(r, 0, n) : -1;
+    char mant[40];
+    if (point < 0)
+        snprintf(mant, sizeof mant, "%s", digits);
+    else
+        snprintf(mant, sizeof mant, "%.*s.%s", point, digits, digits + point);
+    char expo[16] = "";
+    if (rng_chance(r, 0.4))
+        snprintf(expo, sizeof expo, "%c%s%d", rng_chance(r, 0.5) ? 'e' : 'E',
+                 rng_chance(r, 0.5) ? "-" : rng_chance(r, 0.3) ? "+" : "", rng_int(r, 0, 40));
+    const char *s = !sign ? (rng_chance(r, 0.1) ? "+" : "") : rng_chance(r, 0.5) ? "-" : "";
+    snprintf(out, len, "%s%s%s", s, mant, expo);
+}
+
+static bool same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+Test(scene, numbers_read_as_strtod_reads_them)
+{
+    /* hard cases first: exactly 2^53, the ties just past it, the ends of
+     * the fast path, denormals, many digits, long zeros */
+    static const char *const hard[] = {
+        "9007199254740992", "9007199254740993", "9007199254740995", "1e22", "1e23", "1e-22",
+        "1e-23", "0.1", "0.3", "123456789012345678", "1234567890123456789012", "4.9e-324",
+        "2.2250738585072011e-308", "2.2250738585072014e-308", "1.7976931348623157e308",
+        "0.000000000000000000000000000001", "100000000000000000000000", "3.", ".5",
+        "0.99999999999999999", "1.00000000000000011102230246251565404236316680908203125",
+        "1.0000000000000001110223024625156540423631668090820312500000001", "8.5e-1", "+7",
+        "000000000000000000000000000000000000012.5", "1e0000000000000000000000001",
+    };
+    enum { N = 20000 };
+    static char tok[N][64];
+    int n = 0;
+    for (size_t i = 0; i < sizeof hard / sizeof hard[0]; i++)
+        snprintf(tok[n++], sizeof tok[0], "%s", hard[i]);
+    struct rng r = rng_for(0x57d0);
+    while (n < N) {
+        random_token(&r, tok[n], sizeof tok[n], false);
+        errno = 0;
+        double v = strtod(tok[n], NULL);
+        if (v > 0 && isfinite(v) && !(errno == ERANGE && v > 1))
+            n++;                /* a depth the scene accepts */
+    }
+    /* every token through the scene folder's number reader (scene_number,
+     * the one parse_tri calls): a depth must now lie in [SCENE_Z_MIN,
+     * SCENE_Z_MAX], which would leave out most of the hard cases */
+    char err[256];
+    for (int i = 0; i < N; i++) {
+        struct parser p = { .name = "numbers.scene", .line = i + 1, .err = err, .errlen = sizeof err };
+        double got, want = strtod(tok[i], NULL);
+        cr_assert(scene_number(&p, tok[i], &got), "%s", err);
+        cr_assert(same_bits(got, want), "'%s' read as %a, strtod says %a", tok[i], got, want);
+    }
+
+    /* signed, as x in a scene text: minus zero stays minus zero */
+    size_t cap = (size_t)N * 120, len = 0;
+    char *text = malloc(cap);
+    struct scene s;
+    len = (size_t)snprintf(text, cap, "size 8 8\n");
+    int m = 0;
+    static char xs[N][64];
+    snprintf(xs[m++], sizeof xs[0], "-0");
+    snprintf(xs[m++], sizeof xs[0], "-0.000e5");
+    while (m < N) {
+        random_token(&r, xs[m], sizeof xs[m], true);
+        double v = strtod(xs[m], NULL);
+        if (v >= -COORD_LIMIT && v < COORD_LIMIT)
+            m++;
+    }
+    for (int i = 0; i < N; i++)
+        len += (size_t)snprintf(text + len, cap - len, "tri %s 1 1 0 0 0  2 1 1 0 0 0  1 2 1 0 0 0\n",
+                                xs[i]);
+    cr_assert(scene_parse(&s, "signed.scene", text, len, err, sizeof err), "%s", err);
+    for (int i = 0; i < N; i++) {
+        double want = strtod(xs[i], NULL);
+        cr_assert(same_bits(s.tris[i].v[0].x, want), "'%s' read as %a, strtod says %a", xs[i],
+                  s.tris[i].v[0].x, want);
+    }
+    scene_free(&s);
+    free(text);
+}
+
+Test(scene, number_grammar_at_its_edges)
+{
+    static const char *const good[] = { "1.", ".5", "+.5e-0", "1E+2", "-0", "0e999999999999" };
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        char text[160];
+        snprintf(text, sizeof text, "size 8 8\ntri %s 1 1 0 0 0  2 1 1 0 0 0  1 2 1 0 0 0\n", good[i]);
+        struct scene s = parse_ok(text);
+        cr_expect(same_bits(s.tris[0].v[0].x, strtod(good[i], NULL)), "'%s'", good[i]);
+        scene_free(&s);
+    }
+    static const char *const bad[] = { "1e", "1e+", "1E-", ".", "+", "-", "1.5e3.2", "--1",
+                                       "1..2", "e5", ".e1", "+-1", "1e5e", "1,5", "0x", "1f",
+                                       "\xc2\xbd", "1e999999999999999999999" };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char text[160], err[256], want[64];
+        snprintf(text, sizeof text, "size 8 8\n# c\ntri 1 1 1 0 0 0  2 1 1 0 0 %s  1 2 1 0 0 0\n",
+                 bad[i]);
+        struct scene s;
+        cr_assert_not(scene_parse(&s, "bad.scene", text, strlen(text), err, sizeof err),
+                      "'%s' was taken for a number", bad[i]);
+        snprintf(want, sizeof want, "bad.scene:3: '%s' is ", bad[i]);
+        cr_expect(strncmp(err, want, strlen(want)) == 0, "'%s': %s", bad[i], err);
+    }
+}
+
+/* --- scene_load reads a file in chunks: the same scene as scene_parse --------------- */
+
+Test(scene, load_in_chunks_equals_parse)
+{
+    /* 3 MiB of text: lines across every chunk boundary, a comment line
+     * longer than a chunk, no newline after the last line */
+    FILE *f = tmpfile();
+    cr_assert_not_null(f);
+    struct rng r = rng_for(0x10ad);
+    fprintf(f, "size 640 480\nbackground 0.25 0.5 0.75\n");
+    int n = 0;
+    for (long bytes = 0; bytes < 3L << 20; n++) {
+        if (n == 5000) {
+            fputc('#', f);
+            for (int i = 0; i < (3 << 19); i++)
+                fputc('x', f);
+            fputc('\n', f);
+        }
+        bytes = ftell(f);
+        fprintf(f, "tri");
+        for (int k = 0; k < 3; k++)
+            fprintf(f, " %.17g %.5f %.3g %.9f 0.5 1", rng_range(&r, 0, 640), rng_range(&r, 0, 480),
+                    rng_range(&r, 0.1, 99), rng_unit(&r));
+        if (rng_chance(&r, 0.01))
+            fprintf(f, "   # a remark");
+        fputc('\n', f);
+    }
+    fprintf(f, "tri 1 1 1 0 0 0  2 1 1 0 0 0  1 2 1 0 0 0");   /* no newline */
+    long len = ftell(f);
+    rewind(f);
+    char *text = malloc((size_t)len);
+    cr_assert_eq(fread(text, 1, (size_t)len, f), (size_t)len);
+    fclose(f);
+
+    char path[] = "/tmp/tristep-load-XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert_geq(fd, 0);
+    FILE *out = fdopen(fd, "wb");
+    cr_assert_eq(fwrite(text, 1, (size_t)len, out), (size_t)len);
+    cr_assert_eq(fclose(out), 0);
+
+    struct scene a, b;
+    char err[256];
+    cr_assert(scene_parse(&a, path, text, (size_t)len, err, sizeof err), "%s", err);
+    cr_assert(scene_load(&b, path, err, sizeof err), "%s", err);
+    cr_assert_eq(a.ntris, n + 1);
+    cr_assert_eq(b.ntris, a.ntris);
+    cr_assert(a.w == b.w && a.h == b.h && memcmp(a.background, b.background, sizeof a.background) == 0);
+    cr_assert(memcmp(a.tris, b.tris, (size_t)a.ntris * sizeof *a.tris) == 0,
+              "the triangles read in chunks differ from those parsed whole");
+    scene_free(&a);
+    scene_free(&b);
+
+    /* an error far into the file names its line */
+    int line = 1;
+    for (long i = 0; i < len; i++)
+        line += text[i] == '\n';
+    out = fopen(path, "ab");
+    fprintf(out, "\ntri 1 1 1 0 0 0  2 1 1 0 0 0  1 2 1 0 0 oops\n");
+    fclose(out);
+    cr_assert_not(scene_load(&b, path, err, sizeof err));
+    char want[300];
+    snprintf(want, sizeof want, "%s:%d: 'oops' is not a number", path, line + 1);
+    cr_expect_str_eq(err, want);
+    cr_assert_null(b.tris, "nothing is kept after an error");
+    remove(path);
+    free(text);
 }

@@ -23,7 +23,7 @@
 #include "explore/explorer.h"
 #include "explore/replay.h"
 
-extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05;
+extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05, lesson_08;
 
 /* The texts whose numbers are checked: the top README, the course page, and
  * every lesson's text and answer key (built from the lessons that exist). */
@@ -480,6 +480,17 @@ static double l01_float_colour(void)
     return n;
 }
 
+/* The sample counts lesson 08's make check draws at, in order. */
+static double l08_check_first(void)
+{
+    return lesson_08.exercise.samples ? lesson_08.exercise.samples[0] : NAN;
+}
+
+static double l08_check_second(void)
+{
+    return lesson_08.exercise.samples && lesson_08.exercise.samples[0] ? lesson_08.exercise.samples[1] : NAN;
+}
+
 struct key {
     const char *key;
     double (*compute)(void);    /* NULL: checked by the test file named in `where` */
@@ -584,6 +595,8 @@ static const struct key keys[] = {
     { "l08.fill.doubled", NULL, "tests/test_lesson08.c" },
     { "l08.fill.scene", NULL, "tests/test_lesson08.c" },
     { "l08.full1", NULL, "tests/test_lesson08.c" },
+    { "l08.check.first", l08_check_first, NULL },
+    { "l08.check.second", l08_check_second, NULL },
     { "l08.full4", NULL, "tests/test_lesson08.c" },
     { "l08.full8", NULL, "tests/test_lesson08.c" },
     { "l08.tested1", NULL, "tests/test_lesson08.c" },

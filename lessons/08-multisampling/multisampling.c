@@ -513,4 +513,6 @@ const struct lesson lesson_08 = {
         COST_TERM(4, PLANE_AT_COST), COST_TERM(2, RECIPROCAL_COST), COST_TERM(3, ATTRIBUTE_COST),
         COST_TERM(1, PACK_SCALED_COST), COST_TERM(1, PLANE_STEP_COST), { 0 } },
     .compare = compare,
+    /* make check draws every scene at 4 and 8 samples, then at the centre */
+    .exercise = { .write_line = L_WRITE, .samples = (const int[]){ 4, 8, 1, 0 } },
 };

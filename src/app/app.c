@@ -21,9 +21,23 @@
 #include <string.h>
 #include <unistd.h>      /* access: a free name for a saved scene */
 
+#include "display.h"
+#include "params.h"
+#include "pointer.h"
 #include "draw/paint.h"
 #include "script.h"
 #include "util/file.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define TRISTEP_LSAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TRISTEP_LSAN 1
+#endif
+#endif
+#ifdef TRISTEP_LSAN
+#include <sanitizer/lsan_interface.h>
+#endif
 
 #define SPEED_MAX 40        /* 2^20 events per second */
 #define FRAME_MS 16         /* at most one frame this often while playing */
@@ -35,15 +49,15 @@ struct app {
     SDL_Renderer *ren;
     SDL_Texture *tex;
     int tw, th;                 /* texture (= frame) size in pixels */
+    double ratio;               /* pixels per window unit: 2 on a HiDPI screen that
+                                 * counts windows and the mouse in points */
     bool dirty, quit, failed;
 
-    /* the mouse */
-    enum { DRAG_NONE, DRAG_VERTEX, DRAG_PAN } drag;
-    int drag_vertex;
-    double down_x, down_y, last_x, last_y;
-    bool moved;
-    double drop_x, drop_y;      /* scene position the dragged vertex goes to */
-    bool drop_pending;
+    struct pointer ptr;         /* the mouse */
+
+    Uint64 count_shown;         /* when the counting progress was last shown */
+
+    struct frame_times frames;  /* TRISTEP_FRAME_TIMES=FILE: every frame's milliseconds */
 
     /* playing: events owed to the clock */
     double play_debt;
@@ -73,11 +87,16 @@ static void out_of_memory(struct app *a)
 
 /* --- painting -------------------------------------------------------------------- */
 
+/* The frame is as large as the window's drawable, in pixels; the layout
+ * and the mouse count in window units (the same on X11 and Windows, points
+ * on macOS and Wayland's scaled outputs). */
 static bool make_texture(struct app *a)
 {
-    int w, h;
+    int w, h, ww, wh;
     if (SDL_GetRendererOutputSize(a->ren, &w, &h) != 0)
         return sdl_failed(a, "SDL_GetRendererOutputSize");
+    SDL_GetWindowSize(a->win, &ww, &wh);
+    a->ratio = ww > 0 && w > ww ? (double)w / ww : 1;
     if (a->tex && w == a->tw && h == a->th)
         return true;
     if (a->tex)
@@ -93,20 +112,15 @@ static bool make_texture(struct app *a)
 
 static bool present(struct app *a)
 {
+    Uint64 t0 = SDL_GetPerformanceCounter();
     if (!make_texture(a))
         return false;
     void *pixels;
     int pitch;
     if (SDL_LockTexture(a->tex, NULL, &pixels, &pitch) != 0)
         return sdl_failed(a, "SDL_LockTexture");
-    cairo_surface_t *s = cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_ARGB32,
-                                                             a->tw, a->th, pitch);
-    cairo_t *cr = cairo_create(s);
-    explorer_paint(&a->ex, cr, a->tw, a->th);   /* the lock is write-only: all of it */
-    cairo_status_t st = cairo_status(cr);
-    cairo_destroy(cr);
-    cairo_surface_flush(s);
-    cairo_surface_destroy(s);
+    /* the lock is write-only: all of it */
+    cairo_status_t st = explorer_paint_pixels(&a->ex, pixels, a->tw, a->th, pitch, a->ratio);
     SDL_UnlockTexture(a->tex);
     if (st != CAIRO_STATUS_SUCCESS) {
         fprintf(stderr, "%s: painting failed: %s\n", a->lesson->id, cairo_status_to_string(st));
@@ -117,12 +131,18 @@ static bool present(struct app *a)
         return sdl_failed(a, "SDL_RenderCopy");
     SDL_RenderPresent(a->ren);
     a->dirty = false;
+    frame_times_add(&a->frames, (double)(SDL_GetPerformanceCounter() - t0) * 1e3
+                                / (double)SDL_GetPerformanceFrequency());
     return true;
 }
 
+/* The frame's size in window units. */
+static double frame_w(const struct app *a) { return a->tw / a->ratio; }
+static double frame_h(const struct app *a) { return a->th / a->ratio; }
+
 static void layout(struct app *a, struct explorer_layout *L)
 {
-    explorer_layout(&a->ex, a->tw, a->th, L);
+    explorer_layout(&a->ex, frame_w(a), frame_h(a), L);
 }
 
 /* --- keys ------------------------------------------------------------------------ */
@@ -157,8 +177,9 @@ static void export_view(struct app *a)
     a->ex.message[0] = '\0';            /* the figure shows the view, not the last message */
     bool help = a->ex.help;
     a->ex.help = false;
-    bool ok = explorer_export(&a->ex, png, a->tw, a->th, err, sizeof err)
-              && explorer_export(&a->ex, svg, a->tw, a->th, err, sizeof err);
+    int w = (int)lrint(frame_w(a)), h = (int)lrint(frame_h(a));  /* the window as laid out */
+    bool ok = explorer_export(&a->ex, png, w, h, err, sizeof err)
+              && explorer_export(&a->ex, svg, w, h, err, sizeof err);
     a->ex.help = help;
     if (ok) {
         snprintf(a->ex.message, sizeof a->ex.message, "exported %s and %s", png, svg);
@@ -266,35 +287,9 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         if (has_twins(a->lesson) && !explorer_cycle_twin(ex))
             out_of_memory(a);
         break;
-    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET:
-        if (prm & LESSON_PARAM_SUBPIXEL) {
-            p.subpixel_bits += k == SDLK_LEFTBRACKET ? -1 : 1;
-            p.subpixel_bits = p.subpixel_bits < 0 ? 0 : p.subpixel_bits > 8 ? 8 : p.subpixel_bits;
-            snprintf(buf, sizeof buf, "sub-pixel bits: %d", p.subpixel_bits);
+    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET: case SDLK_b: case SDLK_m: case SDLK_p:
+        if (params_key(prm, (int)k, &p, buf, sizeof buf))     /* params.c */
             set_params(a, &p, buf);
-        }
-        break;
-    case SDLK_b:
-        if (prm & LESSON_PARAM_BLOCK) {
-            int q = p.block_size ? p.block_size : 8;
-            p.block_size = q == 4 ? 8 : q == 8 ? 16 : 4;
-            snprintf(buf, sizeof buf, "block size %d x %d", p.block_size, p.block_size);
-            set_params(a, &p, buf);
-        }
-        break;
-    case SDLK_m:
-        if (prm & LESSON_PARAM_SAMPLES) {
-            int n = p.samples > 1 ? p.samples : 1;
-            p.samples = n == 1 ? 4 : n == 4 ? 8 : 1;
-            snprintf(buf, sizeof buf, "%d sample%s per pixel", p.samples, p.samples == 1 ? "" : "s");
-            set_params(a, &p, buf);
-        }
-        break;
-    case SDLK_p:
-        if (prm & LESSON_PARAM_AFFINE) {
-            p.affine = !p.affine;
-            set_params(a, &p, p.affine ? "affine texturing (the exhibit)" : "perspective-correct");
-        }
         break;
     case SDLK_e: export_view(a); break;
     case SDLK_l:    /* figures for print: the light theme, also in the window */
@@ -314,73 +309,38 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
     }
 }
 
-/* --- the mouse ---------------------------------------------------------------------- */
+/* --- the mouse (pointer.c) ------------------------------------------------------------ */
 
 static void mouse_down(struct app *a, double x, double y)
 {
     struct explorer_layout L;
     layout(a, &L);
-    a->down_x = a->last_x = x;
-    a->down_y = a->last_y = y;
-    a->moved = false;
-    a->drag = DRAG_NONE;
-    if (x >= L.cx + L.cw || y >= L.cy + L.ch)
-        return;                         /* the panel or the scrub bar */
-    a->drag_vertex = explorer_hit_vertex(&a->ex, &L, x, y);
-    a->drag = a->drag_vertex >= 0 ? DRAG_VERTEX : DRAG_PAN;
+    pointer_down(&a->ptr, &a->ex, &L, x, y);
 }
 
 static void mouse_move(struct app *a, double x, double y)
 {
     struct explorer_layout L;
     layout(a, &L);
-    if (fabs(x - a->down_x) > 3 || fabs(y - a->down_y) > 3)
-        a->moved = true;
-    if (a->drag == DRAG_VERTEX) {
-        /* moved once per frame (drop_vertex): every move re-runs the lesson */
-        a->ex.hover_vertex = a->drag_vertex;
-        a->drop_x = (x - L.ox) / L.zoom, a->drop_y = (y - L.oy) / L.zoom;
-        a->drop_pending = true;
+    if (pointer_move(&a->ptr, &a->ex, &L, x, y))
         a->dirty = true;
-    } else if (a->drag == DRAG_PAN && a->moved) {
-        explorer_pan(&a->ex, &L, x - a->last_x, y - a->last_y);
-        a->dirty = true;
-    } else if (a->drag == DRAG_NONE) {
-        int h = explorer_hit_vertex(&a->ex, &L, x, y);
-        if (h != a->ex.hover_vertex)
-            a->ex.hover_vertex = h, a->dirty = true;
-    }
-    a->last_x = x, a->last_y = y;
 }
 
-/* Move the dragged vertex to where the mouse last was. */
 static void drop_vertex(struct app *a)
 {
-    if (!a->drop_pending)
-        return;
-    a->drop_pending = false;
-    if (!explorer_move_vertex(&a->ex, a->drag_vertex, a->drop_x, a->drop_y))
+    if (!pointer_drop(&a->ptr, &a->ex))
         out_of_memory(a);
 }
 
 static void mouse_up(struct app *a, double x, double y)
 {
-    mouse_move(a, x, y);
-    drop_vertex(a);
-    if (a->drag == DRAG_PAN && !a->moved) {
-        /* a click on a cell pins its values; a second click unpins */
-        struct explorer_layout L;
-        layout(a, &L);
-        int px = (int)floor((x - L.ox) / L.zoom), py = (int)floor((y - L.oy) / L.zoom);
-        struct explorer *ex = &a->ex;
-        if (px < 0 || py < 0 || px >= ex->scene.w || py >= ex->scene.h
-            || (ex->pinned && ex->pin_x == px && ex->pin_y == py))
-            ex->pinned = false;
-        else
-            ex->pinned = true, ex->pin_x = px, ex->pin_y = py;
+    struct explorer_layout L;
+    layout(a, &L);
+    bool dirty;
+    if (!pointer_up(&a->ptr, &a->ex, &L, x, y, &dirty))
+        out_of_memory(a);
+    if (dirty)
         a->dirty = true;
-    }
-    a->drag = DRAG_NONE;
 }
 
 static void wheel(struct app *a, int dy)
@@ -389,10 +349,8 @@ static void wheel(struct app *a, int dy)
     SDL_GetMouseState(&mx, &my);
     struct explorer_layout L;
     layout(a, &L);
-    if (mx >= L.cx + L.cw || my >= L.cy + L.ch || dy == 0)
-        return;
-    explorer_zoom_at(&a->ex, &L, mx, my, pow(1.25, dy));
-    a->dirty = true;
+    if (pointer_wheel(&a->ex, &L, mx, my, dy))
+        a->dirty = true;
 }
 
 /* --- --keys ------------------------------------------------------------------------- */
@@ -521,6 +479,25 @@ static int play_wait(const struct app *a)
     return ms < FRAME_MS ? FRAME_MS : ms > 1000 ? 1000 : (int)ms;
 }
 
+/* A large scene's steps are counted while nothing else happens, a slice at
+ * a time, so keys and the mouse still answer; the scrub bar shows the
+ * progress a few times a second. */
+#define COUNT_SLICE_MS 20
+#define COUNT_SHOW_MS 250
+
+static void count_some(struct app *a)
+{
+    if (!explorer_count(&a->ex, COUNT_SLICE_MS)) {
+        out_of_memory(a);
+        return;
+    }
+    Uint64 now = SDL_GetTicks64();
+    if (now - a->count_shown >= COUNT_SHOW_MS || !explorer_counting(&a->ex)) {
+        a->count_shown = now;
+        a->dirty = true;
+    }
+}
+
 static void run(struct app *a)
 {
     SDL_Event ev;
@@ -528,6 +505,10 @@ static void run(struct app *a)
         if (a->dirty && !present(a))
             return;
         bool got;
+        if (explorer_counting(&a->ex) && !SDL_PollEvent(NULL)) {
+            count_some(a);      /* before a script's next line: scripts see every step */
+            continue;
+        }
         if (a->at < a->script.n && !SDL_PollEvent(NULL)) {
             next_script_line(a);
             continue;
@@ -553,28 +534,47 @@ static void run(struct app *a)
     }
 }
 
+/* Resizable, and sharp on HiDPI screens: where windows count in points
+ * (macOS, Wayland) the drawable has more pixels than the window and the
+ * frame is painted at that ratio; where they count in pixels (X11,
+ * Windows) a screen of high density gets a larger interface scale and
+ * window, unless --scale or --size says otherwise. */
 static bool open_window(struct app *a, const struct app_desc *d)
 {
-    if (SDL_Init(SDL_INIT_VIDEO | SDL_INIT_TIMER) != 0)
-        return sdl_failed(a, "SDL_Init");
     char title[160];
     snprintf(title, sizeof title, "tristep %s: %s", a->lesson->id, a->lesson->title);
     int w = d->width ? d->width : 1280, h = d->height ? d->height : 800;
     a->win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h,
-                              SDL_WINDOW_RESIZABLE);
+                              SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
     if (!a->win)
         return sdl_failed(a, "SDL_CreateWindow");
     SDL_SetWindowMinimumSize(a->win, 320, 240);
     a->ren = SDL_CreateRenderer(a->win, -1, 0);
     if (!a->ren)
         return sdl_failed(a, "SDL_CreateRenderer");
-    return make_texture(a);
+    if (!make_texture(a))
+        return false;
+    int display = SDL_GetWindowDisplayIndex(a->win);
+    if (a->ratio == 1 && d->explorer.scale <= 0 && display >= 0 && display_scale(display) != 1) {
+        /* pixels, not points: the interface grows instead, and the window with it */
+        a->ex.scale = display_scale(display);
+        SDL_Rect usable;
+        if (!d->width && SDL_GetDisplayUsableBounds(display, &usable) == 0) {
+            w = (int)fmin(w * a->ex.scale, usable.w);
+            h = (int)fmin(h * a->ex.scale, usable.h);
+            SDL_SetWindowSize(a->win, w, h);
+            SDL_SetWindowPosition(a->win, SDL_WINDOWPOS_CENTERED_DISPLAY(display),
+                                  SDL_WINDOWPOS_CENTERED_DISPLAY(display));
+            return make_texture(a);
+        }
+    }
+    return true;
 }
 
 int explorer_run(const struct app_desc *d)
 {
     const struct lesson *l = d->explorer.lesson;
-    struct app a = { .lesson = l, .dirty = true, .drag = DRAG_NONE };
+    struct app a = { .lesson = l, .dirty = true };
     char err[512];
     if (d->keys) {
         if (!script_load(&a.script, d->keys, err, sizeof err)) {
@@ -590,7 +590,9 @@ int explorer_run(const struct app_desc *d)
     int status = EXIT_OK;
     if (!explorer_fonts(err, sizeof err))
         fprintf(stderr, "%s: %s; the text will not look as in the figures\n", l->id, err);
-    if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
+    if (!display_init(l->id)) {
+        status = EXIT_RUN;             /* no display, or SDL could not start */
+    } else if (!explorer_init(&a.ex, &d->explorer, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;
     } else {
@@ -608,7 +610,13 @@ int explorer_run(const struct app_desc *d)
         SDL_DestroyRenderer(a.ren);
     if (a.win)
         SDL_DestroyWindow(a.win);
-    SDL_Quit();
     script_free(&a.script);
+    frame_times_write(&a.frames, l->id);
+#ifdef TRISTEP_LSAN
+    /* everything of ours is freed: look for leaks now, while the libraries
+     * SDL loaded are still there to name theirs (SDL_Quit unloads them) */
+    __lsan_do_leak_check();
+#endif
+    SDL_Quit();
     return status;
 }

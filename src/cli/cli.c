@@ -289,8 +289,9 @@ static int explorer_desc_from_cli(const struct lesson *l, const struct cli_optio
     return -1;
 }
 
-/* Headless --figure: draw what the window would show at the chosen step and view. */
-static int figure_export(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+/* Headless --figure: draw what the window would show at the chosen step and
+ * view. The explorer takes the scene over (the last use of it). */
+static int figure_export(const struct lesson *l, const struct cli_options *o, struct scene *s)
 {
     char name[160], err[512];
     struct explorer ex;
@@ -298,6 +299,8 @@ static int figure_export(const struct lesson *l, const struct cli_options *o, co
     int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &d);
     if (status >= 0)
         return status;
+    d.scene = NULL;
+    d.give_scene = s;
     if (!explorer_fonts(err, sizeof err)) {
         fprintf(stderr, "%s: %s\n", l->id, err);     /* the figure would not be the figure */
         return EXIT_RUN;
@@ -318,13 +321,19 @@ static int figure_export(const struct lesson *l, const struct cli_options *o, co
     return status;
 }
 
-/* The window. */
-static int window(const struct lesson *l, const struct cli_options *o, const struct scene *s)
+/* The window. It takes the scene over, and shows the first step before a
+ * large scene's steps are all counted. */
+static int window(const struct lesson *l, const struct cli_options *o, struct scene *s)
 {
     char name[160];
     struct app_desc a = { .view = o->view, .keys = o->keys, .width = o->width, .height = o->height };
     int status = explorer_desc_from_cli(l, o, s, name, sizeof name, &a.explorer);
-    return status >= 0 ? status : explorer_run(&a);
+    if (status >= 0)
+        return status;
+    a.explorer.scene = NULL;
+    a.explorer.give_scene = s;
+    a.explorer.count_later = true;
+    return explorer_run(&a);
 }
 
 int lesson_main(const struct lesson *l, int argc, char **argv)

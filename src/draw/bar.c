@@ -26,9 +26,9 @@ void paint_bar(struct painter *p)
     set_rgb(cr, p->pal->accent);
     cairo_rectangle(cr, tx, ty, tw * f, th);
     cairo_fill(cr);
-    if (ex->replay.ntris > 1 && ex->replay.ntris <= 400 && total) {   /* triangle boundaries */
+    if (ex->replay.counted > 1 && ex->replay.counted <= 400 && total) {   /* triangle boundaries */
         set_rgba(cr, p->pal->shadow, 0.8);
-        for (int i = 1; i < ex->replay.ntris; i++) {
+        for (int i = 1; i < ex->replay.counted; i++) {
             double x = tx + tw * (double)ex->replay.start[i] / (double)total;
             cairo_rectangle(cr, floor(x), ty, 1, th);
         }
@@ -42,9 +42,13 @@ void paint_bar(struct painter *p)
     uint64_t ev = ex->cur >= 0 ? ex->local + 1 : 0;
     uint64_t evn = ex->cur >= 0 ? ex->replay.start[ex->cur + 1] - ex->replay.start[ex->cur] : 0;
     double e = pow(2, ex->speed / 2.0);
-    snprintf(buf, sizeof buf, "%s  step %llu / %llu   triangle %d / %d   event %llu / %llu   %s%.4g/s",
+    char counting[48] = "";
+    if (!replay_counted(&ex->replay))   /* a large scene: its steps are counted a part at a time */
+        snprintf(counting, sizeof counting, " so far (counting: %.0f%%)",
+                 100.0 * ex->replay.counted / n);
+    snprintf(buf, sizeof buf, "%s  step %llu / %llu%s   triangle %d / %d   event %llu / %llu   %s%.4g/s",
              ex->playing ? "\u25b6" : "\u275a\u275a", (unsigned long long)ex->step,
-             (unsigned long long)total, ex->cur + 1, n, (unsigned long long)ev,
+             (unsigned long long)total, counting, ex->cur + 1, n, (unsigned long long)ev,
              (unsigned long long)evn, "speed ", e);
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
     draw_text(p, tx, ty + th + 7 * s, tw, buf, 12, p->pal->text, false);

@@ -32,6 +32,21 @@ void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h)
     g_object_unref(p.layout);
 }
 
+cairo_status_t explorer_paint_pixels(struct explorer *ex, unsigned char *pixels, int pw, int ph,
+                                     int stride, double ratio)
+{
+    cairo_surface_t *s = cairo_image_surface_create_for_data(pixels, CAIRO_FORMAT_ARGB32, pw, ph,
+                                                             stride);
+    cairo_t *cr = cairo_create(s);
+    cairo_scale(cr, ratio, ratio);
+    explorer_paint(ex, cr, pw / ratio, ph / ratio);
+    cairo_status_t st = cairo_status(cr);
+    cairo_destroy(cr);
+    cairo_surface_flush(s);
+    cairo_surface_destroy(s);
+    return st;
+}
+
 double explorer_frame_ms(struct explorer *ex, int w, int h, int n)
 {
     cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);

@@ -13,6 +13,12 @@
 /* Paint one frame of w x h (the window, a figure, or the bench's timing).
  * Text goes through Pango with DejaVu Sans Mono, pinned by explorer_fonts(). */
 void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h);
+/* Paint one frame into ARGB32 pixels (pw x ph, `stride` bytes a row) at
+ * `ratio` pixels per unit of the layout: 1, or 2 in a HiDPI window whose
+ * size and mouse count in points (the frame is then pw / 2 x ph / 2 units,
+ * drawn twice as sharp). Returns cairo's status after drawing. */
+cairo_status_t explorer_paint_pixels(struct explorer *ex, unsigned char *pixels, int pw, int ph,
+                                     int stride, double ratio);
 /* Pin fontconfig to DejaVu only and find DejaVu Sans Mono; call before
  * anything touches Pango. False, with the reason in err, when that failed:
  * text would then come out in whatever fonts the system has, so figures

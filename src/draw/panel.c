@@ -28,7 +28,8 @@ static double heading(struct painter *p, double x, double y, double w, const cha
     return 20 * p->s;
 }
 
-static double swatch(struct painter *p, double x, double y, uint32_t colour, const char *label)
+static double swatch(struct painter *p, double x, double y, double w, uint32_t colour,
+                     const char *label)
 {
     set_rgb(p->cr, colour);
     cairo_rectangle(p->cr, x, y + 3 * p->s, 12 * p->s, 12 * p->s);
@@ -37,7 +38,7 @@ static double swatch(struct painter *p, double x, double y, uint32_t colour, con
     cairo_set_line_width(p->cr, 1);
     cairo_rectangle(p->cr, x + 0.5, y + 3 * p->s + 0.5, 12 * p->s - 1, 12 * p->s - 1);
     cairo_stroke(p->cr);
-    return draw_text(p, x + 18 * p->s, y, 0, label, 11.5, p->pal->text, false);
+    return draw_text(p, x + 18 * p->s, y, w - 18 * p->s, label, 11.5, p->pal->text, false);
 }
 
 static double legend(struct painter *p, double x, double y, double w)
@@ -53,17 +54,17 @@ static double legend(struct painter *p, double x, double y, double w)
     const char *note;
     int n = view_legend(&v, items, &note);
     for (int i = 0; i < n; i++)
-        y += swatch(p, x, y, items[i].colour, items[i].label) + 1 * s;
+        y += swatch(p, x, y, w, items[i].colour, items[i].label) + 1 * s;
     if (note)
         y += draw_text(p, x, y, w, note, 11, p->pal->dim, false);
     if (ex->lesson->variants[ex->variant].exhibit) {
-        y += swatch(p, x, y, p->pal->extra, "extra: more than the exact rule") + s;
-        y += swatch(p, x, y, p->pal->missing, "missing: a crack") + s;
+        y += swatch(p, x, y, w, p->pal->extra, "extra: more than the exact rule") + s;
+        y += swatch(p, x, y, w, p->pal->missing, "missing: a crack") + s;
         if (ex->wrong_colour)
-            y += swatch(p, x, y, p->pal->wrong_colour, "wrong colour or depth: not within "
+            y += swatch(p, x, y, w, p->pal->wrong_colour, "wrong colour or depth: not within "
                         "2 levels, 0.1%") + s;
     }
-    y += swatch(p, x, y, p->pal->accent, "the current step") + s;
+    y += swatch(p, x, y, w, p->pal->accent, "the current step") + s;
     return y - y0;
 }
 
@@ -230,10 +231,17 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     at = cat(buf, n, at, "%-18s %9s %7s %7s\n", "", "tested", "mul/px", "add/px");
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
-        const struct trace_counters *c = &r->sums[i < 0 ? mine : done];
+        const char *name = i < 0 ? "this lesson" : ex->compare[i]->id;
+        int upto = i < 0 ? mine : done;     /* in the run's own units */
+        if (r->counted < upto) {        /* a large scene, still being counted */
+            at = cat(buf, n, at, "%-18s counting: %.0f%%\n", name,
+                     100.0 * r->counted / (r->ntris ? r->ntris : 1));
+            continue;
+        }
+        const struct trace_counters *c = &r->sums[upto];
         double px = c->tested ? (double)c->tested : 1;
-        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", i < 0 ? "this lesson" : ex->compare[i]->id,
-                 (unsigned long long)c->tested, (double)c->mul / px, (double)c->add / px);
+        at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", name, (unsigned long long)c->tested,
+                 (double)c->mul / px, (double)c->add / px);
     }
     while (at > 0 && at <= n && buf[at - 1] == '\n')
         buf[--at] = '\0';
@@ -251,7 +259,7 @@ static double counters(struct painter *p, double x, double y, double w)
              (unsigned long long)c.covered);
     at = cat(buf, n, at, "pixels written %10llu   rows    %10llu\n", (unsigned long long)c.written,
              (unsigned long long)c.rows);
-    const struct trace_counters *all = &ex->replay.sums[ex->replay.ntris];
+    const struct trace_counters *all = &ex->replay.sums[ex->replay.counted];
     if (all->blocks[0] + all->blocks[1] + all->blocks[2])
         at = cat(buf, n, at, "blocks empty %llu  full %llu  partial %llu\n",
                  (unsigned long long)c.blocks[0], (unsigned long long)c.blocks[1],

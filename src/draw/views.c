@@ -257,7 +257,7 @@ static uint32_t blocks_cell(const struct view_ctx *v, int x, int y)
 
 static int blocks_legend(const struct view_ctx *v, struct swatch *out, const char **note)
 {
-    const struct trace_counters *all = &v->ex->replay.sums[v->ex->replay.ntris];
+    const struct trace_counters *all = &v->ex->replay.sums[v->ex->replay.counted];
     if (all->blocks[BLOCK_EMPTY] + all->blocks[BLOCK_FULL] + all->blocks[BLOCK_PARTIAL] == 0)
         *note = none_yet;
     out[0] = (struct swatch){ v->pal->block_empty, "empty block: skipped" };
@@ -274,7 +274,7 @@ static uint32_t spans_cell(const struct view_ctx *v, int x, int y)
 
 static int spans_legend(const struct view_ctx *v, struct swatch *out, const char **note)
 {
-    if (v->ex->replay.sums[v->ex->replay.ntris].spans == 0)
+    if (v->ex->replay.sums[v->ex->replay.counted].spans == 0)
         *note = none_yet;
     out[0] = (struct swatch){ v->pal->span, "span: filled from left to right edge" };
     out[1] = (struct swatch){ v->pal->row, "row walked" };

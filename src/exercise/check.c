@@ -93,8 +93,11 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
             s->ntris == 1 ? "" : "s", r->counterexample);
     say_verdict(C, out, &v, s);
     explain(C, out, &v, s, &f);
-    fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s SCENE=%s STEP=%llu\n",
-            (unsigned long long)r->step, o->open_cmd, r->counterexample, (unsigned long long)r->step);
+    char samples[32] = "";
+    if (C->p.samples > 1)
+        snprintf(samples, sizeof samples, " SAMPLES=%d", C->p.samples);
+    fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+            (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
 

@@ -31,7 +31,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED,
+    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED, WRONG_MASK,
 };
 
 struct verdict {
@@ -43,6 +43,8 @@ struct verdict {
     float want_z, got_z;
     int bx, by, bx1, by1;       /* a block, for the block properties */
     uint64_t mul;               /* multiplications between two pixels */
+    int samples;                /* samples per pixel it was drawn at (1: the pixel centre) */
+    unsigned want_mask, got_mask;   /* WRONG_MASK: the samples holding a depth */
 };
 
 /* Everything one check run needs. */

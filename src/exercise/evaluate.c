@@ -8,15 +8,19 @@
 #include <string.h>
 
 
-static bool prepare(struct target *fb, const struct scene *s)
+static bool prepare(struct target *fb, const struct scene *s, int samples)
 {
     if (fb->color && fb->w == s->w && fb->h == s->h) {
         fb->background = scene_background(s);
         target_clear(fb);
-        return true;
+    } else {
+        target_free(fb);
+        if (!target_init(fb, s->w, s->h, scene_background(s)))
+            return false;
     }
-    target_free(fb);
-    return target_init(fb, s->w, s->h, scene_background(s));
+    if ((fb->samples ? fb->samples->n : 1) == samples)
+        return true;
+    return target_multisample(fb, samples);
 }
 
 static void mark(void *ctx, int x, int y)
@@ -90,17 +94,27 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
     const struct target *W = &C->want, *G = &C->got;
     size_t n = (size_t)W->w * (size_t)W->h;
     bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
+    int ns = W->samples && G->samples ? W->samples->n : 1;
     for (size_t i = 0; i < n; i++) {
         enum wrong what = WRONG_NONE;
+        /* at n samples: which samples hold a triangle (a depth) */
+        unsigned want_mask = 0, got_mask = 0;
+        for (int k = 0; k < ns && ns > 1; k++) {
+            want_mask |= (unsigned)(W->samples->depth[i * (size_t)ns + (size_t)k] < INFINITY) << k;
+            got_mask |= (unsigned)(G->samples->depth[i * (size_t)ns + (size_t)k] < INFINITY) << k;
+        }
         if (W->count[i] != G->count[i])
             what = WRONG_COUNT;
+        else if (want_mask != got_mask)
+            what = WRONG_MASK;
         else if (colour && W->count[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
             what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
         if (what != WRONG_NONE) {
             *v = (struct verdict){
                 .what = what, .tri = tri, .x = (int)(i % (size_t)W->w), .y = (int)(i / (size_t)W->w),
                 .want_n = W->count[i], .got_n = G->count[i], .want_c = W->color[i], .got_c = G->color[i],
-                .want_z = W->depth[i], .got_z = G->depth[i],
+                .want_z = W->depth[i], .got_z = G->depth[i], .samples = ns,
+                .want_mask = want_mask, .got_mask = got_mask,
             };
             return false;
         }
@@ -108,10 +122,11 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
     return true;
 }
 
-bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
+/* The scene at one sample count, C->p.samples. */
+static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
-    *v = (struct verdict){ .what = WRONG_NONE };
-    if (!prepare(&C->want, s) || !prepare(&C->got, s))
+    int samples = C->p.samples > 1 ? C->p.samples : 1;
+    if (!prepare(&C->want, s, samples) || !prepare(&C->got, s, samples))
         return true;    /* out of memory: said by the caller */
     uint8_t *mask = realloc(C->mask, (size_t)s->w * (size_t)s->h);
     if (!mask)
@@ -140,16 +155,37 @@ bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
         C->triangles++;
         const struct exercise_fault *f = exercise_fault();
         if (f->any) {
-            *v = (struct verdict){ .what = WRONG_OUTSIDE, .tri = i, .x = f->x, .y = f->y };
+            *v = (struct verdict){ .what = WRONG_OUTSIDE, .tri = i, .x = f->x, .y = f->y,
+                                   .samples = samples };
             return false;
         }
         if (prop.what != WRONG_NONE) {
             *v = prop;
             v->tri = i;
+            v->samples = samples;
             return false;
         }
         if (!compare(C, i, v))
             return false;
     }
+    return true;
+}
+
+/* Every sample count of the lesson in turn (lesson_exercise.samples), or the
+ * pixel centre alone; at a failure C->p.samples stays the count it failed at. */
+bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
+{
+    *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
+    const int *counts = C->l->exercise.samples;
+    if (!counts) {
+        C->p.samples = 0;
+        return evaluate_at(C, s, v);
+    }
+    for (; *counts; counts++) {
+        C->p.samples = *counts;
+        if (!evaluate_at(C, s, v))
+            return false;
+    }
+    *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
     return true;
 }

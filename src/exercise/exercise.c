@@ -2,6 +2,7 @@
  * a step, counted direct evaluations; the exact rule as a variant. */
 #include "exercise.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -123,12 +124,96 @@ static void exact_pixel(void *ctx, int x, int y)
         target_write(r->fb, x, y, (float)z, c);
 }
 
+/* Depth at the point (sx, sy), in 1/256 pixel, in double precision: the
+ * barycentric weights from the edge values there, z interpolated as 1/z
+ * (perspective) or linearly. */
+static double depth_at(const struct tri_setup *t, int64_t sx, int64_t sy, bool perspective)
+{
+    double w[3], z = 0;
+    for (int i = 0; i < 3; i++) {   /* weight of vertex i: the edge facing it, (i + 1) % 3 */
+        int k = (i + 1) % 3;
+        w[i] = (double)(t->I[k] * sx + t->J[k] * sy + t->K[k]) / (double)t->area2;
+        z += perspective ? w[i] / t->v[i].z : w[i] * t->v[i].z;
+    }
+    return perspective ? 1.0 / z : z;
+}
+
+/* The exact rule at n > 1 samples (CONVENTIONS.md, "Samples"): each sample
+ * of sample_pattern(n) decided by reference_point_covered, its depth exact
+ * at the sample, the colour the pixel centre's (one colour per pixel, as
+ * MSAA shades); each covered sample depth-tested, the pixel resolved to the
+ * rounded mean of its samples, the nearest sample's depth, and count plus
+ * the covered samples. Every pixel a sample of which may be covered: the
+ * box of centres and a pixel more each side. */
+static void exact_samples(const struct tri_setup *t, const struct raster_params *p,
+                          struct target *fb, struct trace *tr, bool perspective, int line)
+{
+    const struct sample_pattern *sp = sample_pattern(p->samples);
+    if (!sp || ((!fb->samples || fb->samples->n != sp->n) && !target_multisample(fb, sp->n)))
+        return;
+    int n = sp->n;
+    if (t->area2 <= 0)
+        return;
+    int x0 = t->minx - 1 < 0 ? 0 : t->minx - 1, y0 = t->miny - 1 < 0 ? 0 : t->miny - 1;
+    int x1 = t->maxx + 1 >= fb->w ? fb->w - 1 : t->maxx + 1;
+    int y1 = t->maxy + 1 >= fb->h ? fb->h - 1 : t->maxy + 1;
+    for (int y = y0; y <= y1; y++)
+        for (int x = x0; x <= x1; x++) {
+            unsigned mask = 0;
+            for (int s = 0; s < n; s++)
+                if (reference_point_covered(t, (int64_t)x * SUBPIXEL_ONE + sp->x[s],
+                                            (int64_t)y * SUBPIXEL_ONE + sp->y[s]))
+                    mask |= 1u << s;
+            if (!mask)
+                continue;
+            double zc, rgb[3], st[2];
+            reference_shade(t, x, y, perspective, &zc, rgb, st);
+            uint32_t c = shade_pixel(p, NULL, rgb[0], rgb[1], rgb[2], st[0], st[1]);
+            size_t i = (size_t)y * (size_t)fb->w + (size_t)x, base = i * (size_t)n;
+            unsigned sum[3] = { 0, 0, 0 };
+            float nearest = INFINITY;
+            for (int s = 0; s < n; s++) {
+                if (mask >> s & 1) {
+                    float z = (float)depth_at(t, (int64_t)x * SUBPIXEL_ONE + sp->x[s],
+                                              (int64_t)y * SUBPIXEL_ONE + sp->y[s], perspective);
+                    if (z < fb->samples->depth[base + (size_t)s]) {
+                        fb->samples->depth[base + (size_t)s] = z;
+                        fb->samples->color[base + (size_t)s] = c;
+                    }
+                }
+                uint32_t sc = fb->samples->color[base + (size_t)s];
+                for (int ch = 0; ch < 3; ch++)
+                    sum[ch] += sc >> (16 - 8 * ch) & 0xff;
+                float sz = fb->samples->depth[base + (size_t)s];
+                nearest = sz < nearest ? sz : nearest;
+            }
+            uint32_t rgba = 0xff000000u;
+            for (int ch = 0; ch < 3; ch++)
+                rgba |= (sum[ch] + (unsigned)n / 2) / (unsigned)n << (16 - 8 * ch);
+            NARRATE(tr, .kind = TRACE_PIXEL_WRITE, .line = line, .x = x, .y = y, .z = nearest,
+                    .rgba = rgba, .mask = { (uint16_t)mask },
+                    .aux = { (float)n, (float)__builtin_popcount(mask), (float)mask, 0 });
+            if (tr && tr->frozen)
+                continue;
+            fb->color[i] = rgba;
+            fb->depth[i] = nearest;
+            if (fb->count) {
+                unsigned cnt = fb->count[i] + (unsigned)__builtin_popcount(mask);
+                fb->count[i] = (uint8_t)(cnt > 255 ? 255 : cnt);
+            }
+        }
+}
+
 static void exact(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
                   struct trace *tr, bool perspective)
 {
     NARRATE(tr, .kind = TRACE_SETUP, .x = t->minx, .y = t->miny, .x1 = t->maxx, .y1 = t->maxy,
             .e = { t->area2, 0, 0 });
     int line = current_lesson ? current_lesson->exercise.write_line : 0;
+    if (p->samples > 1) {
+        exact_samples(t, p, fb, tr, perspective, line);
+        return;
+    }
     struct exact_run r = { t, p, fb, tr, perspective, line };
     reference_coverage(t, exact_pixel, &r);
 }

@@ -48,7 +48,10 @@ static void neighbourhood(const struct checker *C, FILE *out, int px, int py)
             fputs(pass ? "\n" : "     ", out);
         }
     }
-    fprintf(out, "      (# covered once, 2 twice, . not covered; x from %d to %d)\n", x0, x1);
+    if (C->p.samples > 1)
+        fprintf(out, "      (covered samples per pixel: # one, 2 two, ..., . none; x from %d to %d)\n", x0, x1);
+    else
+        fprintf(out, "      (# covered once, 2 twice, . not covered; x from %d to %d)\n", x0, x1);
 }
 
 void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
@@ -57,12 +60,24 @@ void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
     const struct vertex *tv = s->tris[v->tri].v;
     fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", v->tri + 1, tv[0].x, tv[0].y,
             tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+    if (v->samples > 1 && v->what != WRONG_NONE)
+        fprintf(out, "      at %d samples per pixel (SAMPLES=%d; the explorer's samples view shows them)\n",
+                v->samples, v->samples);
     switch (v->what) {
     case WRONG_COUNT:
-        fprintf(out, "      pixel (%d, %d), centre (%g, %g): expected %s, got %s: %s\n", v->x, v->y,
-                v->x + 0.5, v->y + 0.5, times(v->want_n), times(v->got_n),
-                v->got_n > v->want_n ? (v->want_n ? "written twice" : "an extra pixel") : "a missing pixel");
+        if (v->samples > 1)
+            fprintf(out, "      pixel (%d, %d): expected %d covered samples in all, got %d: %s\n", v->x, v->y,
+                    v->want_n, v->got_n, v->got_n > v->want_n ? "a sample too many" : "a sample missing");
+        else
+            fprintf(out, "      pixel (%d, %d), centre (%g, %g): expected %s, got %s: %s\n", v->x, v->y,
+                    v->x + 0.5, v->y + 0.5, times(v->want_n), times(v->got_n),
+                    v->got_n > v->want_n ? (v->want_n ? "written twice" : "an extra pixel") : "a missing pixel");
         neighbourhood(C, out, v->x, v->y);
+        break;
+    case WRONG_MASK:
+        fprintf(out, "      pixel (%d, %d): the samples holding a triangle are mask %#x, expected %#x\n"
+                "      (bit s = sample s of sample_pattern(%d): the right count, the wrong samples)\n",
+                v->x, v->y, v->got_mask, v->want_mask, v->samples);
         break;
     case WRONG_COLOUR:
         fprintf(out, "      pixel (%d, %d): expected colour #%06x, got #%06x (more than %d of 255 off in a channel);\n"

@@ -1,5 +1,6 @@
 /* explorer.c - the explorer's state: replaying the narration to a step,
- * the cells of the current triangle, stepping, variants, dragging, layout. */
+ * the cells of the current triangle, stepping, variants, dragging (the
+ * frame's layout, names and zoom are in layout.c). */
 #include "explorer.h"
 
 #include <limits.h>
@@ -7,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "front/front.h"
 
@@ -323,7 +325,7 @@ uint64_t explorer_find_step(struct explorer *ex, enum step_unit unit, int dir)
         return r->total;
     if (dir < 0 && s == 0)
         return 0;
-    if (unit == STEP_EVENT || r->ntris == 0)
+    if (unit == STEP_EVENT || r->counted == 0)
         return dir > 0 ? s + 1 : s - 1;
     if (dir > 0) {
         int i = replay_triangle_of(r, s);      /* the triangle of the next event */
@@ -352,15 +354,15 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
 
 /* --- variants, params, vertices ---------------------------------------------- */
 
-/* The scene, variant or params changed: count again, keep the step. */
 /* Run the lessons named by lesson->compare on the same scene and params. */
 static bool compare_init(struct explorer *ex)
 {
     for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
-                if (!replay_init(&ex->compare_replay[ex->ncompare], &ex->scene,
-                                 &all_lessons[k]->variants[0], &ex->params)) {
+                if (!(ex->count_later ? replay_begin : replay_init)(
+                        &ex->compare_replay[ex->ncompare], &ex->scene,
+                        &all_lessons[k]->variants[0], &ex->params)) {
                     replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
                 }
@@ -374,9 +376,59 @@ static bool compare_recount(struct explorer *ex)
     for (int i = 0; i < ex->ncompare; i++) {
         ex->compare_replay[i].params = ex->params;
         ex->compare_replay[i].scene = &ex->scene;
-        if (!replay_recount(&ex->compare_replay[i]))
+        if (!(ex->count_later ? replay_restart(&ex->compare_replay[i])
+                              : replay_recount(&ex->compare_replay[i])))
             return false;
     }
+    return true;
+}
+
+/* --- counting a part at a time ------------------------------------------------- */
+
+static double now_ms(void)
+{
+    struct timespec t;
+    timespec_get(&t, TIME_UTC);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+/* Triangles counted between two looks at the clock. */
+#define COUNT_BATCH 256
+
+bool explorer_counting(const struct explorer *ex)
+{
+    if (!replay_counted(&ex->replay))
+        return true;
+    for (int i = 0; i < ex->ncompare; i++)
+        if (!replay_counted(&ex->compare_replay[i]))
+            return true;
+    return false;
+}
+
+bool explorer_count(struct explorer *ex, double ms)
+{
+    double until = now_ms() + ms;
+    for (int i = -1; i < ex->ncompare; i++) {
+        struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
+        while (!replay_counted(r)) {
+            if (!replay_count(r, COUNT_BATCH))
+                return false;
+            if (now_ms() >= until)
+                return true;
+        }
+    }
+    return true;
+}
+
+/* Count the lesson's own run at least as far as `step` (all of it unless
+ * counting later). */
+static bool count_to(struct explorer *ex, uint64_t step)
+{
+    if (!ex->count_later)
+        return replay_count(&ex->replay, INT_MAX);
+    while (!replay_counted(&ex->replay) && ex->replay.total < step)
+        if (!replay_count(&ex->replay, COUNT_BATCH))
+            return false;
     return true;
 }
 
@@ -395,6 +447,18 @@ static bool project_scene(struct explorer *ex)
     return ex->projected_by(&ex->scene);
 }
 
+/* The lesson's own run, first counted (at least as far as `step`), keeping
+ * pictures along the way for stepping back. */
+static bool begin_replay(struct explorer *ex, uint64_t step)
+{
+    if (!replay_begin_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
+                            &ex->params, ex->lesson->narration_units))
+        return false;
+    replay_keep_pictures(&ex->replay);
+    return count_to(ex, step);
+}
+
+/* The scene, variant or params changed: count again, keep the step. */
 static bool rerun(struct explorer *ex, uint64_t step)
 {
     if (!project_scene(ex))
@@ -402,7 +466,7 @@ static bool rerun(struct explorer *ex, uint64_t step)
     ex->replay.variant = &ex->lesson->variants[ex->variant];
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
-    if (!replay_recount(&ex->replay) || !compare_recount(ex))
+    if (!replay_restart(&ex->replay) || !count_to(ex, step) || !compare_recount(ex))
         return false;
     ex->marks_tri = -1;
     ex->exact_upto = -1;
@@ -456,6 +520,8 @@ bool explorer_cycle_exhibit(struct explorer *ex)
             snprintf(ex->scene_name, sizeof ex->scene_name, "builtin:%s", ex->lesson->exhibit_scene);
             ex->params.checker = s.checker;
             ex->zoom = 0;
+            ex->pinned = false;     /* its pixel may lie outside the new scene */
+            ex->hover_vertex = -1;
             target_free(&ex->fb);
             target_free(&ex->scratch);
             free(ex->diff);
@@ -516,7 +582,7 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     snprintf(ex->scene_name, sizeof ex->scene_name, "%s", d->scene_name ? d->scene_name : "scene");
     ex->params = d->params ? *d->params : (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS };
     const char *id = d->lesson ? d->lesson->id : "explorer";
-    if (!d->lesson || !d->scene) {
+    if (!d->lesson || !(d->scene || d->give_scene)) {
         snprintf(err, errlen, "%s: no %s to explore", id, d->lesson ? "scene" : "lesson");
         return false;
     }
@@ -538,27 +604,34 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     ex->marks_tri = -1;
     ex->exact_upto = -1;
     ex->hover_vertex = -1;
+    ex->count_later = d->count_later;
     const char *failed = NULL;
-    if (!scene_copy(&ex->scene, d->scene))
+    const struct scene *given = d->give_scene ? d->give_scene : d->scene;
+    int w = given->w, h = given->h, n = given->ntris;
+    if (d->give_scene) {
+        ex->scene = *d->give_scene;             /* handed over: no copy of its triangles */
+        memset(d->give_scene, 0, sizeof *d->give_scene);
+    } else if (!scene_copy(&ex->scene, d->scene)) {
         failed = "copying the scene";
-    else {
+    }
+    if (!failed) {
         ex->params.checker = ex->scene.checker;
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
+        uint64_t step = d->step_end ? UINT64_MAX : d->step;
         if (!project_scene(ex))
             failed = "projecting the 3-D scene";
-        else if (!replay_init_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
-                                    &ex->params, ex->lesson->narration_units))
+        else if (!begin_replay(ex, step))
             failed = "counting the scene's events";
         else if (!compare_init(ex))
             failed = "running the lessons compared with this one";
-        else if (!explorer_set_step(ex, d->step_end ? ex->replay.total : d->step))
+        else if (!explorer_set_step(ex, step))
             failed = "drawing the first step";
     }
     if (!failed)
         return true;
     snprintf(err, errlen, "%s: out of memory %s (%d x %d pixels, %d triangles)", id, failed,
-             d->scene->w, d->scene->h, d->scene->ntris);
+             w, h, n);
     explorer_free(ex);
     return false;
 }
@@ -576,115 +649,4 @@ void explorer_free(struct explorer *ex)
     free(ex->diff);
     scene_free(&ex->scene);
     memset(ex, 0, sizeof *ex);
-}
-
-/* --- layout ---------------------------------------------------------------------- */
-
-static const char *const theme_names[THEME_COUNT] = { "dark", "light" };
-static const char *const part_names[PART_COUNT] = { "all", "canvas" };
-
-/* The index of `name` in names[0..n), or -1. */
-static int name_index(const char *const *names, int n, const char *name)
-{
-    for (int i = 0; i < n; i++)
-        if (strcmp(name, names[i]) == 0)
-            return i;
-    return -1;
-}
-
-const char *theme_name(enum theme t)
-{
-    return t >= 0 && t < THEME_COUNT ? theme_names[t] : "?";
-}
-
-bool theme_from_name(const char *name, enum theme *out)
-{
-    int i = name_index(theme_names, THEME_COUNT, name);
-    if (i >= 0)
-        *out = (enum theme)i;
-    return i >= 0;
-}
-
-const char *figure_part_name(enum figure_part f)
-{
-    return f >= 0 && f < PART_COUNT ? part_names[f] : "?";
-}
-
-bool figure_part_from_name(const char *name, enum figure_part *out)
-{
-    int i = name_index(part_names, PART_COUNT, name);
-    if (i >= 0)
-        *out = (enum figure_part)i;
-    return i >= 0;
-}
-
-void explorer_layout(const struct explorer *ex, double w, double h, struct explorer_layout *L)
-{
-    double s = ex->scale;
-    L->s = s;
-    L->w = w, L->h = h;
-    bool canvas_only = ex->part == PART_CANVAS;   /* the grid alone fills the frame */
-    L->pw = canvas_only ? 0 : fmin(430 * s, w * 0.45);
-    L->px = w - L->pw;
-    L->bar_h = canvas_only ? 0 : 46 * s;
-    L->cx = 0, L->cy = 0;
-    L->cw = L->px, L->ch = h - L->bar_h;
-    L->bar_y = L->ch;
-    double zoom = ex->zoom, cx = ex->centre_x, cy = ex->centre_y;
-    if (zoom <= 0) {
-        /* fit the scene with a margin; whole screen pixels per pixel when
-         * large enough, so every cell is crisp */
-        double mx = 28 * s, my = 28 * s;
-        zoom = fmin((L->cw - 2 * mx) / ex->scene.w, (L->ch - 2 * my) / ex->scene.h);
-        if (zoom >= 4)
-            zoom = floor(zoom);
-        if (!(zoom > 0))
-            zoom = 1;
-        cx = ex->scene.w / 2.0, cy = ex->scene.h / 2.0;
-    }
-    L->zoom = zoom;
-    L->ox = L->cx + L->cw / 2 - cx * zoom;
-    L->oy = L->cy + L->ch / 2 - cy * zoom;
-    if (zoom >= 4) {
-        L->ox = round(L->ox);
-        L->oy = round(L->oy);
-    }
-}
-
-void explorer_zoom_at(struct explorer *ex, const struct explorer_layout *L, double sx, double sy,
-                      double factor)
-{
-    double px = (sx - L->ox) / L->zoom, py = (sy - L->oy) / L->zoom;
-    double z = fmin(fmax(L->zoom * factor, 0.05), 512);
-    ex->zoom = z;
-    ex->centre_x = px + (L->cx + L->cw / 2 - sx) / z;
-    ex->centre_y = py + (L->cy + L->ch / 2 - sy) / z;
-}
-
-void explorer_pan(struct explorer *ex, const struct explorer_layout *L, double dx, double dy)
-{
-    if (ex->zoom <= 0) {
-        ex->centre_x = (L->cx + L->cw / 2 - L->ox) / L->zoom;
-        ex->centre_y = (L->cy + L->ch / 2 - L->oy) / L->zoom;
-        ex->zoom = L->zoom;
-    }
-    ex->centre_x -= dx / ex->zoom;
-    ex->centre_y -= dy / ex->zoom;
-}
-
-int explorer_hit_vertex(const struct explorer *ex, const struct explorer_layout *L,
-                        double sx, double sy)
-{
-    if (ex->scene.ntris == 0)
-        return -1;
-    int best = -1;
-    double best_d = 12 * L->s;
-    for (int k = 0; k < 3; k++) {
-        double vx = L->ox + L->zoom * ex->tri.x[k] / SUBPIXEL_ONE;
-        double vy = L->oy + L->zoom * ex->tri.y[k] / SUBPIXEL_ONE;
-        double d = hypot(sx - vx, sy - vy);
-        if (d < best_d)
-            best = k, best_d = d;
-    }
-    return best;
 }

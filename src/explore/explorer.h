@@ -79,6 +79,10 @@ struct explorer_desc {
     const struct lesson *lesson;
     const struct lesson_explorer *side;     /* NULL: the lesson's own (lesson_explorer_of) */
     const struct scene *scene;      /* copied: the explorer owns its own copy */
+    struct scene *give_scene;       /* or this one, handed over, not copied (it is left
+                                     * empty): a scene of millions of triangles */
+    bool count_later;               /* count the events a part at a time (explorer_count)
+                                     * after the first step instead of all before it */
     bool scene_is_default;          /* the lesson's built-in scene (X may switch scenes) */
     const char *scene_name;         /* as shown in the panel */
     const struct lesson_variant *variant;   /* NULL: variants[0] */
@@ -104,6 +108,7 @@ struct explorer {
     struct raster_params params;
     struct replay replay;
     uint64_t step;
+    bool count_later;               /* explorer_count counts what is left, a part at a time */
 
     /* the state at `step` */
     struct target fb;               /* the scene as drawn after `step` events */
@@ -163,6 +168,12 @@ enum { EXHIBIT_EXTRA = 1, EXHIBIT_MISSING = 2, EXHIBIT_COLOUR = 3 };
  * allocated and err says what could not be done. */
 bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err, size_t errlen);
 void explorer_free(struct explorer *ex);
+
+/* Count events for about `ms` milliseconds (count_later): the lesson's
+ * run first, then those of the lessons compared with it. False when out of
+ * memory. explorer_counting tells whether anything is left to count. */
+bool explorer_count(struct explorer *ex, double ms);
+bool explorer_counting(const struct explorer *ex);
 
 /* Replay to a step (clamped to the total) and rebuild the view state. */
 bool explorer_set_step(struct explorer *ex, uint64_t step);

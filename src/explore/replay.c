@@ -1,6 +1,7 @@
 /* replay.c - counting a scene's events and drawing it as of any step. */
 #include "replay.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,59 +50,169 @@ static bool list_units(struct replay *r)
     return true;
 }
 
-bool replay_recount(struct replay *r)
+static void undo_clear(struct replay *r);
+
+/* --- checkpoints ---------------------------------------------------------- */
+
+static size_t target_bytes(const struct target *t)
 {
-    struct target scratch;
-    if (!list_units(r))
-        return false;
-    if (!target_init(&scratch, r->scene->w, r->scene->h, scene_background(r->scene)))
-        return false;
-    if (!target_multisample(&scratch, r->params.samples)) {    /* lesson 08's samples */
-        target_free(&scratch);
+    size_t n = (size_t)t->w * (size_t)t->h;
+    size_t each = sizeof *t->color + sizeof *t->depth + 1;
+    if (t->samples)             /* lesson 08's samples are copied too */
+        each += (size_t)t->samples->n * (sizeof *t->samples->color + sizeof *t->samples->depth);
+    return n * each;
+}
+
+static uint64_t check_step(const struct replay *r, int k)
+{
+    return r->start[r->checks[k].upto];
+}
+
+/* A checkpoint at triangle `counted` (the counting picture). When the
+ * budget is full, the one whose removal leaves the smallest gap makes room
+ * (unless the new one would be the closest: then none is taken, unless
+ * forced), and checkpoints are taken no closer than that gap from then on. */
+static bool take_checkpoint(struct replay *r, bool force)
+{
+    size_t each = target_bytes(&r->counting);
+    int most = each ? (int)(r->check_bytes / each) : 0;
+    if (most < 1)
+        return true;
+    struct target reuse = { 0 };
+    if (r->nchecks >= most) {
+        int drop = -1;
+        uint64_t best = UINT64_MAX;
+        for (int k = 0; k < r->nchecks; k++) {
+            uint64_t lo = k ? check_step(r, k - 1) : 0;
+            uint64_t hi = k + 1 < r->nchecks ? check_step(r, k + 1) : r->total;
+            if (hi - lo < best)
+                best = hi - lo, drop = k;
+        }
+        if (best > r->check_gap)
+            r->check_gap = best;
+        if (!force && r->total - check_step(r, r->nchecks - 1) < best)
+            return true;        /* the new one would be the closest pair: not worth it */
+        reuse = r->checks[drop].t;
+        memmove(&r->checks[drop], &r->checks[drop + 1],
+                (size_t)(r->nchecks - drop - 1) * sizeof *r->checks);
+        r->nchecks--;
+    }
+    if (r->nchecks == r->checks_cap) {
+        int cap = r->checks_cap ? 2 * r->checks_cap : 16;
+        struct replay_checkpoint *c = realloc(r->checks, (size_t)cap * sizeof *c);
+        if (!c) {
+            target_free(&reuse);
+            return false;
+        }
+        r->checks = c;
+        r->checks_cap = cap;
+    }
+    struct replay_checkpoint *c = &r->checks[r->nchecks];
+    c->upto = r->counted;
+    c->t = reuse;
+    if (!target_copy(&c->t, &r->counting)) {
+        target_free(&c->t);
         return false;
     }
+    r->nchecks++;
+    r->check_last = r->total;
+    return true;
+}
+
+static void free_checkpoints(struct replay *r)
+{
+    for (int k = 0; k < r->nchecks; k++)
+        target_free(&r->checks[k].t);
+    r->nchecks = 0;
+    r->check_gap = REPLAY_CHECKPOINT_EVENTS;
+    r->check_last = 0;
+}
+
+/* --- counting ------------------------------------------------------------- */
+
+bool replay_restart(struct replay *r)
+{
+    if (!list_units(r))         /* sets ntris: the number of units */
+        return false;
     uint64_t *start = realloc(r->start, ((size_t)r->ntris + 1) * sizeof *start);
-    if (!start) {
-        target_free(&scratch);
+    if (!start)
         return false;
-    }
     r->start = start;
     struct trace_counters *sums = realloc(r->sums, ((size_t)r->ntris + 1) * sizeof *sums);
-    if (!sums) {
-        target_free(&scratch);
+    if (!sums)
+        return false;
+    r->sums = sums;
+    r->counted = 0;
+    r->total = 0;
+    start[0] = 0;
+    memset(&sums[0], 0, sizeof sums[0]);
+    target_free(&r->counting);
+    target_free(&r->base);      /* the cached picture is stale */
+    r->base_upto = 0;
+    undo_clear(r);
+    free_checkpoints(r);
+    return true;
+}
+
+bool replay_count(struct replay *r, int n)
+{
+    if (r->counted < r->ntris && !r->counting.color
+        && (!target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene))
+            || !target_multisample(&r->counting, r->params.samples))) {   /* lesson 08's samples */
+        target_free(&r->counting);
         return false;
     }
-    r->sums = sums;
-    uint64_t total = 0;
-    memset(&sums[0], 0, sizeof sums[0]);
     struct trace tr = { 0 };
-    for (int i = 0; i < r->ntris; i++) {
+    for (; n > 0 && r->counted < r->ntris; n--) {
+        int i = r->counted;
         struct tri_setup t;
         replay_setup(r, i, &t);
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         struct raster_params p = replay_params(r, i);
-        r->variant->rasterize(&t, &p, &scratch, &tr);
-        start[i] = total;
-        total += tr.count;
-        trace_counters_add(&sums[i + 1], &sums[i], &tr.c);
+        r->variant->rasterize(&t, &p, &r->counting, &tr);
+        r->total += tr.count;
+        r->start[i + 1] = r->total;
+        trace_counters_add(&r->sums[i + 1], &r->sums[i], &tr.c);
+        r->counted = i + 1;
+        /* one near the end too: End is a step often taken */
+        bool end = r->counted == replay_end_checkpoint(r->ntris);
+        if (r->keep_pictures && r->counted < r->ntris
+            && (r->total - r->check_last >= r->check_gap || end) && !take_checkpoint(r, end))
+            return false;
     }
-    start[r->ntris] = total;
-    r->total = total;
-    target_free(&scratch);
-    target_free(&r->base);      /* the cached picture is stale */
-    r->base_upto = 0;
+    if (r->counted == r->ntris)
+        target_free(&r->counting);  /* every step is known: its picture is not needed */
     return true;
 }
 
-bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
-                       const struct raster_params *p, lesson_units_fn units)
+bool replay_recount(struct replay *r)
+{
+    return replay_restart(r) && replay_count(r, INT_MAX);
+}
+
+bool replay_begin_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                        const struct raster_params *p, lesson_units_fn units)
 {
     memset(r, 0, sizeof *r);
     r->scene = s;
     r->variant = v;
     r->params = *p;
     r->units_fn = units;
-    return replay_recount(r);
+    r->check_bytes = REPLAY_CHECKPOINT_BYTES;
+    r->undo_bytes = REPLAY_UNDO_BYTES;
+    return replay_restart(r);
+}
+
+bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                  const struct raster_params *p)
+{
+    return replay_begin_units(r, s, v, p, NULL);
+}
+
+bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, lesson_units_fn units)
+{
+    return replay_begin_units(r, s, v, p, units) && replay_count(r, INT_MAX);
 }
 
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
@@ -110,18 +221,28 @@ bool replay_init(struct replay *r, const struct scene *s, const struct lesson_va
     return replay_init_units(r, s, v, p, NULL);
 }
 
+void replay_keep_pictures(struct replay *r)
+{
+    r->keep_pictures = true;
+}
+
 void replay_free(struct replay *r)
 {
+    free_checkpoints(r);
+    free(r->checks);
+    free(r->undo);
+    free(r->undo_data);
     free(r->start);
     free(r->sums);
     free(r->units);
+    target_free(&r->counting);
     target_free(&r->base);
     memset(r, 0, sizeof *r);
 }
 
 int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
 {
-    if (step == 0 || r->ntris == 0) {
+    if (step == 0 || r->counted == 0) {
         *local = 0;
         return -1;
     }
@@ -135,7 +256,7 @@ int replay_locate(const struct replay *r, uint64_t step, uint64_t *local)
 
 int replay_triangle_of(const struct replay *r, uint64_t event)
 {
-    int lo = 0, hi = r->ntris - 1;      /* binary search: largest i with start[i] <= event */
+    int lo = 0, hi = r->counted - 1;    /* binary search: largest i with start[i] <= event */
     while (lo < hi) {
         int mid = lo + (hi - lo + 1) / 2;
         if (r->start[mid] <= event)
@@ -143,22 +264,142 @@ int replay_triangle_of(const struct replay *r, uint64_t event)
         else
             hi = mid - 1;
     }
-    return lo;
+    return lo < 0 ? 0 : lo;
 }
 
-/* Bring the cached base picture to "triangles [0, upto) drawn". */
+/* --- stepping back a triangle: what it overwrote ---------------------------- */
+
+static void undo_clear(struct replay *r)
+{
+    r->nundo = 0;
+    r->undo_used = 0;
+}
+
+/* Copy a box of the target's pixels to or from saved bytes (colour rows,
+ * then depth rows, then count rows). */
+static void box_pixels(struct target *t, const struct replay_undo *u, unsigned char *bytes,
+                       bool save)
+{
+    size_t n = (size_t)u->w * (size_t)u->h;
+    unsigned char *colour = bytes, *depth = colour + 4 * n, *count = depth + 4 * n;
+    for (int y = 0; y < u->h; y++) {
+        size_t i = (size_t)(u->y0 + y) * (size_t)t->w + (size_t)u->x0, k = (size_t)y * (size_t)u->w;
+        size_t w = (size_t)u->w;
+        if (save) {
+            memcpy(colour + 4 * k, t->color + i, 4 * w);
+            memcpy(depth + 4 * k, t->depth + i, 4 * w);
+            memcpy(count + k, t->count + i, w);
+        } else {
+            memcpy(t->color + i, colour + 4 * k, 4 * w);
+            memcpy(t->depth + i, depth + 4 * k, 4 * w);
+            memcpy(t->count + i, count + k, w);
+        }
+    }
+}
+
+/* Before triangle base_upto is drawn into base: keep what its box holds.
+ * An exact variant writes only the pixels the reference covers (the tests
+ * hold every one to that), all inside the box that setup computed; an
+ * exhibit may stray outside it, and lesson 08's samples are not in the
+ * record, so their steps back redraw instead. When the
+ * room is full the older half goes; a box too large for it ends the history
+ * (stepping back then starts from a checkpoint). */
+static void undo_save(struct replay *r, const struct tri_setup *t)
+{
+    if (r->variant->exhibit || r->base.samples) {
+        undo_clear(r);          /* the record holds colour, depth and count, not samples */
+        return;
+    }
+    struct replay_undo u = { .x0 = t->minx, .y0 = t->miny, .at = r->undo_used };
+    if (t->minx <= t->maxx && t->miny <= t->maxy) {
+        u.w = t->maxx - t->minx + 1;
+        u.h = t->maxy - t->miny + 1;
+    }
+    if (!r->undo_data) {
+        /* no more room than a few pictures' worth: a small scene's steps
+         * back need little, and memory should not grow with a long session */
+        size_t few = 4 * target_bytes(&r->base);
+        if (r->undo_bytes > few)
+            r->undo_bytes = few > ((size_t)1 << 20) ? few : (size_t)1 << 20;
+        if (!(r->undo_data = malloc(r->undo_bytes))) {
+            undo_clear(r);
+            return;
+        }
+    }
+    size_t bytes = (size_t)u.w * (size_t)u.h * 9;
+    if (bytes > r->undo_bytes / 4) {
+        undo_clear(r);
+        return;
+    }
+    if (r->undo_used + bytes > r->undo_bytes) {
+        int keep = r->nundo / 2;                /* the newer half */
+        size_t from = r->undo[r->nundo - keep].at;
+        if (keep == 0)
+            from = r->undo_used;
+        memmove(r->undo_data, r->undo_data + from, r->undo_used - from);
+        memmove(r->undo, r->undo + (r->nundo - keep), (size_t)keep * sizeof *r->undo);
+        for (int k = 0; k < keep; k++)
+            r->undo[k].at -= from;
+        r->nundo = keep;
+        r->undo_used -= from;
+        u.at = r->undo_used;
+    }
+    if (r->nundo == r->undo_cap) {
+        int cap = r->undo_cap ? 2 * r->undo_cap : 1024;
+        struct replay_undo *n = realloc(r->undo, (size_t)cap * sizeof *n);
+        if (!n) {
+            undo_clear(r);
+            return;
+        }
+        r->undo = n;
+        r->undo_cap = cap;
+    }
+    box_pixels(&r->base, &u, r->undo_data + u.at, true);
+    r->undo[r->nundo++] = u;
+    r->undo_used += bytes;
+}
+
+/* Take the last triangle drawn into base out again. */
+static void undo_last(struct replay *r)
+{
+    struct replay_undo *u = &r->undo[--r->nundo];
+    box_pixels(&r->base, u, r->undo_data + u->at, false);
+    r->undo_used = u->at;
+    r->base_upto--;
+}
+
+/* Events worth redrawing rather than copying a whole picture. */
+#define REDRAW_RATHER_THAN_COPY ((uint64_t)1 << 17)
+
+/* Bring the cached base picture to "triangles [0, upto) drawn", from
+ * itself, the nearest checkpoint before upto, or the background. */
 static bool advance_base(struct replay *r, int upto)
 {
-    if (!r->base.color || upto < r->base_upto) {
+    if (r->base.color && upto < r->base_upto && r->base_upto - upto <= r->nundo)
+        while (r->base_upto > upto)
+            undo_last(r);
+    const struct replay_checkpoint *from = NULL;
+    for (int k = 0; k < r->nchecks && r->checks[k].upto <= upto; k++)
+        from = &r->checks[k];
+    bool base_ok = r->base.color && r->base_upto <= upto;
+    if (from && (!base_ok || (r->base_upto < from->upto
+                              && r->start[from->upto] - r->start[r->base_upto] > REDRAW_RATHER_THAN_COPY))) {
+        if (!target_copy(&r->base, &from->t))
+            return false;
+        r->base_upto = from->upto;
+        undo_clear(r);
+    } else if (!base_ok) {
         target_free(&r->base);
         if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
             || !target_multisample(&r->base, r->params.samples))
             return false;
         r->base_upto = 0;
+        undo_clear(r);
     }
     for (; r->base_upto < upto; r->base_upto++) {
         struct tri_setup t;
         replay_setup(r, r->base_upto, &t);
+        undo_save(r, &t);
         struct raster_params p = replay_params(r, r->base_upto);
         r->variant->rasterize(&t, &p, &r->base, NULL);
     }

@@ -20,19 +20,68 @@
 
 #include "lesson.h"
 
+/* The picture of the scene with triangles [0, upto) drawn, kept so that a
+ * step far back needs only the triangles since the nearest one. */
+struct replay_checkpoint {
+    int upto;
+    struct target t;
+};
+
 struct replay {
     const struct lesson_variant *variant;
     const struct scene *scene;
     struct raster_params params;
     int ntris;
-    uint64_t *start;        /* ntris + 1 entries; start[ntris] = total */
-    uint64_t total;         /* events in the whole scene */
-    struct trace_counters *sums;    /* ntris + 1 entries: counters of triangles [0, i) */
+    int counted;            /* triangles whose events are counted so far */
+    uint64_t *start;        /* ntris + 1 entries, known for [0, counted]; start[counted] = total */
+    uint64_t total;         /* events of the counted triangles (the whole scene once counted) */
+    struct trace_counters *sums;    /* ntris + 1 entries, [0, counted]: counters of triangles [0, i) */
+    struct target counting; /* the picture of triangles [0, counted), where counting goes on */
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
     lesson_units_fn units_fn;       /* NULL: one unit per triangle, in scene order */
     struct lesson_unit *units;      /* ntris entries when units_fn */
+
+    /* checkpoints, taken while counting (replay_keep_pictures) every
+     * check_gap events, at most check_bytes of them; when they would exceed
+     * it, the one whose removal leaves the smallest gap goes, and the gap
+     * grows to that */
+    bool keep_pictures;
+    struct replay_checkpoint *checks;
+    int nchecks, checks_cap;
+    uint64_t check_gap, check_last;     /* events apart; step of the last one */
+    size_t check_bytes;                 /* REPLAY_CHECKPOINT_BYTES (a test may lower it) */
+
+    /* what the last triangles drawn into base overwrote (their boxes), for
+     * stepping back a triangle without a redraw: records of triangles
+     * [base_upto - nundo, base_upto), at most undo_bytes of pixels */
+    struct replay_undo *undo;
+    int nundo, undo_cap;
+    unsigned char *undo_data;
+    size_t undo_used, undo_bytes;       /* REPLAY_UNDO_BYTES (a test may lower it) */
 };
+
+struct replay_undo {
+    int x0, y0, w, h;       /* the box of pixels the triangle may write (w = 0: none) */
+    size_t at;              /* its saved colour, depth and count in undo_data */
+};
+
+#define REPLAY_UNDO_BYTES ((size_t)32 << 20)
+
+/* Checkpoints: at most this much memory, and this many events apart when
+ * it allows (about 25 ms of redrawing a scene of small triangles). */
+#define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
+#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 20)
+/* One more checkpoint this many triangles before the end (an eighth of a
+ * small scene): End redraws them and keeps what they overwrote, so that
+ * steps back from the end are quick too. */
+#define REPLAY_END_TRIANGLES 1024
+
+static inline int replay_end_checkpoint(int ntris)
+{
+    int k = ntris / 8 < REPLAY_END_TRIANGLES ? ntris / 8 : REPLAY_END_TRIANGLES;
+    return ntris - (k > 1 ? k : 1);
+}
 
 /* Count every triangle's events (runs the whole scene once). */
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
@@ -40,9 +89,28 @@ bool replay_init(struct replay *r, const struct scene *s, const struct lesson_va
 /* The same in the units of a scene-level lesson (units NULL: triangles). */
 bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                        const struct raster_params *p, lesson_units_fn units);
+/* The same, but nothing counted yet: replay_count does it a part at a time
+ * (a window stays responsive while a scene of millions of triangles is
+ * counted, and steps through what is counted already). */
+bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                  const struct raster_params *p);
+/* The same in a scene-level lesson's units (units NULL: triangles). */
+bool replay_begin_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                        const struct raster_params *p, lesson_units_fn units);
+/* Count up to n more units (all of them: INT_MAX). False when out of memory. */
+bool replay_count(struct replay *r, int n);
+static inline bool replay_counted(const struct replay *r)
+{
+    return r->counted == r->ntris;
+}
+/* Keep checkpoints of the picture while counting (the explorer's own run;
+ * call before counting). */
+void replay_keep_pictures(struct replay *r);
 void replay_free(struct replay *r);
 /* Count again after the scene or params changed (a vertex was dragged). */
 bool replay_recount(struct replay *r);
+/* Forget every count (the scene or params changed); counting starts over. */
+bool replay_restart(struct replay *r);
 
 /* Set up the triangle of unit i (triangle i of the scene without units)
  * with the run's precision. */
@@ -57,7 +125,8 @@ struct raster_params replay_params(const struct replay *r, int i);
 int replay_triangle_of(const struct replay *r, uint64_t event);
 
 /* The triangle that the last happened event of step `step` belongs to
- * (-1 at step 0), and that event's number inside it via *local. */
+ * (-1 at step 0), and that event's number inside it via *local. Steps
+ * past the counted ones are taken as the last counted step. */
 int replay_locate(const struct replay *r, uint64_t step, uint64_t *local);
 
 /* Draw the scene as it is after `step` events into fb (allocated as needed),

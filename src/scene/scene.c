@@ -3,13 +3,12 @@
 #include "parse.h"      /* struct parser; the 3-D lines (scene3.c) */
 
 #include <errno.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include "util/file.h"   /* read_text_file */
 
 #define MAX_TOKENS 32   /* more than the longest line needs (tri + 24 numbers) */
 
@@ -26,17 +25,80 @@ bool scene_fail(struct parser *p, const char *fmt, ...)
 }
 #define fail scene_fail     /* its short name in this file */
 
-/* Decimal numbers only: digits, sign, point and exponent. strtod alone would
- * also take "nan", "inf" and hexadecimal, none of which belongs in a scene. */
+/* Decimal numbers only: [sign] digits [. digits] [e [sign] digits], with at
+ * least one digit before the exponent. strtod alone would also take "nan",
+ * "inf" and hexadecimal, none of which belongs in a scene.
+ *
+ * Reading is exact: the same double as strtod, bit for bit. Most numbers in
+ * a scene have few digits and a small exponent, m * 10^k with m < 2^53 and
+ * |k| <= 22: then m and 10^k are both exact doubles and one multiplication
+ * or division rounds correctly (Clinger's fast path, 1990), which is what
+ * makes a 2,000,000-triangle scene load in a second. Everything else (long
+ * mantissas, large exponents, overflow and underflow) goes to strtod. */
+static const double exact_pow10[23] = {
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+};
+
+static bool is_digit(char c)
+{
+    return c >= '0' && c <= '9';
+}
+
 static bool parse_number(struct parser *p, const char *tok, double *out)
 {
-    if (tok[strspn(tok, "0123456789+-.eE")] != '\0' || !strpbrk(tok, "0123456789"))
+    const char *c = tok;
+    bool neg = *c == '-';
+    c += *c == '-' || *c == '+';
+    uint64_t m = 0;
+    int sig = 0;                /* significant digits taken into m */
+    bool exact = true;          /* m holds every significant digit */
+    long k = 0;                 /* the value is m * 10^k */
+    int mant_digits = 0;
+    for (; is_digit(*c); c++, mant_digits++) {
+        if (sig < 19) {
+            m = 10 * m + (uint64_t)(*c - '0');
+            sig += m != 0;
+        } else {
+            exact = false;
+        }
+    }
+    if (*c == '.') {
+        for (c++; is_digit(*c); c++, mant_digits++) {
+            if (sig < 19) {
+                m = 10 * m + (uint64_t)(*c - '0');
+                sig += m != 0;
+                k--;
+            } else {
+                exact = false;
+            }
+        }
+    }
+    if (mant_digits == 0)
         return fail(p, "'%.40s' is not a number", tok);
-    char *end;
+    if (*c == 'e' || *c == 'E') {
+        c++;
+        bool eneg = *c == '-';
+        c += *c == '-' || *c == '+';
+        if (!is_digit(*c))
+            return fail(p, "'%.40s' is not a number", tok);
+        long e = 0;
+        for (; is_digit(*c); c++)
+            if (e < 100000)
+                e = 10 * e + (*c - '0');
+        k += eneg ? -e : e;
+    }
+    if (*c != '\0')
+        return fail(p, "'%.40s' is not a number", tok);
+#if FLT_EVAL_METHOD == 0        /* one rounding per operation (not x87) */
+    if (exact && m <= (UINT64_C(1) << 53) && k >= -22 && k <= 22) {
+        double v = m == 0 ? 0.0 : k < 0 ? (double)m / exact_pow10[-k] : (double)m * exact_pow10[k];
+        *out = neg ? -v : v;
+        return true;
+    }
+#endif
     errno = 0;
-    double v = strtod(tok, &end);
-    if (*end != '\0' || end == tok)
-        return fail(p, "'%.40s' is not a number", tok);
+    double v = strtod(tok, NULL);
     if ((errno == ERANGE && fabs(v) > 1) || !isfinite(v))
         return fail(p, "'%.40s' is too large", tok);
     *out = v;
@@ -167,30 +229,97 @@ static bool parse_line(struct parser *p, struct scene *s, char **tok, int n,
                    "or camera, cull, tri3, obj)", kw);
 }
 
+/* One reading of a scene: where messages point, and what was seen so far. */
+struct reader {
+    struct parser p;
+    struct scene *s;
+    int size_line, bg_line;
+};
+
+static bool is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* The next line, line[0..n) with line[n] == '\0', split into tokens in
+ * place (it is the reader's own copy). */
+static bool read_line(struct reader *r, char *line, size_t n)
+{
+    struct parser *p = &r->p;
+    if (p->line == INT_MAX)
+        return fail(p, "more lines than a scene may have");
+    p->line++;
+    if (memchr(line, '\0', n))
+        return fail(p, "NUL byte in the line (is this a text file?)");
+    char *hash = memchr(line, '#', n);
+    char *end = hash ? hash : line + n;
+    *end = '\0';
+    char *tok[MAX_TOKENS];
+    int ntok = 0;
+    for (char *c = line;;) {
+        while (c < end && is_blank(*c))
+            c++;
+        if (c == end)
+            break;
+        if (ntok == MAX_TOKENS)
+            return fail(p, "too many values on one line (at most %d)", MAX_TOKENS - 1);
+        tok[ntok++] = c;
+        while (c < end && !is_blank(*c))
+            c++;
+        *c = '\0';
+        if (c < end)
+            c++;
+    }
+    return ntok == 0 || parse_line(p, r->s, tok, ntok, &r->size_line, &r->bg_line);
+}
+
+static void reader_start(struct reader *r, struct scene *s, const char *name, char *err,
+                         size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    *r = (struct reader){ .p = { .name = name, .line = 0, .err = err, .errlen = errlen }, .s = s };
+}
+
+/* After the last line: what only the whole scene shows. Leaves the scene
+ * empty on failure, its triangles in an array of their own size on success. */
+static bool reader_finish(struct reader *r, bool ok)
+{
+    if (ok && !r->size_line) {
+        if (r->p.line == 0)
+            r->p.line = 1;
+        ok = fail(&r->p, "missing 'size W H' (the framebuffer size is required)");
+    }
+    if (ok)
+        ok = scene3_finish(&r->p, r->s);    /* a 3-D scene's camera and triangles */
+    if (!ok) {
+        scene_free(r->s);
+        return false;
+    }
+    struct scene *s = r->s;
+    if (s->cap > s->ntris && s->ntris > 0) {
+        struct scene_tri *t = realloc(s->tris, (size_t)s->ntris * sizeof *t);
+        if (t)
+            s->tris = t, s->cap = s->ntris;
+    }
+    return true;
+}
+
 bool scene_parse(struct scene *s, const char *name, const char *text, size_t len,
                  char *err, size_t errlen)
 {
-    memset(s, 0, sizeof *s);
-    struct parser p = { .name = name, .line = 0, .err = err, .errlen = errlen };
-    int size_line = 0, bg_line = 0;
+    struct reader r;
+    reader_start(&r, s, name, err, errlen);
     char *buf = NULL;
     size_t bufcap = 0;
     bool ok = true;
-
     for (size_t pos = 0; pos < len && ok;) {
-        if (p.line == INT_MAX) {
-            ok = fail(&p, "more lines than a scene may have");
-            break;
-        }
-        p.line++;
-        size_t end = pos;
-        while (end < len && text[end] != '\n')
-            end++;
-        size_t n = end - pos;
+        const char *nl = memchr(text + pos, '\n', len - pos);
+        size_t n = (nl ? (size_t)(nl - text) : len) - pos;
         if (n + 1 > bufcap) {
             char *nb = realloc(buf, n + 1);
             if (!nb) {
-                ok = fail(&p, "out of memory");
+                r.p.line++;
+                ok = fail(&r.p, "out of memory");
                 break;
             }
             buf = nb;
@@ -198,38 +327,11 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
         }
         memcpy(buf, text + pos, n);
         buf[n] = '\0';
-        pos = end + 1;
-
-        if (memchr(buf, '\0', n)) {
-            ok = fail(&p, "NUL byte in the line (is this a text file?)");
-            break;
-        }
-        char *hash = strchr(buf, '#');
-        if (hash)
-            *hash = '\0';
-        char *tok[MAX_TOKENS];
-        int ntok = 0;
-        for (char *t = strtok(buf, " \t\r\v\f"); t; t = strtok(NULL, " \t\r\v\f")) {
-            if (ntok == MAX_TOKENS) {
-                ok = fail(&p, "too many values on one line (at most %d)", MAX_TOKENS - 1);
-                break;
-            }
-            tok[ntok++] = t;
-        }
-        if (ok && ntok > 0)
-            ok = parse_line(&p, s, tok, ntok, &size_line, &bg_line);
+        pos += n + 1;
+        ok = read_line(&r, buf, n);
     }
     free(buf);
-    if (ok && !size_line) {
-        if (p.line == 0)
-            p.line = 1;
-        ok = fail(&p, "missing 'size W H' (the framebuffer size is required)");
-    }
-    if (ok)
-        ok = scene3_finish(&p, s);
-    if (!ok)
-        scene_free(s);
-    return ok;
+    return reader_finish(&r, ok);
 }
 
 bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
@@ -244,17 +346,63 @@ bool scene_builtin(struct scene *s, const char *name, char *err, size_t errlen)
     return scene_parse(s, label, b->text, strlen(b->text), err, errlen);
 }
 
+/* Read a file in chunks of 1 MiB, each line parsed where it lies in the
+ * buffer: a scene of hundreds of megabytes never needs them all in memory. */
+#define READ_CHUNK ((size_t)1 << 20)
+
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen)
 {
     if (strncmp(path, "builtin:", 8) == 0)
         return scene_builtin(s, path + 8, err, errlen);
-    char *text;
-    size_t len;
-    if (!read_text_file(path, &text, &len, err, errlen))
+    memset(s, 0, sizeof *s);
+    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s:0: cannot open: %s", path, strerror(errno));
         return false;
-    bool ok = scene_parse(s, path, text, len, err, errlen);
-    free(text);
-    return ok;
+    }
+    struct reader r;
+    reader_start(&r, s, path, err, errlen);
+    size_t cap = READ_CHUNK, have = 0;
+    char *buf = malloc(cap + 1);            /* + 1: room for the last line's NUL */
+    bool ok = buf != NULL;
+    if (!ok)
+        snprintf(err, errlen, "%s:0: out of memory", path);
+    while (ok) {
+        if (have == cap) {                  /* one line longer than the buffer */
+            char *nb = cap * 2 > cap ? realloc(buf, cap * 2 + 1) : NULL;
+            if (!nb) {
+                ok = fail(&r.p, "out of memory (a line longer than %zu bytes)", cap);
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+        size_t got = fread(buf + have, 1, cap - have, f);
+        have += got;
+        size_t done = 0;
+        for (char *nl; ok && (nl = memchr(buf + done, '\n', have - done)); done = (size_t)(nl - buf) + 1) {
+            *nl = '\0';
+            ok = read_line(&r, buf + done, (size_t)(nl - buf) - done);
+        }
+        if (!ok)
+            break;
+        if (got == 0) {
+            if (ferror(f)) {
+                snprintf(err, errlen, "%s:0: cannot read: %s", path, strerror(errno));
+                ok = false;
+            } else if (done < have) {       /* the last line has no newline */
+                buf[have] = '\0';
+                ok = read_line(&r, buf + done, have - done);
+            }
+            break;
+        }
+        memmove(buf, buf + done, have - done);
+        have -= done;
+    }
+    free(buf);
+    if (f != stdin)
+        fclose(f);
+    return reader_finish(&r, ok);
 }
 
 /* Shortest text that reads back as the same double. */

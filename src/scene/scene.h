@@ -82,7 +82,8 @@ struct scene {
  * (without a newline) and leaves *s empty. */
 bool scene_parse(struct scene *s, const char *name, const char *text, size_t len,
                  char *err, size_t errlen);
-/* Read and parse a file ("-" is standard input). */
+/* Read and parse a file ("-" is standard input), a chunk at a time: the
+ * text is never held whole (a 2,000,000-triangle scene is some 330 MB of it). */
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
 /* Write a scene that scene_parse reads back to the same values (a 3-D scene
  * is written as the screen-space triangles the front end made of it). */

@@ -101,6 +101,7 @@ bool read_text_file(const char *path, char **text, size_t *len, char *err, size_
         free(buf);
         return false;
     }
+    buf[n] = '\0';         /* always room: the loop ends with n < cap */
     *text = buf;
     *len = n;
     return true;

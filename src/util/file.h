@@ -8,7 +8,7 @@
 #include <stdio.h>
 
 /* Read a whole file ("-" is standard input) into a fresh buffer (*text, to
- * free; *len bytes, not NUL-terminated). On failure writes "path:0: message"
+ * free; *len bytes, then a NUL not counted in *len). On failure writes "path:0: message"
  * into err. Every reader of untrusted text (scenes, key scripts) uses it. */
 bool read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen);
 

@@ -18,6 +18,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,9 +52,15 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define PAPER_L05_LARGE_X 9.72
 #define PAPER_L05_TINY_X 0.85
 #define TARGET_FRAME_MS 16.0    /* explorer frame at 1280 x 800 */
+#define TARGET_BIG_FIRST_S 5.0  /* 2,000,000 triangles: first frame */
+#define TARGET_BIG_RSS_MIB 2048 /* ... within 2 GiB */
+#define TARGET_BIG_STEP_MS 100  /* ... every step interactive */
+#define BIG_TRIS 2000000
+#define BIG_TRIS_QUICK 20000
+#define MAX_BIG 16
 
 struct options {
-    bool quick, exhibits, peer;
+    bool quick, exhibits, peer, no_big;
     int runs;
     uint64_t seed;
     const char *out;            /* directory for bench.csv/svg/png */
@@ -77,6 +84,8 @@ struct row {
 static struct row rows[MAX_ROWS];
 static int nrows;
 static double frame_ms = -1;     /* explorer frame, < 0 not measured */
+static struct big_result big[MAX_BIG];
+static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
 static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
 
@@ -488,6 +497,23 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
         fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
         fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+    /* the large scene in the explorer: seconds, and peak-rss-mib in MiB */
+    for (int i = 0; i < nbig; i++) {
+        const struct big_result *b = &big[i];
+        if (!b->ok)
+            continue;
+        const struct { const char *what; double v; } m[] = {
+            { "load", b->load_s }, { "first-frame", b->first_frame_s },
+            { "first-frame-cpu", b->first_frame_cpu_s }, { "all-counted", b->counted_s },
+            { "step-median", b->step_median_s }, { "step-worst", b->step_worst_s },
+            { "step-end", b->end_s }, { "step-back-worst", b->back_worst_s },
+            { "step-worst-cpu", b->step_worst_cpu_s },
+            { "peak-rss-mib", b->peak_rss_mib },
+        };
+        for (size_t k = 0; k < sizeof m / sizeof m[0]; k++)
+            fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1\n", b->ntris,
+                    b->program, m[k].what, m[k].v);
+    }
     /* the 3-D front end: world triangles per second, no pixels */
     if (front.t.runs > 0)
         fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
@@ -557,6 +583,25 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
                 frame_ms);
     if (figures_s > 0)
         fprintf(f, "- `make figures`: %.1f s\n", figures_s);
+    if (nbig > 0) {
+        fprintf(f, "\n## A scene of %d triangles in the explorer\n\n", big[0].ntris);
+        fprintf(f, "| program | load | first frame | (CPU) | all steps counted | steps | jump, median "
+                   "| jump, worst | End | back, worst | worst step (CPU) | peak RSS |\n"
+                   "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        for (int i = 0; i < nbig; i++) {
+            const struct big_result *b = &big[i];
+            if (b->ok)
+                fprintf(f, "| %s | %.2f s | %.2f s | %.2f s | %.1f s | %llu | %.0f ms | %.0f ms "
+                           "| %.0f ms | %.0f ms | %.0f ms | %.0f MiB |\n", b->program, b->load_s,
+                        b->first_frame_s, b->first_frame_cpu_s, b->counted_s,
+                        (unsigned long long)b->steps, 1e3 * b->step_median_s,
+                        1e3 * b->step_worst_s, 1e3 * b->end_s, 1e3 * b->back_worst_s,
+                        1e3 * b->step_worst_cpu_s, b->peak_rss_mib);
+        }
+        fprintf(f, "\nFirst frame: reading the scene, opening the explorer, one paint; the "
+                   "window counts the steps after it, between events. Wall-clock times, with "
+                   "CPU times beside them where a shared machine stretches the wall clock.\n");
+    }
     fprintf(f, "\nMpix/s counts covered pixels, overdraw included; x L02 is the speed-up over "
                "lesson 02 (a median's ratio); diff = pixels whose coverage count differs from "
                "the exact reference and from llvmpipe (- when not measured).\n");
@@ -670,6 +715,19 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
                  speedup(l05, l02, SCENE_SMALL), PAPER_L05_TINY_X, "x", false);
     print_target("explorer-frame-ms", "explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
                  TARGET_FRAME_MS, " ms", true);
+    double first = 0, rss = 0, step = 0;
+    for (int i = 0; i < nbig; i++)
+        if (big[i].ok) {
+            first = fmax(first, big[i].first_frame_s);
+            rss = fmax(rss, big[i].peak_rss_mib);
+            step = fmax(step, 1e3 * fmax(big[i].step_worst_s, fmax(big[i].end_s, big[i].back_worst_s)));
+        }
+    print_target("big-first-frame-s", "large scene: first frame, slowest lesson", first,
+                 TARGET_BIG_FIRST_S, " s", true);
+    print_target("big-peak-rss-mib", "large scene: peak memory, largest lesson", rss,
+                 TARGET_BIG_RSS_MIB, " MiB", true);
+    print_target("big-slowest-step-ms", "large scene: slowest step (jump, End, back)", step,
+                 TARGET_BIG_STEP_MS, " ms", true);
     /* the fastest exact variant of every lesson on each scene, for the record */
     for (int i = 0; i < NSCENES && lp1; i++) {
         const struct row *best = NULL;
@@ -690,7 +748,7 @@ static int usage(FILE *f, int status)
     fprintf(f,
         "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--markdown F]\n"
         "                     [--lesson NN [--variant NAME]]\n"
-        "                     [--exhibits] [--no-llvmpipe] [--figures-cmd CMD]\n"
+        "                     [--exhibits] [--no-llvmpipe] [--no-large-scene] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
         "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
         "  --quick        tiny scenes, 3 runs (what `make test` runs)\n"
@@ -701,6 +759,7 @@ static int usage(FILE *f, int status)
         "  --variant NAME only that variant of them\n"
         "  --exhibits     also run the exhibits (their coverage is expected to differ)\n"
         "  --figures-cmd  the command that runs `make figures`, timed\n"
+        "  --no-large-scene  skip the 2,000,000-triangle scene in the explorer\n"
         "Exit status: 0 all exact, 1 a coverage difference or a failure, 2 bad usage.\n");
     return status;
 }
@@ -718,6 +777,8 @@ static bool parse(struct options *o, int argc, char **argv)
             o->exhibits = true;
         } else if (strcmp(a, "--no-llvmpipe") == 0) {
             o->peer = false;
+        } else if (strcmp(a, "--no-large-scene") == 0) {
+            o->no_big = true;
         } else if (val && strcmp(a, "--runs") == 0) {
             errno = 0;
             long n = strtol(val, &end, 10);
@@ -920,6 +981,27 @@ int main(int argc, char **argv)
         printf("\nexplorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n", frame_ms);
     else
         printf("\nexplorer frame: could not be measured (out of memory)\n");
+    if (!o.no_big) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/bench-large.scene", o.out);
+        bench_big_scene(path, o.quick ? BIG_TRIS_QUICK : BIG_TRIS, o.only, big, MAX_BIG, &nbig);
+        printf("  %-26s %7s %12s %8s %10s %10s %9s %9s %11s %9s %10s\n", "program", "load s",
+               "first frame", "(cpu s)", "counted s", "steps", "jump med", "jump max",
+               "End / back", "(cpu max)", "peak RSS");
+        for (int i = 0; i < nbig; i++) {
+            const struct big_result *b = &big[i];
+            if (!b->ok) {
+                printf("  %-26s not measured: %s\n", b->program, b->why);
+                continue;
+            }
+            printf("  %-26s %7.2f %10.2f s %8.2f %10.1f %10llu %6.0f ms %6.0f ms %4.0f/%3.0f ms %6.0f ms %6.0f MiB\n",
+                   b->program, b->load_s, b->first_frame_s, b->first_frame_cpu_s, b->counted_s,
+                   (unsigned long long)b->steps, 1e3 * b->step_median_s, 1e3 * b->step_worst_s,
+                   1e3 * b->end_s, 1e3 * b->back_worst_s, 1e3 * b->step_worst_cpu_s, b->peak_rss_mib);
+        }
+        printf("  (first frame: load, explorer_init and one paint; counted: every step known, "
+               "the window counts them between events)\n");
+    }
     if (o.figures_cmd) {
         char note[512];
         double t = time_command(o.figures_cmd, note, sizeof note);

@@ -73,4 +73,23 @@ struct chart_panel {
 bool chart_write(const struct chart_panel *p, int npanels, const char *title,
                  const char *svg_path, const char *png_path, char *err, size_t errlen);
 
+/* The large scene in the explorer, one lesson (big.c). Seconds, MiB. */
+struct big_result {
+    const char *program;
+    bool ok;
+    char why[600];
+    int ntris;
+    uint64_t steps;
+    int checkpoints;
+    double load_s, first_frame_s, first_frame_cpu_s, counted_s;
+    double step_median_s, step_worst_s, end_s, back_worst_s;
+    double step_worst_cpu_s;        /* the worst of them all in CPU time */
+    double peak_rss_mib;
+};
+/* Write a scene of ntris small triangles to path, open it in the explorer
+ * of every lesson (whose id starts with `only`, if given), each in a child
+ * process, and remove the file. Fills out[0..*n). */
+bool bench_big_scene(const char *path, long ntris, const char *only, struct big_result *out,
+                     int max, int *n);
+
 #endif
