@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/utsname.h>
 #include <time.h>
 #include <unistd.h>
@@ -819,6 +820,16 @@ int main(int argc, char **argv)
             return usage(stdout, 0);
     if (!parse(&o, argc, argv))
         return usage(stderr, 2);
+    /* the outputs' directory, made if missing: found unwritable only after
+     * minutes of timing would throw the run away */
+    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "tristep-bench: --out %s: %s\n", o.out, strerror(errno));
+        return 2;
+    }
+    if (access(o.out, W_OK) != 0) {
+        fprintf(stderr, "tristep-bench: --out %s: %s\n", o.out, strerror(errno));
+        return 2;
+    }
 
     double start = now();
     char cpu[160], date[64];
@@ -1052,8 +1063,11 @@ int main(int argc, char **argv)
     }
     snprintf(title, sizeof title, "tristep bench, %s, %s%s", cpu, date, o.quick ? " (quick)" : "");
     ok = write_chart(o.out, sc, limit, title) && ok;
-    printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
-           now() - start);
+    if (ok)
+        printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
+               now() - start);
+    else
+        printf("not every output was written (see above); %.0f s in all\n", now() - start);
 
     for (int i = 0; i < NSCENES; i++)
         free(peer_cov[i]);
