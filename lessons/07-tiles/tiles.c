@@ -140,7 +140,7 @@ static void tri_record(struct tri *r, const struct tri_setup *t, int checker)
 
     /* lesson 04's planes, in double at (minx, miny) (src/shade/quad.c), kept in float */
     struct planes pl;
-    planes_setup(&pl, t, &(struct raster_params){ .checker = checker });
+    planes_solve(&pl, t, &(struct raster_params){ .checker = checker });
     for (int q = 0; q < QUAD_PLANES; q++)
         r->p0[q] = (float)pl.p0[q], r->px[q] = (float)pl.px[q], r->py[q] = (float)pl.py[q];
     for (int q = 0; r->textured && q < ST_COUNT; q++) {
