@@ -258,6 +258,7 @@ static struct rect tile_rect(const struct grid *g, int tile)
  * of blocks of BIN_BLOCK records (4 KB): read one after another, written
  * without ever moving. */
 #define BIN_BLOCK 30
+#define CACHE_LINE 64
 
 struct bin_block {
     struct bin_block *next;
@@ -314,6 +315,15 @@ static void bin_free(struct bin *bin)
     bin->first = bin->last = NULL;
 }
 
+/* Ask the cache for the lines of [p, p + n), to be written soon. */
+static void prefetch_for_write(const void *p, size_t n)
+{
+    const char *c = p;
+    for (size_t o = 0; o < n; o += CACHE_LINE)
+        __builtin_prefetch(c + o, 1);
+    __builtin_prefetch(c + n - 1, 1);
+}
+
 static bool bin_push(struct bin *bin, const struct tri *t, bool full)
 {
     struct bin_block *b = bin->last;
@@ -329,6 +339,13 @@ static bool bin_push(struct bin *bin, const struct tri *t, bool full)
     }
     b->rec[b->n] = *t;
     b->rec[b->n++].full = full;
+    /* This bin's next triangle comes hundreds of triangles later, after
+     * the other bins': its slot, asked for now, is in the cache by then.
+     * Otherwise every record written waits for its lines from memory
+     * (hundreds of bins filled at once are more streams than the hardware
+     * prefetcher follows). */
+    if (b->n < BIN_BLOCK)
+        prefetch_for_write(&b->rec[b->n], sizeof *t);
     return true;
 }
 
