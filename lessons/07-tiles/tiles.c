@@ -299,6 +299,8 @@ static struct bin_block *block_get(void)
 static void bin_free(struct bin *bin)
 {
     struct bin_block *b = bin->first;
+    if (!b)
+        return;
     pthread_mutex_lock(&pool_lock);
     while (b) {
         struct bin_block *next = b->next;
@@ -1071,10 +1073,11 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
     for (int k = 0; k < r->nchunks; k++) {
         /* the exhibit starts with the worker's own shares: order depends on who took the tile */
         int c = r->o.unordered ? (k + worker * SHARES_PER_THREAD) % r->nchunks : k;
-        const struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
+        struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
         for (const struct bin_block *blk = b->first; blk; blk = blk->next)
             for (uint32_t e = 0; e < blk->n; e++)
                 r->draw(&blk->rec[e], rc, blk->rec[e].full, &d, NULL, r->o.corners == CORNERS_FOUR);
+        bin_free(b);    /* here, on every worker, while its blocks are in cache */
     }
     if (r->o.tile_buffers)
         tile_store(buf, r->fb, rc);
@@ -1183,6 +1186,8 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
         pthread_mutex_destroy(&r->lock);
         ok = !atomic_load(&r->failed);
     }
+    /* the workers gave back the bins of the tiles they drew; what is left
+     * (a run that ran out of memory) goes back here */
     for (size_t b = 0; r->bins && b < (size_t)r->nchunks * (size_t)r->g.n; b++)
         bin_free(&r->bins[b]);
     free(r->bins);
