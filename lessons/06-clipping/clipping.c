@@ -555,6 +555,9 @@ const struct lesson lesson_06 = {
     .aux_names = aux_names,
     .fronts = fronts,
     .other_depth = other_depth,
+    /* the exercise: the student's clipper in the front end, lesson 05's
+     * rasterizer given (lessons/06-clipping/exercise.c) */
+    .exercise = { .write_line = L_RASTER, .clip = true },
     /* a pixel costs what it costs in lesson 05: the front end's work is per
      * triangle, not per pixel */
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },

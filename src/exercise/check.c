@@ -63,7 +63,8 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     shrink(C, s);
     evaluate(C, s, &v);
     r->x = v.x, r->y = v.y;
-    r->ntris = s->ntris;
+    int ntris = s->world.camera_line ? s->world.ntris : s->ntris;
+    r->ntris = ntris;
     struct trail f;
     r->step = step_of(C, s, &v, &f);
     snprintf(r->failed, sizeof r->failed, "%s", name);
@@ -89,14 +90,15 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
         r->counterexample[0] = '\0';
         return false;
     }
-    fprintf(out, "\n  smallest counterexample: %d triangle%s, written to %s\n", s->ntris,
-            s->ntris == 1 ? "" : "s", r->counterexample);
+    fprintf(out, "\n  smallest counterexample: %d %striangle%s, written to %s\n", ntris,
+            s->world.camera_line ? "world " : "", ntris == 1 ? "" : "s", r->counterexample);
     say_verdict(C, out, &v, s);
     explain(C, out, &v, s, &f);
     char samples[32] = "";
     if (C->p.samples > 1)
         snprintf(samples, sizeof samples, " SAMPLES=%d", C->p.samples);
-    fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+    fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+            v.world ? "end, where the diff view marks the wrong pixels" : "first wrong pixel",
             (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
@@ -161,7 +163,7 @@ static bool gen_user(int i, struct scene *s, char *what, size_t n)
 
 /* The checks of lesson l, in order; false when a SCENE= file does not load. */
 struct plan {
-    struct check checks[8];
+    struct check checks[16];
     int n;
 };
 
@@ -206,6 +208,16 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property };
     if (l->exercise.full_blocks)
         c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property };
+    if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
+        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip };
+        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one };
+        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two };
+        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far };
+        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge };
+        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside };
+        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor };
+        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras };
+    }
     return true;
 }
 
