@@ -93,6 +93,9 @@ $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
 
+# The search for lesson 06's walk-order cracks (tests/search/cracks.c).
+$(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
+
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
 $(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
 
