@@ -38,10 +38,10 @@ ifeq ($(PORT),simde)      # make simde-test: SSE2 through SIMDe's portable C, sa
 SAN      := $(SANITIZERS)
 TS_PORT  := -DTRISTEP_SIMDE -DSIMDE_NO_NATIVE
 endif
-TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc $(PKG_CFLAGS) $(SAN) $(TS_PORT)
+TS_CFLAGS = -std=c17 -Wall -Wextra -pedantic -MMD -MP -Isrc -pthread $(PKG_CFLAGS) $(SAN) $(TS_PORT)
 CC_ALL    = $(CC) $(CFLAGS) $(TS_CFLAGS)
 LD_ALL    = $(CC) $(LDFLAGS) $(SAN)
-LIBS      = $(LDLIBS) $(PKG_LIBS)
+LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 # What comes before any compiling (order-only): the library flags, and the
 # packages of make test and make bench (so make -j2 test installs them first).
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
@@ -95,6 +95,12 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 
 # The search for lesson 06's walk-order cracks (tests/search/cracks.c).
 $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
+
+# Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
+# does not run under TSan), run by tests/test_lesson07.c.
+TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
+$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h | $(FIRST)
+	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
 $(B)/tristep-soak: $(B)/obj/tests/soak/soak.o ; $(LD_ALL) $^ -lm -o $@
@@ -160,7 +166,7 @@ check: $(B)/exercise-$(LESSON)
 	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tristep-soak
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus

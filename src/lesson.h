@@ -19,11 +19,37 @@ struct raster_params {
     int block_size;       /* q for block lessons (0 = the lesson's default) */
     bool affine;          /* texture affinely, not perspective-correct (exhibit) */
     int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
+    int threads;          /* worker threads of a scene-level run (lesson 07), 0 = one per core */
+    /* The narrated replay of a scene-level lesson (lesson 07) runs one
+     * triangle inside one tile at a time: tile > 0 restricts `rasterize` to
+     * tile number tile - 1 (row-major, 64 x 64), and these say where that
+     * unit stands, for the narration. tile == 0: the whole target. */
+    int tile;
+    int bin_size, bin_entry, thread;
+    /* ... and the whole narrated order, for the explorer's drawings (NULL
+     * outside a replay of such a lesson) */
+    const struct lesson_unit *units;
+    int nunits;
     int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
     /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
      * of a world triangle from it before rasterizing its first screen triangle */
     const struct scene *scene;
 };
+
+/* One unit of a scene-level lesson's narrated run: triangle `tri` of the
+ * scene drawn inside tile `tile`, entry `bin_entry` of the tile's `bin_size`
+ * triangles, in a tile that worker `thread` drew in the real run. */
+struct lesson_unit {
+    uint32_t tri;
+    int32_t tile, bin_size, bin_entry, thread;
+};
+
+/* The units of variant v's narrated run in their order: writes at most
+ * `cap` of them to out (NULL when cap is 0) and returns how many there are,
+ * or -1 when out of memory. */
+struct lesson_variant;
+typedef long (*lesson_units_fn)(const struct scene *s, const struct lesson_variant *v,
+                                const struct raster_params *p, struct lesson_unit *out, long cap);
 
 /* Makes a 3-D scene's screen triangles (src/front/: front_scene, or an
  * exhibit's own way); false only when out of memory. */
@@ -31,6 +57,11 @@ typedef bool (*front_fn)(struct scene *s);
 
 typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr);
+/* A whole scene at once, in whatever order and on whatever threads the
+ * lesson likes, as long as the picture is that of drawing the triangles one
+ * after another. Returns false when out of memory. */
+typedef bool (*rasterize_scene_fn)(const struct scene *s, const struct raster_params *p,
+                                   struct target *fb);
 
 /* One way of running the lesson: the algorithm itself, a faster twin, or an
  * exhibit that reproduces a slip of the source texts. */
@@ -112,6 +143,14 @@ struct lesson {
      * (shaded and written); NULL for none. tests/test_counters.c recounts
      * both from what the code COUNTs. */
     const struct cost_term *cost_tested, *cost_covered;
+    /* Optional, one per variant (lesson 07: bins need every triangle before
+     * the first pixel): what the headless modes and the bench call instead
+     * of variants[i].rasterize per triangle. `rasterize` stays: one triangle
+     * through the same pipeline, for the tests and the narrated replay. */
+    const rasterize_scene_fn *rasterize_scene;
+    /* With it, the order the narrated replay steps through (the explorer
+     * keeps one count per unit instead of one per triangle), or NULL. */
+    lesson_units_fn narration_units;
     /* How each variant makes a 3-D scene's screen triangles (nvariants
      * entries; lesson 06's exhibits have their own), or NULL: every variant
      * uses the shared front end (src/front/) */
@@ -124,6 +163,14 @@ struct lesson {
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
 
+/* The scene-level twin of variant v of lesson l, or NULL. */
+static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
+                                                 const struct lesson_variant *v)
+{
+    if (!l->rasterize_scene || v < l->variants || v >= l->variants + l->nvariants)
+        return NULL;
+    return l->rasterize_scene[v - l->variants];
+}
 /* The front end variant v of lesson l runs on a 3-D scene: its entry of
  * l->fronts, or front_scene. */
 front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);

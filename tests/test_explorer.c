@@ -85,37 +85,75 @@ static const struct scene *as_drawn(const struct lesson *l, int variant, const s
     return own;
 }
 
+/* The units the lesson's narration steps through: one per triangle in
+ * scene order, or the lesson's own order (lesson 07: a triangle inside a
+ * tile, tile after tile), from the lesson itself. Returns how many; *out
+ * is malloc'ed (NULL for one per triangle). */
+static int units_of(const struct lesson *l, int variant, const struct scene *s,
+                    const struct raster_params *p, struct lesson_unit **out)
+{
+    *out = NULL;
+    if (!l->narration_units)
+        return s->ntris;
+    long n = l->narration_units(s, &l->variants[variant], p, NULL, 0);
+    cr_assert_geq(n, 0, "%s: listing its units failed", l->id);
+    *out = malloc((size_t)(n ? n : 1) * sizeof **out);
+    cr_assert_not_null(*out);
+    cr_assert_eq(l->narration_units(s, &l->variants[variant], p, *out, n), n);
+    return (int)n;
+}
+
 /* The scene drawn by the variant with only the first `n` events happening
  * (n = UINT64_MAX: all), into fb. Returns the number of events that happened;
  * counts every kind of event and the row/block/span stops into *k. */
-static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *given,
-                           uint64_t n, struct target *fb, struct kinds *k)
+/* The lesson's narrated order (units_of) over the scene as the variant draws
+ * it (as_drawn: lesson 06's own screen triangles), with the params given. */
+static uint64_t run_frozen_with(const struct lesson *l, int variant, const struct scene *given,
+                                const struct raster_params *params, uint64_t n, struct target *fb,
+                                struct kinds *k)
 {
     struct scene own;
     const struct scene *s = as_drawn(l, variant, given, &own);
     cr_assert(target_init(fb, s->w, s->h, scene_background(s)));
-    struct raster_params p = default_params();
-    p.checker = s->checker;
+    struct raster_params p = *params;
     p.scene = s;
     uint64_t done = 0;
     struct kinds local = { 0 };
     if (!k)
         k = &local;
-    for (int i = 0; i < s->ntris; i++) {
+    struct lesson_unit *units;
+    int nunits = units_of(l, variant, s, &p, &units);
+    for (int i = 0; i < nunits; i++) {
         struct tri_setup t;
-        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        struct raster_params up = p;
+        if (units) {    /* the triangle inside its tile, as lesson.h says */
+            up.tile = units[i].tile + 1;
+            up.bin_size = units[i].bin_size;
+            up.bin_entry = units[i].bin_entry;
+            up.thread = units[i].thread;
+        }
+        tri_setup_bits(&t, s->tris[units ? (int)units[i].tri : i].v, s->w, s->h, p.subpixel_bits);
         struct trace tr = { .sink = count_kind, .ctx = k };
         k->base = done;
         trace_begin(&tr, (uint32_t)i, n - done);
-        l->variants[variant].rasterize(&t, &p, fb, &tr);
+        l->variants[variant].rasterize(&t, &up, fb, &tr);
         uint64_t happened = tr.count < n - done ? tr.count : n - done;
         done += happened;
         /* the triangle's end is a stop too (the group stop may coincide) */
         if (happened == tr.count && done != k->last_stop)
             k->group_stops++, k->last_stop = done;
     }
+    free(units);
     scene_free(&own);
     return done;
+}
+
+static uint64_t run_frozen(const struct lesson *l, int variant, const struct scene *s, uint64_t n,
+                           struct target *fb, struct kinds *k)
+{
+    struct raster_params p = default_params();
+    p.checker = s->checker;
+    return run_frozen_with(l, variant, s, &p, n, fb, k);
 }
 
 static bool targets_equal(const struct target *a, const struct target *b)
@@ -211,15 +249,20 @@ Test(explorer, counts_per_step_kind)
             struct explorer ex;
             open_explorer(&ex, l, &s);
             cr_assert_eq(ex.replay.total, total, "%s scene %d: total events", l->id, kind);
-            cr_assert_eq(k.n[TRACE_SETUP], (uint64_t)s.ntris, "%s: one setup event a triangle",
+            struct raster_params p = default_params();
+            p.checker = s.checker;
+            struct lesson_unit *units;
+            uint64_t nunits = (uint64_t)units_of(l, 0, &s, &p, &units);
+            free(units);
+            cr_assert_eq(k.n[TRACE_SETUP], nunits, "%s: one setup event a triangle (a unit)",
                          l->id);
             /* one event at a time replays the current triangle each time:
              * walked on scenes of modest size only */
             if (total <= 5000)
                 cr_assert_eq(walk(&ex, STEP_EVENT), total, "%s scene %d: event steps", l->id,
                              kind);
-            cr_assert_eq(walk(&ex, STEP_TRIANGLE), (uint64_t)s.ntris,
-                         "%s scene %d: triangle steps", l->id, kind);
+            cr_assert_eq(walk(&ex, STEP_TRIANGLE), nunits,
+                         "%s scene %d: triangle (unit) steps", l->id, kind);
             cr_assert_eq(walk(&ex, STEP_GROUP), k.group_stops,
                          "%s scene %d: row/block/span steps", l->id, kind);
             explorer_free(&ex);
@@ -333,17 +376,19 @@ Test(explorer, counted_later_with_checkpoints_and_steps_back, .timeout = 120)
         cr_assert_gt(slices, 1, "%s: counted in more than one part", l->id);
         cr_assert(ex.replay.nchecks >= 3 && ex.replay.nchecks <= 5, "%s: %d checkpoints", l->id,
                   ex.replay.nchecks);
-        cr_assert_eq(ex.replay.checks[ex.replay.nchecks - 1].upto, replay_end_checkpoint(s.ntris),
+        int units = ex.replay.ntris;    /* triangles, or lesson 07's (tile, triangle) units */
+        cr_assert_geq(units, s.ntris, "%s", l->id);
+        cr_assert_eq(ex.replay.checks[ex.replay.nchecks - 1].upto, replay_end_checkpoint(units),
                      "%s: a checkpoint near the end (End)", l->id);
-        cr_assert(replay_end_checkpoint(s.ntris) < s.ntris - 1);
+        cr_assert(replay_end_checkpoint(units) < units - 1);
 
         /* the same counts as counting all at once */
         open_explorer(&at_once, l, &s);
         cr_assert_eq(ex.replay.total, at_once.replay.total);
         cr_assert(memcmp(ex.replay.start, at_once.replay.start,
-                         ((size_t)s.ntris + 1) * sizeof *ex.replay.start) == 0, "%s: start[]", l->id);
+                         ((size_t)units + 1) * sizeof *ex.replay.start) == 0, "%s: start[]", l->id);
         cr_assert(memcmp(ex.replay.sums, at_once.replay.sums,
-                         ((size_t)s.ntris + 1) * sizeof *ex.replay.sums) == 0, "%s: sums[]", l->id);
+                         ((size_t)units + 1) * sizeof *ex.replay.sums) == 0, "%s: sums[]", l->id);
         for (int k = 0; k < ex.ncompare; k++)
             cr_assert(memcmp(ex.compare_replay[k].sums, at_once.compare_replay[k].sums,
                              ((size_t)s.ntris + 1) * sizeof *ex.replay.sums) == 0,
@@ -604,13 +649,18 @@ Test(explorer, agrees_with_headless_for_every_parameter_value, .timeout = 120)
                                                .params = &p, .step_end = true };
                     char err[256];
                     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
-                    /* headless as the program runs it: the variant's
-                     * screen triangles, the scene in the params */
+                    /* headless as the program runs it: the variant's screen
+                     * triangles, the scene in the params, in the lesson's
+                     * narrated order (scene order, or its units: lesson 07,
+                     * whose exhibit `unordered` orders them by its workers) */
                     struct target fb;
                     struct scene own;
                     const struct scene *hs = as_drawn(l, v, &s, &own);
                     p.scene = hs;
-                    cr_assert(render_scene(hs, &l->variants[v], &p, &fb));
+                    if (l->narration_units)
+                        run_frozen_with(l, v, &s, &p, UINT64_MAX, &fb, NULL);
+                    else
+                        cr_assert(render_scene(hs, &l->variants[v], &p, &fb));
                     cr_assert(targets_equal(&ex.fb, &fb),
                               "%s %s on %s: the explorer differs from the headless run with "
                               "subpixel_bits %d, block_size %d, affine %d", l->id,

@@ -49,6 +49,7 @@ static void usage(const struct lesson *l, FILE *out)
         "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n"
         "  --block-size Q          block size for block lessons (4, 8 or 16)\n"
         "  --subpixel-bits N       snap vertices to N fractional bits, 0..8 (default 8)\n"
+        "  --threads N             worker threads of a tiled lesson, 1..64 (default: one per core)\n"
         "  --samples N             samples per pixel, 1, 4 or 8 (lesson 08; default 4)\n"
         "  --affine                texture affinely, not perspective-correct (lesson 04's exhibit)\n"
         "  --keys FILE             explorer: read key names from FILE, one per line\n"
@@ -97,8 +98,8 @@ static bool parse_positive(const char *s, double max, double *out)
 
 enum {
     OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
-    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_SAMPLES,
-    OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_THREADS,
+    OPT_SAMPLES, OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
     OPT_HELP, OPT_VERSION,
 };
 
@@ -117,6 +118,7 @@ static const struct option long_options[] = {
     { "figure-part", required_argument, NULL, OPT_PART },
     { "block-size", required_argument, NULL, OPT_BLOCK },
     { "subpixel-bits", required_argument, NULL, OPT_BITS },
+    { "threads", required_argument, NULL, OPT_THREADS },
     { "samples", required_argument, NULL, OPT_SAMPLES },
     { "affine", no_argument, NULL, OPT_AFFINE },
     { "keys", required_argument, NULL, OPT_KEYS },
@@ -195,6 +197,11 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
                 return bad_usage(l, "--subpixel-bits '%s': expected 0..8", optarg);
             o->params.subpixel_bits = (int)u;
             break;
+        case OPT_THREADS:
+            if (!parse_uint(optarg, 64, &u) || u < 1)
+                return bad_usage(l, "--threads '%s': expected 1..64", optarg);
+            o->params.threads = (int)u;
+            break;
         case OPT_SAMPLES:
             if (!parse_uint(optarg, SAMPLES_MAX, &u) || !sample_pattern((int)u))
                 return bad_usage(l, "--samples '%s': expected 1, 4 or 8", optarg);
@@ -227,10 +234,10 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
 
 /* --- the program ------------------------------------------------------------------- */
 
-static int dump(const struct cli_options *o, const struct scene *s)
+static int dump(const struct lesson *l, const struct cli_options *o, const struct scene *s)
 {
     struct target fb;
-    if (!render_scene(s, o->variant, &o->params, &fb)) {
+    if (!render_lesson_scene(l, s, o->variant, &o->params, &fb)) {
         fprintf(stderr, "out of memory for a %d x %d target\n", s->w, s->h);
         return EXIT_RUN;
     }
@@ -355,7 +362,7 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
     bool headless = o.dump_coverage || o.dump_image || o.figure;
     status = EXIT_OK;
     if (o.dump_coverage || o.dump_image)
-        status = dump(&o, &s);
+        status = dump(l, &o, &s);
     if (status == EXIT_OK && o.figure)
         status = figure_export(l, &o, &s);
     if (!headless)

@@ -158,7 +158,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "\n");
     }
     if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
-        ex->side->watch(&ex->tri, &ex->params, ev, buf + at, n - at);
+        struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
+        ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
     return at;
@@ -210,12 +211,19 @@ static double watch(struct painter *p, double x, double y, double w)
 static double compare_lines(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
-    int done = explorer_finished(ex);
+    int done = explorer_finished(ex), mine = done;
+    if (ex->replay.units) {
+        /* drawn tile by tile (lesson 07): a triangle is finished when the run is */
+        bool all = done >= ex->replay.ntris;
+        done = all ? ex->scene.ntris : 0;
+        mine = all ? ex->replay.ntris : 0;
+    }
     char buf[1024];
     size_t at = 0, n = sizeof buf;
     if (done == 0) {
         /* nothing finished yet: compare the whole scene rather than show zeros */
-        done = ex->replay.ntris;
+        done = ex->scene.ntris;
+        mine = ex->replay.ntris;    /* the same, in this lesson's units */
         at = cat(buf, n, at, "whole scene, %d triangle%s:\n", done, done == 1 ? "" : "s");
     } else {
         at = cat(buf, n, at, "same %d triangle%s finished:\n", done, done == 1 ? "" : "s");
@@ -224,12 +232,13 @@ static double compare_lines(struct painter *p, double x, double y, double w)
     for (int i = -1; i < ex->ncompare; i++) {
         const struct replay *r = i < 0 ? &ex->replay : &ex->compare_replay[i];
         const char *name = i < 0 ? "this lesson" : ex->compare[i]->id;
-        if (r->counted < done) {        /* a large scene, still being counted */
+        int upto = i < 0 ? mine : done;     /* in the run's own units */
+        if (r->counted < upto) {        /* a large scene, still being counted */
             at = cat(buf, n, at, "%-18s counting: %.0f%%\n", name,
                      100.0 * r->counted / (r->ntris ? r->ntris : 1));
             continue;
         }
-        const struct trace_counters *c = &r->sums[done];
+        const struct trace_counters *c = &r->sums[upto];
         double px = c->tested ? (double)c->tested : 1;
         at = cat(buf, n, at, "%-18s %9llu %7.1f %7.1f\n", name, (unsigned long long)c->tested,
                  (double)c->mul / px, (double)c->add / px);

@@ -150,7 +150,8 @@ static bool advance_exact(struct explorer *ex, int upto)
     for (; ex->exact_upto < upto; ex->exact_upto++) {
         struct tri_setup t;
         replay_setup(&ex->replay, ex->exact_upto, &t);
-        exact->rasterize(&t, &ex->params, &ex->exact, NULL);
+        struct raster_params p = replay_params(&ex->replay, ex->exact_upto);
+        exact->rasterize(&t, &p, &ex->exact, NULL);
     }
     return true;
 }
@@ -265,10 +266,10 @@ bool explorer_set_step(struct explorer *ex, uint64_t step)
     uint64_t local;
     int cur = replay_locate(&ex->replay, step, &local);
     ex->has_last = false;
-    ex->focus = cur >= 0 ? cur : 0;
+    ex->focus = cur >= 0 ? replay_unit_tri(&ex->replay, cur) : 0;
     memset(&ex->tri, 0, sizeof ex->tri);
-    if (ex->scene.ntris > 0)
-        replay_setup(&ex->replay, ex->focus, &ex->tri);
+    if (ex->scene.ntris > 0 && ex->replay.ntris > 0)
+        replay_setup(&ex->replay, cur >= 0 ? cur : 0, &ex->tri);
     if (!prepare_cells(ex, cur >= 0 ? &ex->tri : &(struct tri_setup){ .minx = 1, .maxx = 0 }))
         return false;
     int got = replay_to(&ex->replay, step, &ex->fb, take_event, ex, &ex->tri_c);
@@ -311,7 +312,8 @@ static void find_marks(struct explorer *ex, int i)
     replay_setup(&ex->replay, i, &t);
     struct trace tr = { .sink = collect_mark, .ctx = ex };
     trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-    ex->lesson->variants[ex->variant].rasterize(&t, &ex->params, &ex->scratch, &tr);
+    struct raster_params p = replay_params(&ex->replay, i);
+    ex->lesson->variants[ex->variant].rasterize(&t, &p, &ex->scratch, &tr);
     ex->marks_tri = i;
 }
 
@@ -449,7 +451,8 @@ static bool project_scene(struct explorer *ex)
  * pictures along the way for stepping back. */
 static bool begin_replay(struct explorer *ex, uint64_t step)
 {
-    if (!replay_begin(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant], &ex->params))
+    if (!replay_begin_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
+                            &ex->params, ex->lesson->narration_units))
         return false;
     replay_keep_pictures(&ex->replay);
     return count_to(ex, step);

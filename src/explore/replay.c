@@ -5,10 +5,49 @@
 #include <stdlib.h>
 #include <string.h>
 
+int replay_unit_tri(const struct replay *r, int i)
+{
+    return r->units ? (int)r->units[i].tri : i;
+}
+
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
 {
     int bits = r->params.subpixel_bits;     /* 0..8, taken as given: 0 is whole pixels */
-    return tri_setup_bits(t, r->scene->tris[i].v, r->scene->w, r->scene->h, bits);
+    return tri_setup_bits(t, r->scene->tris[replay_unit_tri(r, i)].v, r->scene->w, r->scene->h,
+                          bits);
+}
+
+struct raster_params replay_params(const struct replay *r, int i)
+{
+    struct raster_params p = r->params;
+    if (r->units && i >= 0 && i < r->ntris) {
+        const struct lesson_unit *u = &r->units[i];
+        p.tile = u->tile + 1;
+        p.bin_size = u->bin_size;
+        p.bin_entry = u->bin_entry;
+        p.thread = u->thread;
+        p.units = r->units;
+        p.nunits = r->ntris;
+    }
+    return p;
+}
+
+/* The units of the run: one per triangle, or the lesson's own order. */
+static bool list_units(struct replay *r)
+{
+    free(r->units);
+    r->units = NULL;
+    r->ntris = r->scene->ntris;
+    if (!r->units_fn)
+        return true;
+    long n = r->units_fn(r->scene, r->variant, &r->params, NULL, 0);
+    if (n < 0 || n > INT32_MAX - 1)
+        return false;
+    r->units = malloc((size_t)(n ? n : 1) * sizeof *r->units);
+    if (!r->units || r->units_fn(r->scene, r->variant, &r->params, r->units, n) != n)
+        return false;
+    r->ntris = (int)n;
+    return true;
 }
 
 static void undo_clear(struct replay *r);
@@ -93,7 +132,8 @@ static void free_checkpoints(struct replay *r)
 
 bool replay_restart(struct replay *r)
 {
-    r->ntris = r->scene->ntris;
+    if (!list_units(r))         /* sets ntris: the number of units */
+        return false;
     uint64_t *start = realloc(r->start, ((size_t)r->ntris + 1) * sizeof *start);
     if (!start)
         return false;
@@ -128,7 +168,8 @@ bool replay_count(struct replay *r, int n)
         struct tri_setup t;
         replay_setup(r, i, &t);
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-        r->variant->rasterize(&t, &r->params, &r->counting, &tr);
+        struct raster_params p = replay_params(r, i);
+        r->variant->rasterize(&t, &p, &r->counting, &tr);
         r->total += tr.count;
         r->start[i + 1] = r->total;
         trace_counters_add(&r->sums[i + 1], &r->sums[i], &tr.c);
@@ -149,22 +190,35 @@ bool replay_recount(struct replay *r)
     return replay_restart(r) && replay_count(r, INT_MAX);
 }
 
-bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
-                  const struct raster_params *p)
+bool replay_begin_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                        const struct raster_params *p, lesson_units_fn units)
 {
     memset(r, 0, sizeof *r);
     r->scene = s;
     r->variant = v;
     r->params = *p;
+    r->units_fn = units;
     r->check_bytes = REPLAY_CHECKPOINT_BYTES;
     r->undo_bytes = REPLAY_UNDO_BYTES;
     return replay_restart(r);
 }
 
+bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                  const struct raster_params *p)
+{
+    return replay_begin_units(r, s, v, p, NULL);
+}
+
+bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, lesson_units_fn units)
+{
+    return replay_begin_units(r, s, v, p, units) && replay_count(r, INT_MAX);
+}
+
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                  const struct raster_params *p)
 {
-    return replay_begin(r, s, v, p) && replay_count(r, INT_MAX);
+    return replay_init_units(r, s, v, p, NULL);
 }
 
 void replay_keep_pictures(struct replay *r)
@@ -180,6 +234,7 @@ void replay_free(struct replay *r)
     free(r->undo_data);
     free(r->start);
     free(r->sums);
+    free(r->units);
     target_free(&r->counting);
     target_free(&r->base);
     memset(r, 0, sizeof *r);
@@ -345,7 +400,8 @@ static bool advance_base(struct replay *r, int upto)
         struct tri_setup t;
         replay_setup(r, r->base_upto, &t);
         undo_save(r, &t);
-        r->variant->rasterize(&t, &r->params, &r->base, NULL);
+        struct raster_params p = replay_params(r, r->base_upto);
+        r->variant->rasterize(&t, &p, &r->base, NULL);
     }
     return true;
 }
@@ -366,7 +422,8 @@ int replay_to(struct replay *r, uint64_t step, struct target *fb,
     replay_setup(r, cur, &t);
     struct trace tr = { .sink = sink, .ctx = ctx };
     trace_begin(&tr, (uint32_t)cur, local + 1);
-    r->variant->rasterize(&t, &r->params, fb, &tr);
+    struct raster_params p = replay_params(r, cur);
+    r->variant->rasterize(&t, &p, fb, &tr);
     if (c)
         *c = tr.c;
     return cur;
@@ -388,4 +445,19 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
         v->rasterize(&t, p, fb, NULL);
     }
     return true;
+}
+
+bool render_lesson_scene(const struct lesson *l, const struct scene *s,
+                         const struct lesson_variant *v, const struct raster_params *p,
+                         struct target *fb)
+{
+    rasterize_scene_fn whole = lesson_scene_fn(l, v);
+    if (!whole)
+        return render_scene(s, v, p, fb);
+    if (!target_init(fb, s->w, s->h, scene_background(s)))
+        return false;
+    if (whole(s, p, fb))
+        return true;
+    target_free(fb);
+    return false;
 }

@@ -6,6 +6,12 @@
  * the events themselves are produced again, one triangle at a time, when a
  * step is shown. A cached target holds the picture of the triangles before
  * the current one, so stepping inside a triangle redraws only that triangle.
+ *
+ * A scene-level lesson (lesson 07) narrates in an order of its own: units,
+ * each one triangle inside one tile, tile after tile (lesson.h,
+ * lesson_units_fn). Then "triangle i" of the replay is unit i: replay_setup
+ * sets up its triangle and replay_params gives the run's params restricted
+ * to its tile.
  */
 #ifndef TRISTEP_REPLAY_H
 #define TRISTEP_REPLAY_H
@@ -33,6 +39,8 @@ struct replay {
     struct target counting; /* the picture of triangles [0, counted), where counting goes on */
     struct target base;     /* the scene with triangles [0, base_upto) drawn */
     int base_upto;
+    lesson_units_fn units_fn;       /* NULL: one unit per triangle, in scene order */
+    struct lesson_unit *units;      /* ntris entries when units_fn */
 
     /* checkpoints, taken while counting (replay_keep_pictures) every
      * check_gap events, at most check_bytes of them; when they would exceed
@@ -78,12 +86,18 @@ static inline int replay_end_checkpoint(int ntris)
 /* Count every triangle's events (runs the whole scene once). */
 bool replay_init(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                  const struct raster_params *p);
+/* The same in the units of a scene-level lesson (units NULL: triangles). */
+bool replay_init_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, lesson_units_fn units);
 /* The same, but nothing counted yet: replay_count does it a part at a time
  * (a window stays responsive while a scene of millions of triangles is
  * counted, and steps through what is counted already). */
 bool replay_begin(struct replay *r, const struct scene *s, const struct lesson_variant *v,
                   const struct raster_params *p);
-/* Count up to n more triangles (all of them: INT_MAX). False when out of memory. */
+/* The same in a scene-level lesson's units (units NULL: triangles). */
+bool replay_begin_units(struct replay *r, const struct scene *s, const struct lesson_variant *v,
+                        const struct raster_params *p, lesson_units_fn units);
+/* Count up to n more units (all of them: INT_MAX). False when out of memory. */
 bool replay_count(struct replay *r, int n);
 static inline bool replay_counted(const struct replay *r)
 {
@@ -98,8 +112,13 @@ bool replay_recount(struct replay *r);
 /* Forget every count (the scene or params changed); counting starts over. */
 bool replay_restart(struct replay *r);
 
-/* Set up triangle i of the scene with the run's precision. */
+/* Set up the triangle of unit i (triangle i of the scene without units)
+ * with the run's precision. */
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t);
+/* The scene's triangle of unit i. */
+int replay_unit_tri(const struct replay *r, int i);
+/* The params to run unit i with: the run's, restricted to its tile. */
+struct raster_params replay_params(const struct replay *r, int i);
 
 /* The triangle that global event number `event` belongs to: the last i
  * with start[i] <= event (0 for a scene without triangles). */
@@ -120,5 +139,9 @@ int replay_to(struct replay *r, uint64_t step, struct target *fb,
 /* Run a whole scene with a variant, no narration: what --dump-* writes. */
 bool render_scene(const struct scene *s, const struct lesson_variant *v,
                   const struct raster_params *p, struct target *fb);
+/* The same through the lesson's scene-level twin when it has one (lesson 07). */
+bool render_lesson_scene(const struct lesson *l, const struct scene *s,
+                         const struct lesson_variant *v, const struct raster_params *p,
+                         struct target *fb);
 
 #endif

@@ -155,6 +155,35 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  18.3 2.2 1  0.3 0.9 1   61.6 21.7 1  0.3 0.9 1   61.4 22.6 1  0.3 0.9 1\n"
         "tri  2.6 22.4 1  1 0.4 0.3   40.3 28.2 2  0.9 0.6 0.3   12.2 46.5 1.5  1 0.5 0.6\n"
     },
+    { "tiles", "160 x 112: 3 x 2 tiles of 64 x 64, a large triangle, a fan and small ones (lesson 07)",
+        "# tiles of 64 x 64 pixels: 3 columns and 2 rows, the last ones cut by the\n"
+        "# screen's edge. A large triangle fills whole tiles, a fan of four shares\n"
+        "# a vertex on a tile corner, and small triangles fit one 8 x 8 block.\n"
+        "size 160 112\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  -20.4 -8.2 6  0.25 0.3 0.8   150.3 6.1 6.5  0.3 0.65 0.9   18.6 104.7 5.5  0.2 0.4 0.6\n"
+        "tri  64 64 2  1 0.85 0.3   100.2 40.6 2.5  0.95 0.5 0.2   118.7 71.3 2  1 0.7 0.35\n"
+        "tri  64 64 2  1 0.85 0.3   118.7 71.3 2  1 0.7 0.35   96.4 105.2 3  0.9 0.35 0.3\n"
+        "tri  64 64 2  1 0.85 0.3   96.4 105.2 3  0.9 0.35 0.3   47.3 99.8 2.5  0.8 0.3 0.5\n"
+        "tri  64 64 2  1 0.85 0.3   47.3 99.8 2.5  0.8 0.3 0.5   30.1 70.4 2  0.95 0.6 0.6\n"
+        "tri  130.2 18.5 1.5  0.3 0.95 0.5   136.6 21.3 1.5  0.35 0.9 0.4   131.1 25.9 1.5  0.2 0.8 0.3\n"
+        "tri  141.4 88.2 1.2  0.9 0.9 0.3   146.3 95.5 1.2  0.95 0.8 0.2   139.2 93.6 1.2  1 0.95 0.4\n"
+        "tri  60.3 30.2 1.4  0.95 0.3 0.9   66.8 31.4 1.4  0.8 0.2 0.9   62.2 36.7 1.4  0.9 0.4 1\n"
+        "tri  9.2 98.4 1.3  0.4 0.95 0.95   15.6 101.2 1.3  0.3 0.8 0.9   11.1 106.8 1.3  0.5 1 1\n"
+    },
+    { "tiles-exhibits", "160 x 112: long thin triangles across tiles and coplanar layers (lesson 07 exhibits)",
+        "# what tiles can get wrong: long edges crossing tile corners (a reject\n"
+        "# test on the wrong corner drops tiles that they cover), and layers at\n"
+        "# the same depth, where only the order of drawing decides the colour\n"
+        "size 160 112\n"
+        "background 0.08 0.08 0.1\n"
+        "tri  2.3 60.4 2  0.3 0.9 1   158.1 2.6 2  0.3 0.9 1   157.4 14.2 2  0.3 0.9 1\n"
+        "tri  3.1 110.2 2  1 0.5 0.3   150.2 50.1 2  1 0.5 0.3   4.4 98.3 2  1 0.5 0.3\n"
+        "tri  10.5 8.5 1  0.9 0.2 0.2   140.5 20.5 1  0.9 0.2 0.2   30.5 100.5 1  0.9 0.2 0.2\n"
+        "tri  20.5 5.5 1  0.2 0.8 0.3   150.5 40.5 1  0.2 0.8 0.3   70.5 106.5 1  0.2 0.8 0.3\n"
+        "tri  5.5 50.5 1  0.3 0.4 0.95   120.5 10.5 1  0.3 0.4 0.95   155.5 105.5 1  0.3 0.4 0.95\n"
+        "tri  60.5 2.5 1  0.95 0.85 0.2   158.5 60.5 1  0.95 0.85 0.2   40.5 90.5 1  0.95 0.85 0.2\n"
+    },
     { "samples", "a sliver, a near-horizontal and a near-vertical edge, and a two-triangle quad (lesson 08)",
         "# anti-aliasing with coverage samples: a thin sliver, a wide triangle\n"
         "# whose top edge is nearly horizontal and whose right edge is nearly\n"

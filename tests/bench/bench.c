@@ -39,11 +39,18 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define SCENE_SMALL 1
 #define SCENE_MIXED 2
 
-/* Targets of the benchmark issue, single thread, medians. */
-#define TARGET_LARGE_X 2.0      /* lesson 05 vs llvmpipe, Mpix/s on large */
-#define TARGET_SMALL_X 5.0      /* ... Mtri/s on small */
-#define TARGET_MIXED_X 2.0      /* ... on mixed */
-#define TARGET_BANDWIDTH 0.25   /* lesson 05 on large, share of the memory limit */
+/* Targets, medians of the same run. Lesson 07 against llvmpipe (issue 15): */
+#define TARGET_L07_LARGE_X 2.0  /* lesson 07 vs llvmpipe, both on every core, Mpix/s on large */
+#define TARGET_L07_SMALL_X 5.0  /* ... Mtri/s on small */
+#define TARGET_L07_MIXED_X 2.0  /* ... Mtri/s on mixed */
+#define TARGET_L07_ONE_X 2.0    /* lesson 07 --threads 1 vs LP_NUM_THREADS=0, every scene */
+#define TARGET_L07_SCALE_X 1.8  /* lesson 07 from 1 to 2 threads, large and mixed */
+#define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
+/* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
+ * 2015: their best speed-up of block classification over the bounding box is
+ * 9.72x on large triangles; on tiny ones blocks lose, 0.85x). */
+#define PAPER_L05_LARGE_X 9.72
+#define PAPER_L05_TINY_X 0.85
 #define TARGET_FRAME_MS 16.0    /* explorer frame at 1280 x 800 */
 #define TARGET_BIG_FIRST_S 5.0  /* 2,000,000 triangles: first frame */
 #define TARGET_BIG_RSS_MIB 2048 /* ... within 2 GiB */
@@ -59,6 +66,7 @@ struct options {
     const char *out;            /* directory for bench.csv/svg/png */
     const char *markdown;       /* the markdown table, NULL: OUT/bench.md */
     const char *only;           /* run only lessons whose id starts with this */
+    const char *only_variant;   /* ... and only this variant */
     const char *figures_cmd;    /* command that runs `make figures`, timed */
 };
 
@@ -68,6 +76,9 @@ struct row {
     const char *variant;        /* "top-left", "1 thread" */
     bool exhibit, peer;
     struct bench_timing t[NSCENES];
+    const struct lesson *lesson;        /* NULL for a peer */
+    const struct lesson_variant *var;
+    int samples;                /* lesson 08's samples per pixel (0, 1: the centre) */
 };
 
 static struct row rows[MAX_ROWS];
@@ -77,6 +88,15 @@ static struct big_result big[MAX_BIG];
 static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
 static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
+
+/* The targets as printed, kept for bench.csv. */
+struct target_line {
+    char id[64];
+    double got, goal;
+    bool under, met, measured;
+};
+static struct target_line targets[24];
+static int ntargets;
 
 static double now(void)
 {
@@ -113,13 +133,24 @@ static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
 
 /* --- the lessons ------------------------------------------------------------ */
 
-static void draw_scene(const struct scene *s, const struct lesson_variant *v,
+/* The whole scene: through the lesson's scene-level twin when it has one
+ * (lesson 07 bins every triangle, then draws tile by tile on every core),
+ * else tri_setup + rasterize triangle after triangle. */
+static void draw_scene(const struct row *row, const struct scene *s,
                        const struct raster_params *p, struct target *fb)
 {
+    rasterize_scene_fn whole = lesson_scene_fn(row->lesson, row->var);
+    if (whole) {
+        if (!whole(s, p, fb)) {
+            fprintf(stderr, "tristep-bench: %s %s: out of memory\n", row->program, row->variant);
+            exit(1);
+        }
+        return;
+    }
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        v->rasterize(&t, p, fb, NULL);
+        row->var->rasterize(&t, p, fb, NULL);
     }
 }
 
@@ -158,51 +189,47 @@ static uint8_t *sample_reference(const struct scene *s, int n)
     return cov;
 }
 
-/* samples > 1: lesson 08's samples per pixel (its rows "msaa 4 samples", ...),
- * checked against sample_reference() instead of the pixel-centre coverage. */
-static void time_variant(struct row *row, const struct lesson_variant *v,
-                         struct bench_scene *sc, uint8_t *const peer_cov[],
-                         const struct options *o, int samples)
+/* One timed run of a row on scene i (r < 0: the warm-up, not kept). The
+ * target (multisample for a row of lesson 08's samples) is cleared outside
+ * the clock and does not count coverage. */
+static void time_once(struct row *row, int i, const struct scene *s, struct target *fb, int r)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = samples };
-    for (int i = 0; i < NSCENES; i++) {
-        const struct scene *s = &sc[i].s;
-        struct target fb;
-        if (!target_init(&fb, s->w, s->h, scene_background(s))
-            || !target_multisample(&fb, samples)) {
-            fprintf(stderr, "tristep-bench: out of memory\n");
-            exit(1);
-        }
-        /* timed: the target does not count coverage (count == NULL) */
-        struct target timed = fb;
-        timed.count = NULL;
-        struct bench_timing *bt = &row->t[i];
-        bt->runs = o->runs;
-        for (int r = -1; r < o->runs; r++) {
-            target_clear(&fb);
-            double t0 = now();
-            draw_scene(s, v, &p, &timed);
-            if (r >= 0)
-                bt->t[r] = now() - t0;
-        }
-        bench_timing_stats(bt);
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    target_clear(fb);
+    struct target timed = *fb;
+    timed.count = NULL;
+    double t0 = now();
+    draw_scene(row, s, &p, &timed);
+    if (r >= 0)
+        row->t[i].t[r] = now() - t0;
+}
 
-        /* untimed: the same code once more, counting coverage */
-        target_clear(&fb);
-        draw_scene(s, v, &p, &fb);
-        size_t n = (size_t)s->w * (size_t)s->h;
-        if (samples > 1) {      /* llvmpipe is not asked for samples */
-            static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
-            if (!ref[i][samples])
-                ref[i][samples] = sample_reference(s, samples);
-            bt->diff_ref = count_diff(fb.count, ref[i][samples], n);
-            bt->diff_peer = -1;
-        } else {
-            bt->diff_ref = count_diff(fb.count, sc[i].coverage, n);
-            bt->diff_peer = peer_cov ? count_diff(fb.count, peer_cov[i], n) : -1;
-        }
-        target_free(&fb);
+/* A row's target on one scene, among that scene's targets by sample count. */
+static struct target *row_target(struct target fbs[], const struct row *row)
+{
+    return &fbs[row->samples > 1 ? row->samples : 0];
+}
+
+/* Untimed: the same code once more, counting coverage, against the
+ * reference and llvmpipe; a row of samples > 1 against sample_reference()
+ * alone (llvmpipe is not asked for samples). */
+static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
+                           uint8_t *const peer_cov[], struct target *fb)
+{
+    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    target_clear(fb);
+    draw_scene(row, &sc->s, &p, fb);
+    size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
+    if (row->samples > 1) {
+        static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
+        if (!ref[i][row->samples])
+            ref[i][row->samples] = sample_reference(&sc->s, row->samples);
+        row->t[i].diff_ref = count_diff(fb->count, ref[i][row->samples], n);
+        row->t[i].diff_peer = -1;
+        return;
     }
+    row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
+    row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
 }
 
 /* --- the memory limit ----------------------------------------------------- */
@@ -240,6 +267,38 @@ static double bandwidth_limit(size_t n, int runs, double *gbs)
     free(d);
     *gbs = 16.0 * (double)n / bt.median * 1e-9;
     return (double)n / bt.median * 1e-6;
+}
+
+/* The same pass over one 64 x 64 tile's colour and depth (32 KB), again and
+ * again until n pixels are done: the rate when every access hits the cache,
+ * what a tiled rasterizer's overdraw costs at best. Returns Mpix/s. */
+static double cache_resident_limit(size_t n, int runs, double *gbs)
+{
+    enum { TILE_PIX = 64 * 64 };
+    static uint32_t c[TILE_PIX];
+    static float d[TILE_PIX];
+    for (size_t i = 0; i < TILE_PIX; i++) {
+        c[i] = (uint32_t)i;
+        d[i] = (float)(i & 1023);
+    }
+    size_t passes = n / TILE_PIX + 1;
+    struct bench_timing bt = { .runs = runs };
+    for (int r = -1; r < runs; r++) {
+        double t0 = now();
+        for (size_t p = 0; p < passes; p++) {
+            for (size_t i = 0; i < TILE_PIX; i++) {
+                c[i] ^= 0x00010101u;
+                d[i] += 1.0f;
+            }
+            __asm__ volatile("" ::: "memory");  /* each pass really reads and writes */
+        }
+        if (r >= 0)
+            bt.t[r] = now() - t0;
+    }
+    bench_timing_stats(&bt);
+    double pix = (double)(passes * TILE_PIX);
+    *gbs = 16.0 * pix / bt.median * 1e-9;
+    return pix / bt.median * 1e-6;
 }
 
 /* --- the explorer's frame ------------------------------------------------- */
@@ -460,6 +519,13 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
         fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
                 front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
                 front.in / front.t.median * 1e-6);
+    /* the targets: program target-met or target-missed, variant = its id,
+     * median_s = the value measured, min_s = the goal */
+    for (int k = 0; k < ntargets; k++)
+        if (targets[k].measured)
+            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1\n",
+                    targets[k].met ? "target-met" : "target-missed", targets[k].id,
+                    targets[k].got, targets[k].goal);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
@@ -580,48 +646,75 @@ static bool write_chart(const char *dir, const struct bench_scene *sc, double li
     return true;
 }
 
-/* One target line: measured ratio against the goal, met or missed by how much. */
-static void print_target(const char *what, double got, double goal, const char *unit)
+/* One target line: measured value against the goal, met or missed by how
+ * much (under: the value must stay under the goal). */
+static void print_target(const char *id, const char *what, double got, double goal,
+                         const char *unit, bool under)
 {
+    struct target_line *t = ntargets < 24 ? &targets[ntargets++] : &targets[23];
+    snprintf(t->id, sizeof t->id, "%s", id);
+    t->got = got, t->goal = goal, t->under = under, t->measured = got > 0;
     if (got <= 0) {
-        printf("  %-52s not measured\n", what);
+        printf("  %-60s not measured\n", what);
         return;
     }
-    bool met = got >= goal;
-    printf("  %-52s %7.2f%s (goal %.2f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
-           met ? "met" : "MISSED", met ? 100 * (got / goal - 1) : 100 * (1 - got / goal));
+    t->met = under ? got <= goal : got >= goal;
+    double by = under ? (t->met ? 1 - got / goal : got / goal - 1)
+                      : (t->met ? got / goal - 1 : 1 - got / goal);
+    printf("  %-60s %7.2f%s (goal %s%.2f%s)  %s by %.0f%%\n", what, got, unit,
+           under ? "under " : "", goal, unit, t->met ? "met" : "MISSED", 100 * by);
 }
 
-/* The same for a time that must stay under its goal. */
-static void print_target_under(const char *what, double got, double goal, const char *unit)
+/* Ratio of medians b / a on scene i (a faster: > 1), 0 when a row is missing. */
+static double speedup(const struct row *fast, const struct row *slow, int i)
 {
-    if (got <= 0) {
-        printf("  %-52s not measured\n", what);
-        return;
+    return fast && slow ? slow->t[i].median / fast->t[i].median : 0;
+}
+
+static void print_targets(const struct bench_scene *sc, double limit, double cache_limit)
+{
+    const struct row *l07 = find_row("07-", "tiles"), *l07_1 = find_row("07-", "1-thread");
+    const struct row *lp1 = find_row("llvmpipe", "1 thread");
+    const struct row *lpn = find_row("llvmpipe", "default threads");
+    const struct row *l05 = find_row("05-", NULL), *l02 = find_row("02-", NULL);
+    static const char *const scene_id[NSCENES] = { "large", "small", "mixed" };
+    static const char *const unit[NSCENES] = { "Mpix/s", "Mtri/s", "Mtri/s" };
+    static const double goal[NSCENES] = { TARGET_L07_LARGE_X, TARGET_L07_SMALL_X, TARGET_L07_MIXED_X };
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    char what[160], id[64];
+
+    printf("\ntargets (medians of the same run; lesson 07 = 07-tiles on %ld threads, one per "
+           "core; llvmpipe with its default threads):\n", cores);
+    for (int i = 0; i < NSCENES; i++) {
+        snprintf(what, sizeof what, "lesson 07 vs llvmpipe on %s (%s)", scene_id[i], unit[i]);
+        snprintf(id, sizeof id, "l07-vs-llvmpipe-%s", scene_id[i]);
+        print_target(id, what, speedup(l07, lpn, i), goal[i], "x", false);
     }
-    bool met = got <= goal;
-    printf("  %-52s %7.2f%s (goal under %.0f%s)  %s by %.0f%%\n", what, got, unit, goal, unit,
-           met ? "met" : "MISSED", met ? 100 * (1 - got / goal) : 100 * (got / goal - 1));
-}
+    for (int i = 0; i < NSCENES; i++) {
+        snprintf(what, sizeof what, "lesson 07, 1 thread vs llvmpipe, 1 thread, on %s", scene_id[i]);
+        snprintf(id, sizeof id, "l07-1-thread-vs-llvmpipe-1-thread-%s", scene_id[i]);
+        print_target(id, what, speedup(l07_1, lp1, i), TARGET_L07_ONE_X, "x", false);
+    }
+    for (int i = 0; i < NSCENES; i += 2) {     /* large and mixed */
+        snprintf(what, sizeof what, "lesson 07 from 1 to %ld threads on %s", cores, scene_id[i]);
+        snprintf(id, sizeof id, "l07-1-to-%ld-threads-%s", cores, scene_id[i]);
+        print_target(id, what, speedup(l07, l07_1, i), TARGET_L07_SCALE_X, "x", false);
+    }
+    double rate = l07 ? mpix(&sc[SCENE_LARGE], &l07->t[SCENE_LARGE]) : 0;
+    print_target("l07-large-vs-memory-limit", "lesson 07 on large, times the memory limit",
+                 limit > 0 ? rate / limit : 0, TARGET_L07_MEMORY_X, "x", false);
+    if (rate > 0 && cache_limit > 0)
+        printf("  %-60s %6.0f%%  (%.0f of %.0f Mpix/s)\n",
+               "  ... that is of the cache-resident limit (one 64 x 64 tile)",
+               100 * rate / cache_limit, rate, cache_limit);
 
-static void print_targets(const struct bench_scene *sc, double limit)
-{
-    const struct row *l05 = find_row("05-", NULL);
-    const struct row *lp = find_row("llvmpipe", "1 thread");
-    printf("\ntargets (single thread, medians; lesson 05 = %s %s, llvmpipe = LP_NUM_THREADS=0):\n",
-           l05 ? l05->program : "(not built)", l05 ? l05->variant : "");
-    double x[NSCENES] = { 0, 0, 0 };
-    for (int i = 0; i < NSCENES; i++)
-        if (l05 && lp)
-            x[i] = lp->t[i].median / l05->t[i].median;
-    print_target("lesson 05 vs llvmpipe on large (Mpix/s)", x[SCENE_LARGE], TARGET_LARGE_X, "x");
-    print_target("lesson 05 vs llvmpipe on small (Mtri/s)", x[SCENE_SMALL], TARGET_SMALL_X, "x");
-    print_target("lesson 05 vs llvmpipe on mixed (Mtri/s)", x[SCENE_MIXED], TARGET_MIXED_X, "x");
-    double bw = l05 && limit > 0 ? mpix(&sc[SCENE_LARGE], &l05->t[SCENE_LARGE]) / limit : 0;
-    print_target("lesson 05 on large, share of the memory limit", 100 * bw,
-                 100 * TARGET_BANDWIDTH, "%");
-    print_target_under("explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
-                       TARGET_FRAME_MS, " ms");
+    printf("\nlesson 05 against lesson 02, the paper's figures (Mileff, Nehez, Dudra 2015):\n");
+    print_target("l05-vs-l02-large", "lesson 05 vs lesson 02 on large (paper's best: 9.72x)",
+                 speedup(l05, l02, SCENE_LARGE), PAPER_L05_LARGE_X, "x", false);
+    print_target("l05-vs-l02-tiny", "lesson 05 vs lesson 02 on small, tiny triangles (paper: 0.85x)",
+                 speedup(l05, l02, SCENE_SMALL), PAPER_L05_TINY_X, "x", false);
+    print_target("explorer-frame-ms", "explorer frame, 1280 x 800, 64 x 48 grid, numbers", frame_ms,
+                 TARGET_FRAME_MS, " ms", true);
     double first = 0, rss = 0, step = 0;
     for (int i = 0; i < nbig; i++)
         if (big[i].ok) {
@@ -629,19 +722,22 @@ static void print_targets(const struct bench_scene *sc, double limit)
             rss = fmax(rss, big[i].peak_rss_mib);
             step = fmax(step, 1e3 * fmax(big[i].step_worst_s, fmax(big[i].end_s, big[i].back_worst_s)));
         }
-    print_target_under("large scene: first frame, slowest lesson", first, TARGET_BIG_FIRST_S, " s");
-    print_target_under("large scene: peak memory, largest lesson", rss, TARGET_BIG_RSS_MIB, " MiB");
-    print_target_under("large scene: slowest step (jump, End, back)", step, TARGET_BIG_STEP_MS, " ms");
-    /* the fastest exact variant of lesson 05 on each scene, for the record */
-    for (int i = 0; i < NSCENES && lp; i++) {
+    print_target("big-first-frame-s", "large scene: first frame, slowest lesson", first,
+                 TARGET_BIG_FIRST_S, " s", true);
+    print_target("big-peak-rss-mib", "large scene: peak memory, largest lesson", rss,
+                 TARGET_BIG_RSS_MIB, " MiB", true);
+    print_target("big-slowest-step-ms", "large scene: slowest step (jump, End, back)", step,
+                 TARGET_BIG_STEP_MS, " ms", true);
+    /* the fastest exact variant of every lesson on each scene, for the record */
+    for (int i = 0; i < NSCENES && lp1; i++) {
         const struct row *best = NULL;
         for (int k = 0; k < nrows; k++)
-            if (strncmp(rows[k].program, "05-", 3) == 0 && !rows[k].exhibit
+            if (!rows[k].peer && !rows[k].exhibit
                 && (!best || rows[k].t[i].median < best->t[i].median))
                 best = &rows[k];
         if (best)
-            printf("  fastest lesson 05 variant on %-6s %-16s %.2fx llvmpipe\n", sc[i].name,
-                   best->variant, lp->t[i].median / best->t[i].median);
+            printf("  fastest on %-6s: %s %-12s %.2fx llvmpipe 1 thread\n", sc[i].name,
+                   best->program, best->variant, lp1->t[i].median / best->t[i].median);
     }
 }
 
@@ -651,7 +747,7 @@ static int usage(FILE *f, int status)
 {
     fprintf(f,
         "usage: tristep-bench [--quick] [--runs N] [--seed N] [--out DIR] [--markdown F]\n"
-        "                     [--lesson NN]\n"
+        "                     [--lesson NN [--variant NAME]]\n"
         "                     [--exhibits] [--no-llvmpipe] [--no-large-scene] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
         "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
@@ -660,6 +756,7 @@ static int usage(FILE *f, int status)
         "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
         "  --markdown F   write the table as markdown to F (default DIR/bench.md)\n"
         "  --lesson NN    only lessons whose id starts with NN\n"
+        "  --variant NAME only that variant of them\n"
         "  --exhibits     also run the exhibits (their coverage is expected to differ)\n"
         "  --figures-cmd  the command that runs `make figures`, timed\n"
         "  --no-large-scene  skip the 2,000,000-triangle scene in the explorer\n"
@@ -701,6 +798,8 @@ static bool parse(struct options *o, int argc, char **argv)
             o->markdown = argv[++i];
         } else if (val && strcmp(a, "--lesson") == 0) {
             o->only = argv[++i];
+        } else if (val && strcmp(a, "--variant") == 0) {
+            o->only_variant = argv[++i];
         } else if (val && strcmp(a, "--figures-cmd") == 0) {
             o->figures_cmd = argv[++i];
         } else {
@@ -740,75 +839,129 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    /* the peer first: its coverage is the second oracle for every lesson */
-    uint8_t *peer_cov[NSCENES] = { NULL };
-    bool have_peer = false;
-    if (o.peer) {
-        static const struct { int threads; const char *name; } cfg[] = {
-            { 0, "1 thread" }, { -1, "default threads" },
-        };
-        for (int i = 0; i < NSCENES; i++)
-            peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
-        for (int c = 0; c < 2; c++) {
-            struct row *r = &rows[nrows];
-            char why[256];
-            uint8_t *cov[NSCENES];
-            for (int i = 0; i < NSCENES; i++)
-                cov[i] = c == 0 ? peer_cov[i] : malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
-            if (peer_run(sc, NSCENES, cfg[c].threads, 1, o.runs, r->t, cov, why, sizeof why)) {
-                r->program = "llvmpipe";
-                r->variant = cfg[c].name;
-                r->peer = true;
-                for (int i = 0; i < NSCENES; i++) {
-                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
-                    r->t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
-                    r->t[i].diff_peer = count_diff(cov[i], peer_cov[i], n);
-                }
-                nrows++;
-                have_peer = c == 0 ? true : have_peer;
-            } else {
-                printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
-            }
-            for (int i = 0; c == 1 && i < NSCENES; i++)
-                free(cov[i]);
-            if (c == 0 && !have_peer)
-                break;
-        }
-        if (have_peer)
-            printf("peer: %s\n", peer_renderer);
-    } else {
+    /* The rows: llvmpipe on one thread and on its default threads, then
+     * every lesson variant. */
+    static const struct { int threads; const char *name; } cfg[] = {
+        { 0, "1 thread" }, { -1, "default threads" },
+    };
+    int npeers = 0;
+    if (o.peer)
+        for (int c = 0; c < 2; c++)
+            rows[nrows++] = (struct row){ .program = "llvmpipe", .variant = cfg[c].name, .peer = true };
+    else
         printf("llvmpipe: not run (--no-llvmpipe)\n");
-    }
-
+    npeers = nrows;
     for (const struct lesson *const *l = all_lessons_fast; *l; l++) {
         if (o.only && strncmp((*l)->id, o.only, strlen(o.only)) != 0)
             continue;
         for (int v = 0; v < (*l)->nvariants && nrows < MAX_ROWS; v++) {
             const struct lesson_variant *var = &(*l)->variants[v];
-            if (var->exhibit && !o.exhibits)
+            if ((var->exhibit && !o.exhibits) || (o.only_variant && strcmp(var->name, o.only_variant)))
                 continue;
-            struct row *r = &rows[nrows++];
-            *r = (struct row){ (*l)->id, var->name, var->exhibit, false, { { .runs = 0 } } };
-            fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
-            time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, 1);
-            /* a lesson with samples: its exact variants at 4 and 8 samples too */
+            rows[nrows++] = (struct row){ .program = (*l)->id, .variant = var->name,
+                                          .exhibit = var->exhibit, .lesson = *l, .var = var };
+            /* a lesson with samples: its exact variants at 4 and 8 samples
+             * too, each checked against its own reference */
             for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !var->exhibit
                             && nrows < MAX_ROWS; n += 4) {
                 static char names[MAX_ROWS][48];
                 snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);
-                r = &rows[nrows];
-                *r = (struct row){ (*l)->id, names[nrows], false, false, { { .runs = 0 } } };
+                rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
+                                            .lesson = *l, .var = var, .samples = n };
                 nrows++;
-                fprintf(stderr, "timing %s %s...\n", r->program, r->variant);
-                time_variant(r, var, sc, have_peer ? peer_cov : NULL, &o, n);
             }
         }
     }
+
+    /* Interleaved, round after round: every row runs once per scene in each
+     * round, so that a slow phase of the shared machine hits every program
+     * alike (FACTS.md). llvmpipe runs in a child process per round (it reads
+     * its thread count once per process), with its own warm-up. */
+    uint8_t *peer_cov[NSCENES] = { NULL };
+    bool have_peer = false;
+    /* one target per scene and sample count that a row uses: fbs[i][0]
+     * for one sample, fbs[i][n] for lesson 08's n samples */
+    static struct target fbs[NSCENES][SAMPLES_MAX + 1];
+    struct target *fb[NSCENES];
+    for (int i = 0; i < NSCENES; i++) {
+        peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
+        fb[i] = &fbs[i][0];
+        if (!peer_cov[i] || !target_init(fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
+            fprintf(stderr, "tristep-bench: out of memory\n");
+            return 1;
+        }
+        for (int k = npeers; k < nrows; k++) {
+            int n = rows[k].samples > 1 ? rows[k].samples : 0;
+            if (!fbs[i][n].color
+                && (!target_init(&fbs[i][n], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))
+                    || !target_multisample(&fbs[i][n], n))) {
+                fprintf(stderr, "tristep-bench: out of memory\n");
+                return 1;
+            }
+        }
+    }
+    for (int k = npeers; k < nrows; k++) {
+        rows[k].t[0].runs = rows[k].t[1].runs = rows[k].t[2].runs = o.runs;
+        for (int i = 0; i < NSCENES; i++)
+            time_once(&rows[k], i, &sc[i].s, row_target(fbs[i], &rows[k]), -1);
+    }
+    bool peer_ok[2] = { npeers > 0, npeers > 1 };
+    for (int r = 0; r < o.runs; r++) {
+        fprintf(stderr, "round %d of %d...\n", r + 1, o.runs);
+        for (int c = 0; c < npeers; c++) {
+            if (!peer_ok[c])
+                continue;
+            char why[256];
+            struct bench_timing one[NSCENES];
+            uint8_t *cov[NSCENES];
+            for (int i = 0; i < NSCENES; i++)
+                cov[i] = c == 0 && r == 0 ? peer_cov[i] : fb[i]->count;   /* scratch after the first */
+            if (!peer_run(sc, NSCENES, cfg[c].threads, 1, 1, one, cov, why, sizeof why)) {
+                printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
+                peer_ok[c] = false;
+                continue;
+            }
+            for (int i = 0; i < NSCENES; i++) {
+                rows[c].t[i].t[r] = one[i].t[0];
+                rows[c].t[i].runs = r + 1;
+                if (r == 0) {
+                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+                    rows[c].t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
+                    rows[c].t[i].diff_peer = c == 0 ? 0 : count_diff(cov[i], peer_cov[i], n);
+                }
+            }
+        }
+        for (int k = npeers; k < nrows; k++)
+            for (int i = 0; i < NSCENES; i++)
+                time_once(&rows[k], i, &sc[i].s, row_target(fbs[i], &rows[k]), r);
+    }
+    have_peer = peer_ok[0];
+    /* a peer that failed leaves the table */
+    int kept = 0;
+    for (int k = 0; k < nrows; k++)
+        if (!rows[k].peer || peer_ok[k])
+            rows[kept++] = rows[k];
+    nrows = kept;
+    if (have_peer)
+        printf("peer: %s\n", peer_renderer);
+    for (int k = 0; k < nrows; k++) {
+        for (int i = 0; i < NSCENES; i++) {
+            bench_timing_stats(&rows[k].t[i]);
+            if (!rows[k].peer)
+                check_coverage(&rows[k], i, &sc[i], have_peer ? peer_cov : NULL,
+                               row_target(fbs[i], &rows[k]));
+        }
+    }
+    for (int i = 0; i < NSCENES; i++)
+        for (int n = 0; n <= SAMPLES_MAX; n++)
+            target_free(&fbs[i][n]);
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
     double limit = bandwidth_limit(npix, o.runs < 5 ? 5 : o.runs, &gbs);
     double dram = bandwidth_limit(o.quick ? npix : 8 * npix, 3, &dram_gbs);
+    double cache_gbs = 0;
+    double cache_limit = cache_resident_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
     print_table(sc, limit);
     char l3[32] = "?";
     FILE *cf = fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r");
@@ -819,8 +972,9 @@ int main(int argc, char **argv)
     printf("\nmemory limit: one read-modify-write pass over colour + depth, 8 bytes a pixel, "
            "one core:\n  same buffers (%d x %d, %.1f MB; L3 cache %s): %.1f Mpix/s (%.1f GB/s), "
            "the %% mem column\n  8 times larger buffers (beyond the caches): %.1f Mpix/s "
-           "(%.1f GB/s)\n", sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram,
-           dram_gbs);
+           "(%.1f GB/s)\n  one 64 x 64 tile over and over (cache-resident): %.1f Mpix/s (%.1f GB/s)\n",
+           sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram, dram_gbs,
+           cache_limit, cache_gbs);
 
     frame_ms = explorer_frame(o.quick ? 5 : 60);
     if (frame_ms > 0)
@@ -869,7 +1023,7 @@ int main(int argc, char **argv)
     else
         printf("\n3-D front end: could not be measured (out of memory)\n");
 
-    print_targets(sc, limit);
+    print_targets(sc, limit, cache_limit);
 
     /* verdict on exactness: every exact variant, every scene */
     int64_t bad = 0;
