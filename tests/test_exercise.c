@@ -401,6 +401,46 @@ Test(exercise, a_counterexample_opens_at_the_step_it_names)
         }
 }
 
+/* Lesson 06: the skeleton's 3-D counterexample, opened as make exercise
+ * opens it (the exercise's front end around the same clipper), at the step
+ * the check printed: the end of the run, where the diff view marks the
+ * pixels the untouched clipper draws wrong, with as many pixels marked as
+ * the exact front end and the check disagree on. */
+Test(exercise, a_3d_counterexample_opens_at_the_end_with_the_diff)
+{
+    const struct lesson *l06 = lesson_nn("06");
+    const struct exercise_code *code = NULL;
+    for (int i = 0; all_exercises[i].lesson; i++)
+        if (strcmp(all_exercises[i].lesson, "06") == 0)
+            code = &all_exercises[i];
+    cr_assert(code && code->skeleton_clip);
+    struct run run;
+    use_clip = code->skeleton_clip;
+    check(&run, l06, code->skeleton, NULL);
+    use_clip = NULL;
+    cr_assert_str_eq(run.r.failed, "one vertex behind near", "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "behind the plane"), "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "view depths d = "), "%s", run.report);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
+    cr_assert_gt(s.world.camera_line, 0);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l06, "test.c");
+    exercise_use(l06, code->skeleton);
+    exercise_use_clip(code->skeleton_clip);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step = run.r.step }, err, sizeof err), "%s", err);
+    cr_expect_eq(ex.step, run.r.step);
+    cr_expect_eq(ex.step, ex.replay.total, "the end of the run");
+    cr_expect_gt(ex.extra + ex.missing, 0, "the diff view marks nothing");
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}
+
 /* --- code that crashes --------------------------------------------------------- */
 
 /* Right until the third pixel of a wide row, then a crash. */
@@ -418,24 +458,32 @@ static void crash_on_wide_rows(const struct tri_setup *t, const struct raster_pa
         }
 }
 
-Test(exercise, a_crash_is_reported_with_the_scene_that_crashes, .timeout = 60)
+/* Check the code given to exercise_use as lesson l's exercise in a process
+ * of its own (exercise_check_guarded), into dir; the report into report. */
+static bool check_guarded(const struct lesson *l, const char *program, const char *dir, char *report,
+                          size_t len, struct check_result *r)
 {
-    const struct lesson *l02 = lesson_nn("02");
-    char dir[] = "/tmp/tristep-crash-XXXXXX";
-    cr_assert_not_null(mkdtemp(dir));
     FILE *out = tmpfile();
     cr_assert_not_null(out);
     struct check_options o = { .file = "crash.c", .out_dir = dir, .open_cmd = "make exercise",
                                .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = out,
-                               .program = "build/exercise-02" };
-    exercise_use(l02, crash_on_wide_rows);
-    struct check_result r;
-    cr_expect_not(exercise_check_guarded(l02, &o, &r));
-    char report[8192] = "";
+                               .program = program };
+    bool ok = exercise_check_guarded(l, &o, r);
     rewind(out);
-    size_t n = fread(report, 1, sizeof report - 1, out);
+    size_t n = fread(report, 1, len - 1, out);
     report[n] = '\0';
     fclose(out);
+    return ok;
+}
+
+Test(exercise, a_crash_is_reported_with_the_scene_that_crashes, .timeout = 60)
+{
+    const struct lesson *l02 = lesson_nn("02");
+    char dir[] = "/tmp/tristep-crash-XXXXXX", report[8192];
+    cr_assert_not_null(mkdtemp(dir));
+    exercise_use(l02, crash_on_wide_rows);
+    struct check_result r;
+    cr_expect_not(check_guarded(l02, "build/exercise-02", dir, report, sizeof report, &r));
     cr_expect_not_null(strstr(report, "CRASHED"), "%s", report);
     cr_expect_not_null(strstr(report, "gdb -ex run --args build/exercise-02"), "%s", report);
     cr_expect_str_eq(r.failed, "single triangle");
@@ -443,6 +491,36 @@ Test(exercise, a_crash_is_reported_with_the_scene_that_crashes, .timeout = 60)
     char err[512];
     cr_assert(scene_load(&s, r.counterexample, err, sizeof err), "%s", err);
     cr_expect_eq(s.ntris, 1);
+    scene_free(&s);
+    remove(r.counterexample);
+    rmdir(dir);
+}
+
+/* Lesson 06: a clipper that crashes on a vertex behind the eye. */
+static void crash_behind_the_eye(struct poly *out, const struct poly *in, const struct plane *pl)
+{
+    for (int i = 0; i < in->n; i++)
+        if (in->v[i].pos[2] < 0)
+            raise(SIGSEGV);
+    clip_polygon(out, in, pl, NULL);
+}
+
+Test(exercise, a_crashing_clipper_is_reported_with_one_world_triangle, .timeout = 60)
+{
+    const struct lesson *l06 = lesson_nn("06");
+    char dir[] = "/tmp/tristep-crash-XXXXXX", report[8192];
+    cr_assert_not_null(mkdtemp(dir));
+    exercise_use(l06, l06->variants[0].rasterize);
+    exercise_use_clip(crash_behind_the_eye);
+    struct check_result r;
+    cr_expect_not(check_guarded(l06, "build/exercise-06", dir, report, sizeof report, &r));
+    cr_expect_not_null(strstr(report, "CRASHED"), "%s", report);
+    cr_expect_str_eq(r.failed, "one vertex behind near", "%s", report);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, r.counterexample, err, sizeof err), "%s", err);
+    cr_expect_gt(s.world.camera_line, 0, "written as a 3-D scene");
+    cr_expect_eq(s.world.ntris, 1, "%s", report);
     scene_free(&s);
     remove(r.counterexample);
     rmdir(dir);

@@ -320,6 +320,20 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
     if (!endless) {
         /* fewest triangles, then each coordinate rounded, while it still crashes */
         int budget = CRASH_BUDGET;
+        for (int i = s.world.ntris - 1; i >= 0 && s.world.ntris > 1 && budget > 0; i--, budget--) {
+            struct scene c;     /* a 3-D scene: fewest world triangles */
+            if (!scene_copy(&c, &s))
+                break;
+            struct world *w = &c.world;
+            memmove(&w->tris[i], &w->tris[i + 1], sizeof w->tris[0] * (size_t)(w->ntris - i - 1));
+            w->ntris--;
+            if (crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
         for (int i = s.ntris - 1; i >= 0 && s.ntris > 1 && budget > 0; i--, budget--) {
             struct scene c;
             if (!scene_copy(&c, &s))
@@ -354,9 +368,9 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
         char err[600];
         if (write_counterexample(r->counterexample, &s, endless ? "did not finish" : "crashed", l, o->file,
                                  &v, err, sizeof err)) {
-            r->ntris = s.ntris;
-            fprintf(out, "\n  %s: %d triangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
-                    s.ntris, s.ntris == 1 ? "" : "s", r->counterexample);
+            r->ntris = s.world.camera_line ? s.world.ntris : s.ntris;
+            fprintf(out, "\n  %s: %d %striangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
+                    r->ntris, s.world.camera_line ? "world " : "", r->ntris == 1 ? "" : "s", r->counterexample);
             for (int i = 0; i < s.ntris; i++) {
                 const struct vertex *tv = s.tris[i].v;
                 fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", i + 1, tv[0].x, tv[0].y,
