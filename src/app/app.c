@@ -213,8 +213,8 @@ static void save_scene(struct app *a)
             break;
     }
     if (write_file_atomic(path, scene_writer, &a->ex, err, sizeof err)) {
-        snprintf(a->ex.message, sizeof a->ex.message, "saved the %s to %s: make check LESSON=%.2s "
-                 "SCENE=%s adds it to the checks", a->ex.scene.world.camera_line
+        snprintf(a->ex.message, sizeof a->ex.message, "saved the %s to %.160s: make check LESSON=%.2s "
+                 "SCENE=%.160s adds it to the checks", a->ex.scene.world.camera_line
                  ? "3-D scene (camera and world triangles, no dragged vertex)" : "scene",
                  path, a->lesson->id, path);
         printf("%s: %s\n", a->lesson->id, a->ex.message);
