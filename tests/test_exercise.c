@@ -629,6 +629,8 @@ static const struct mutant mutants[] = {
       "double t = (pl->at - p1->pos[2]) / (p0->pos[2] - p1->pos[2]);", "one vertex behind near", "expected depth" },
     { "06-clipping", "d not set to the plane", "    n.pos[2] = pl->at;\n", "", "one vertex behind near",
       "behind the plane" },
+    { "06-clipping", "own walking order", "const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;",
+      "const struct pvert *p0 = a, *p1 = b;", "shared edges, clipped", "the new vertex depends on the walk" },
     { "06-clipping", "a new vertex only leaving", "if (ina != inb && in_end->pos[2] != pl->at)",
       "if (ina && !inb && in_end->pos[2] != pl->at)", "one vertex behind near", "a missing pixel" },
     { "08-multisampling", "no bias", "+ t->K[k] + t->bias[k];", "+ t->K[k];", "fill-rule ties",

@@ -64,6 +64,7 @@ struct checker {
     bool in_row;
     int last_x, last_y;
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
+    bool both_ways;             /* lesson 06: clip every polygon walked both ways */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };

@@ -23,6 +23,12 @@ static clip_fn current_clip;
 static front_fn current_front;
 static struct clip_fault fault;
 static const struct world_tri *world_base;     /* the scene's world triangles */
+static bool both_ways;
+
+void exercise_clip_both_ways(bool on)
+{
+    both_ways = on;
+}
 
 void exercise_use_clip(clip_fn clip)
 {
@@ -48,6 +54,42 @@ static void first_fault(struct clip_fault f)
 {
     if (fault.what == CLIP_OK)
         fault = f;
+}
+
+/* Is every vertex of a among those of b, to the last bit? */
+static const struct pvert *missing_from(const struct poly *a, const struct poly *b)
+{
+    for (int i = 0; i < a->n; i++) {
+        bool found = false;
+        for (int k = 0; k < b->n && !found; k++)
+            found = memcmp(a->v[i].pos, b->v[k].pos, sizeof a->v[i].pos) == 0
+                    && memcmp(a->v[i].rgb, b->v[k].rgb, sizeof a->v[i].rgb) == 0;
+        if (!found)
+            return &a->v[i];
+    }
+    return NULL;
+}
+
+/* The polygon clipped walking it the other way gives the same vertices as
+ * r, clipped this way (a usable polygon): else f says which is missing. */
+static bool same_both_ways(const struct poly *r, const struct poly *in, const struct plane *pl,
+                           struct clip_fault *f)
+{
+    struct poly rev = { .n = in->n }, back;
+    for (int k = 0; k < in->n; k++)
+        rev.v[k] = in->v[(in->n - k) % in->n];
+    memset(&back, 0, sizeof back);
+    current_clip(&back, &rev, pl);
+    if (back.n < 0 || back.n > POLY_MAX)
+        back.n = 0;
+    const struct pvert *m = missing_from(r, &back);
+    f->reversed = m == NULL;
+    if (!m)
+        m = missing_from(&back, r);
+    if (!m)
+        return true;
+    memcpy(f->made, m->pos, sizeof f->made);
+    return false;
 }
 
 /* The student's clipper against one plane, looked at: false when its
@@ -77,6 +119,10 @@ static bool student_clip(struct poly *out, const struct poly *in, const struct p
         }
         for (int c = 0; c < 3; c++)
             v->rgb[c] = fmin(fmax(v->rgb[c], 0), 1);
+    }
+    if (both_ways && fault.what == CLIP_OK && !same_both_ways(&r, in, pl, &f)) {
+        f.what = CLIP_ORDER;
+        first_fault(f);
     }
     *out = r;
     return true;

@@ -209,6 +209,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
     struct scene want, got;
     if (!scene_copy(&want, s))
         return true;    /* out of memory: said by the caller */
+    exercise_clip_both_ways(C->both_ways);
     if (!front_scene(&want) || !exercise_projected(&got, s)) {
         scene_free(&want);
         return true;

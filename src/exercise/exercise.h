@@ -56,7 +56,7 @@ bool exercise_front(struct scene *s);
  * wrong side of the plane, not finite, or too many vertices (the front end
  * then draws what it can: depths held to at least near, as a projection
  * before clipping would; a polygon it cannot use is dropped). */
-enum clip_wrong { CLIP_OK, CLIP_OUTSIDE, CLIP_NOT_FINITE, CLIP_TOO_MANY };
+enum clip_wrong { CLIP_OK, CLIP_OUTSIDE, CLIP_NOT_FINITE, CLIP_TOO_MANY, CLIP_ORDER };
 struct clip_fault {
     enum clip_wrong what;
     int tri;                    /* the world triangle */
@@ -65,8 +65,17 @@ struct clip_fault {
     int n_in, n;                /* vertices in and out */
     int vertex;                 /* CLIP_OUTSIDE, CLIP_NOT_FINITE: which (0-based) */
     double d;                   /* CLIP_OUTSIDE: its depth */
+    double made[3];             /* CLIP_ORDER: a new vertex one walk made and the other did not */
+    bool reversed;              /* ... made walking the polygon the other way */
 };
 const struct clip_fault *exercise_clip_fault(void);
+
+/* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
+ * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
+ * count a new vertex made one way and not, to the last bit, the other as
+ * a fault (CLIP_ORDER): the canonical order's promise, checked on the
+ * vertices themselves. */
+void exercise_clip_both_ways(bool on);
 
 /* The variant that runs the code given to exercise_use: every write checked,
  * a bare target_write narrated as a step of its own. */

@@ -89,6 +89,16 @@ static void say_clip(FILE *out, const struct clip_fault *f)
         fprintf(out, "      your clipper against %s returned %d vertices for a polygon of %d: one plane cuts\n"
                 "      a convex polygon into one of at most %d\n", plane, f->n, f->n_in, f->n_in + 1);
         break;
+    case CLIP_ORDER: {
+        const char *made = f->reversed ? "the other way" : "this way", *not = f->reversed ? "this way" : "the other way";
+        fprintf(out, "      your clipper against %s made the new vertex\n"
+                "      (%.17g, %.17g, %.17g) walking the polygon %s,\n"
+                "      and walking it %s (as the triangle across a shared edge walks it) did not\n"
+                "      make it to the last bit: the new vertex depends on the walk, and two triangles\n"
+                "      sharing the edge would make two (take the edge's ends in the canonical order)\n",
+                plane, f->made[0], f->made[1], f->made[2], made, not);
+        break;
+    }
     case CLIP_OK:
         break;
     }
