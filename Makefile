@@ -93,6 +93,9 @@ $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
 
+# The search for lesson 06's walk-order cracks (tests/search/cracks.c).
+$(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
+
 # Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
 # does not run under TSan), run by tests/test_lesson07.c.
 TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
@@ -138,13 +141,18 @@ STUDENT   = -DTRISTEP_NARRATE -include exercise/student.h
 EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
 FILE     ?= $(EX_LESSON)/exercise.c
 $(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(FIRST)
-	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) -c $< -o $@
-$(B)/exercises.c: Makefile lessons | $(FIRST)
+	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) \
+	  -Dexercise_clip=exercise_$(call nn,$<)_$(basename $(notdir $<))_clip -c $< -o $@
+$(B)/exercises.c: Makefile lessons $(EX_SRC) | $(FIRST)
 	@printf '#include "exercise/exercise.h"\n' > $@
-	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); done >> $@
+	@printf 'struct poly;\nstruct plane;\n' >> $@
+	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); \
+	  if grep -q '^void exercise_clip(' $$f; then printf 'void exercise_%s_%s_clip(struct poly *, const struct poly *, const struct plane *);\n' $$n $$(basename $$f .c); fi; done >> $@
 	@printf 'const struct exercise_code all_exercises[] = {\n' >> $@
-	@for d in $(sort $(dir $(EX_SRC))); do n=$$(basename $$d | cut -c1-2); printf '    { "%s", exercise_%s_exercise, exercise_%s_answer },\n' $$n $$n $$n; done >> $@
-	@printf '    { NULL, NULL, NULL },\n};\n' >> $@
+	@for d in $(sort $(dir $(EX_SRC))); do n=$$(basename $$d | cut -c1-2); \
+	  if grep -q '^void exercise_clip(' $${d}exercise.c; then c="exercise_$${n}_exercise_clip, exercise_$${n}_answer_clip"; else c="NULL, NULL"; fi; \
+	  printf '    { "%s", exercise_%s_exercise, exercise_%s_answer, %s },\n' $$n $$n $$n "$$c"; done >> $@
+	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }

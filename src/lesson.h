@@ -116,6 +116,11 @@ struct lesson_exercise {
      * n > 1 the exact rule decides every sample (reference_point_covered)
      * and the check compares each pixel's covered samples and resolve */
     const int *samples;
+    /* the student writes lesson 06's clipper, exercise_clip() (one plane,
+     * Sutherland-Hodgman, src/exercise/student.h): the check adds the 3-D
+     * checks, each scene projected by the lesson's front end for the exact
+     * picture and by the front end around the student's clipper for theirs */
+    bool clip;
 };
 
 struct lesson {

@@ -392,11 +392,25 @@ static int pipeline_project_first(const struct frustum *v, enum cull cull,
 }
 
 /* Exhibit walk-order: near and far clipped as many pipelines clip, in single
- * precision, and each triangle taking its edges in its own walking order.
- * The two triangles sharing an edge walk it in opposite directions, compute
- * P0 + t (P1 - P0) from opposite ends, round differently, and the two new
- * vertices differ: cracks open along the clipped mesh. */
-static void clip_walk_order_float(struct poly *out, const struct poly *in, const struct plane *pl)
+ * precision (as GPUs do), and each triangle taking its edges in its own
+ * walking order. The two triangles sharing an edge walk it in opposite
+ * directions, compute P0 + t (P1 - P0) from opposite ends, round
+ * differently, and the two new vertices differ: where an edge crosses the
+ * plane at a shallow angle, t carries the float's error of d0 and d1 times
+ * the edge's length, the twins snap to different 1/256 positions, and
+ * pixels along the shared edge are missed or covered twice. The exhibit
+ * float-canonical is the same float clipper taking the ends in the
+ * canonical order: its new vertices are off by as much, but the same in
+ * both triangles, and the mesh stays closed. */
+static bool float_before(const struct pvert *a, const struct pvert *b)
+{
+    for (int i = 0; i < 3; i++)
+        if (a->pos[i] != b->pos[i])
+            return a->pos[i] < b->pos[i];
+    return false;
+}
+
+static void clip_float(struct poly *out, const struct poly *in, const struct plane *pl, bool canonical)
 {
     out->n = 0;
     for (int i = 0; i < in->n; i++) {
@@ -406,29 +420,45 @@ static void clip_walk_order_float(struct poly *out, const struct poly *in, const
         if (ina)
             out->v[out->n++] = *a;
         if (ina != inb) {
-            float t = (float)((float)pl->at - (float)a->pos[2]) / ((float)b->pos[2] - (float)a->pos[2]);
+            const struct pvert *p0 = a, *p1 = b;
+            if (canonical && float_before(b, a))
+                p0 = b, p1 = a;
+            float t = (float)((float)pl->at - (float)p0->pos[2]) / ((float)p1->pos[2] - (float)p0->pos[2]);
             struct pvert *nv = &out->v[out->n++];
             for (int c = 0; c < 3; c++) {
-                nv->pos[c] = (float)a->pos[c] + t * ((float)b->pos[c] - (float)a->pos[c]);
-                nv->rgb[c] = (float)a->rgb[c] + t * ((float)b->rgb[c] - (float)a->rgb[c]);
+                nv->pos[c] = (float)p0->pos[c] + t * ((float)p1->pos[c] - (float)p0->pos[c]);
+                nv->rgb[c] = (float)p0->rgb[c] + t * ((float)p1->rgb[c] - (float)p0->rgb[c]);
+                nv->rgb[c] = fmin(fmax(nv->rgb[c], 0), 1);
             }
             nv->pos[2] = pl->at;
         }
     }
 }
 
-static int pipeline_walk_order(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                               struct vertex out[][3])
+static int pipeline_float(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                          struct vertex out[][3], bool canonical)
 {
     struct poly p, q;
     view_triangle(v, t, &p);
     struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip_walk_order_float(&q, &p, &near);
-    clip_walk_order_float(&p, &q, &far);
+    clip_float(&q, &p, &near, canonical);
+    clip_float(&p, &q, &far, canonical);
     project(v, &p);
     if (!in_guard_band(&p))
         clip_guard_band(&p, NULL);
     return fan(&p, cull, out);
+}
+
+static int pipeline_walk_order(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                               struct vertex out[][3])
+{
+    return pipeline_float(v, cull, t, out, false);
+}
+
+static int pipeline_float_canonical(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                                    struct vertex out[][3])
+{
+    return pipeline_float(v, cull, t, out, true);
 }
 
 /* Exhibit viewport: x and y clipped to the framebuffer, [0, W] x [0, H],
@@ -473,6 +503,7 @@ static int pipeline_no_guard(const struct frustum *v, enum cull cull, const stru
 
 static bool front_project_first(struct scene *s) { return front_scene_with(s, pipeline_project_first); }
 static bool front_walk_order(struct scene *s) { return front_scene_with(s, pipeline_walk_order); }
+static bool front_float_canonical(struct scene *s) { return front_scene_with(s, pipeline_float_canonical); }
 static bool front_viewport(struct scene *s) { return front_scene_with(s, pipeline_viewport); }
 static bool front_no_guard(struct scene *s) { return front_scene_with(s, pipeline_no_guard); }
 
@@ -522,7 +553,9 @@ static const struct lesson_variant variants[] = {
       rasterize_ndc24, true },
     { "project-first", "exhibit: projecting before clipping: a triangle behind the eye, inside out",
       rasterize_05, true },
-    { "walk-order", "exhibit: float clipping in each triangle's own edge order: split vertices",
+    { "walk-order", "exhibit: float clipping in each triangle's own edge order: cracks",
+      rasterize_05, true },
+    { "float-canonical", "float clipping in the canonical order: the cut moves, no crack",
       rasterize_05, true },
     { "viewport", "exhibit: x, y clipped to the screen, not the guard band: more clipping",
       rasterize_05, true },
@@ -532,14 +565,15 @@ static const struct lesson_variant variants[] = {
 
 /* How each variant makes the screen triangles (NULL: the shared front end). */
 static const front_fn fronts[] = {
-    NULL, NULL, NULL, NULL, front_project_first, front_walk_order, front_viewport, front_no_guard,
+    NULL, NULL, NULL, NULL, front_project_first, front_walk_order, front_float_canonical, front_viewport,
+    front_no_guard,
 };
 
 _Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof variants[0],
                "one front end per variant");
 
 /* The variants whose depth buffer holds another quantity than d. */
-static const bool other_depth[] = { false, true, true, true, false, false, false, false };
+static const bool other_depth[] = { false, true, true, true, false, false, false, false, false };
 _Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
                "one entry per variant");
 
@@ -555,6 +589,9 @@ const struct lesson lesson_06 = {
     .aux_names = aux_names,
     .fronts = fronts,
     .other_depth = other_depth,
+    /* the exercise: the student's clipper in the front end, lesson 05's
+     * rasterizer given (lessons/06-clipping/exercise.c) */
+    .exercise = { .write_line = L_RASTER, .clip = true },
     /* a pixel costs what it costs in lesson 05: the front end's work is per
      * triangle, not per pixel */
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },

@@ -201,7 +201,9 @@ static bool scene_writer(FILE *out, void *ctx)
 
 /* S: the scene as it is now, dragged vertices included, to a new file
  * tristep-NN-name-K.scene in the current directory (K the first number
- * free), for --scene, and for `make check LESSON=NN SCENE=file`. */
+ * free), for --scene, and for `make check LESSON=NN SCENE=file`. A 3-D
+ * scene is saved as a 3-D scene, its camera and world triangles (dragging
+ * there moves the model's vertices, so they are saved with it). */
 static void save_scene(struct app *a)
 {
     char path[200], err[480];
@@ -211,8 +213,10 @@ static void save_scene(struct app *a)
             break;
     }
     if (write_file_atomic(path, scene_writer, &a->ex, err, sizeof err)) {
-        snprintf(a->ex.message, sizeof a->ex.message, "saved the scene to %s: make check LESSON=%.2s "
-                 "SCENE=%s adds it to the checks", path, a->lesson->id, path);
+        snprintf(a->ex.message, sizeof a->ex.message, "saved the %s to %.160s: make check LESSON=%.2s "
+                 "SCENE=%.160s adds it to the checks", a->ex.scene.world.camera_line
+                 ? "3-D scene (its camera and world triangles)" : "scene",
+                 path, a->lesson->id, path);
         printf("%s: %s\n", a->lesson->id, a->ex.message);
         fflush(stdout);
     } else {

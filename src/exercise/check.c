@@ -34,11 +34,14 @@
 
 struct guard *check_guard;
 
-/* One check: its name in the report, what it compares, its scenes. */
+/* One check: its name in the report, what it compares, its scenes; and
+ * for lesson 06's clipper, whether every polygon is clipped walked both
+ * ways (the shared edges' promise). */
 struct check {
     const char *name;
     enum check_kind kind;
     scene_gen gen;
+    bool both_ways;
 };
 
 static void progress(const struct check_options *o, int n, int i, const char *name, int done, int total)
@@ -63,7 +66,8 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     shrink(C, s);
     evaluate(C, s, &v);
     r->x = v.x, r->y = v.y;
-    r->ntris = s->ntris;
+    int ntris = s->world.camera_line ? s->world.ntris : s->ntris;
+    r->ntris = ntris;
     struct trail f;
     r->step = step_of(C, s, &v, &f);
     snprintf(r->failed, sizeof r->failed, "%s", name);
@@ -89,14 +93,16 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
         r->counterexample[0] = '\0';
         return false;
     }
-    fprintf(out, "\n  smallest counterexample: %d triangle%s, written to %s\n", s->ntris,
-            s->ntris == 1 ? "" : "s", r->counterexample);
+    fprintf(out, "\n  smallest counterexample: %d %striangle%s, written to %s\n", ntris,
+            s->world.camera_line ? "world " : "", ntris == 1 ? "" : "s", r->counterexample);
     say_verdict(C, out, &v, s);
     explain(C, out, &v, s, &f);
     char samples[32] = "";
     if (C->p.samples > 1)
         snprintf(samples, sizeof samples, " SAMPLES=%d", C->p.samples);
-    fprintf(out, "\n  open it in the explorer at the first wrong pixel (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+    fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+            v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
+                                                                 : "first wrong pixel",
             (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
@@ -108,6 +114,7 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
     fprintf(out, "  %d/%d %-31s ", i + 1, n, ck->name);
     fflush(out);
     C->kind = ck->kind;
+    C->both_ways = ck->both_ways;
     uint64_t tris0 = C->triangles;
     int total = 0;
     char what[200];
@@ -161,7 +168,7 @@ static bool gen_user(int i, struct scene *s, char *what, size_t n)
 
 /* The checks of lesson l, in order; false when a SCENE= file does not load. */
 struct plan {
-    struct check checks[8];
+    struct check checks[16];
     int n;
 };
 
@@ -195,17 +202,27 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     }
     struct check *c = P->checks;
     if (user_count)
-        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user };
-    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single };
-    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties };
-    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes };
-    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random };
+        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user, true };
+    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single, false };
+    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false };
+    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false };
+    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
-                                CK_COLOUR, gen_colour };
+                                CK_COLOUR, gen_colour, false };
     if (l->exercise.no_pixel_mul)
-        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property };
+        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
     if (l->exercise.full_blocks)
-        c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property };
+        c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property, false };
+    if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
+        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };
+        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false };
+        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two, false };
+        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far, false };
+        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge, true };
+        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside, true };
+        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor, true };
+        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras, true };
+    }
     return true;
 }
 
@@ -304,10 +321,24 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
         fprintf(out, "CRASHED\n      your code stopped the check (exit status %d) drawing triangle %d of %s\n",
                 WEXITSTATUS(status), g->tri + 1, what);
 
-    struct checker C = { .l = l, .o = o, .p = check_params(o), .kind = ck->kind };
+    struct checker C = { .l = l, .o = o, .p = check_params(o), .kind = ck->kind, .both_ways = ck->both_ways };
     if (!endless) {
         /* fewest triangles, then each coordinate rounded, while it still crashes */
         int budget = CRASH_BUDGET;
+        for (int i = s.world.ntris - 1; i >= 0 && s.world.ntris > 1 && budget > 0; i--, budget--) {
+            struct scene c;     /* a 3-D scene: fewest world triangles */
+            if (!scene_copy(&c, &s))
+                break;
+            struct world *w = &c.world;
+            memmove(&w->tris[i], &w->tris[i + 1], sizeof w->tris[0] * (size_t)(w->ntris - i - 1));
+            w->ntris--;
+            if (crashes(&C, &c)) {
+                scene_free(&s);
+                s = c;
+            } else {
+                scene_free(&c);
+            }
+        }
         for (int i = s.ntris - 1; i >= 0 && s.ntris > 1 && budget > 0; i--, budget--) {
             struct scene c;
             if (!scene_copy(&c, &s))
@@ -342,9 +373,9 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
         char err[600];
         if (write_counterexample(r->counterexample, &s, endless ? "did not finish" : "crashed", l, o->file,
                                  &v, err, sizeof err)) {
-            r->ntris = s.ntris;
-            fprintf(out, "\n  %s: %d triangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
-                    s.ntris, s.ntris == 1 ? "" : "s", r->counterexample);
+            r->ntris = s.world.camera_line ? s.world.ntris : s.ntris;
+            fprintf(out, "\n  %s: %d %striangle%s, written to %s\n", endless ? "the scene" : "smallest scene that crashes",
+                    r->ntris, s.world.camera_line ? "world " : "", r->ntris == 1 ? "" : "s", r->counterexample);
             for (int i = 0; i < s.ntris; i++) {
                 const struct vertex *tv = s.tris[i].v;
                 fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", i + 1, tv[0].x, tv[0].y,

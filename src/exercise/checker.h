@@ -31,7 +31,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED, WRONG_MASK,
+    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED, WRONG_MASK, WRONG_CLIP,
 };
 
 struct verdict {
@@ -45,6 +45,10 @@ struct verdict {
     uint64_t mul;               /* multiplications between two pixels */
     int samples;                /* samples per pixel it was drawn at (1: the pixel centre) */
     unsigned want_mask, got_mask;   /* WRONG_MASK: the samples holding a depth */
+    /* a 3-D scene: tri is a world triangle; the screen triangles made of it */
+    bool world;
+    int want_tris, got_tris;
+    struct clip_fault clip;         /* WRONG_CLIP: what the clipper did */
 };
 
 /* Everything one check run needs. */
@@ -60,6 +64,7 @@ struct checker {
     bool in_row;
     int last_x, last_y;
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
+    bool both_ways;             /* lesson 06: clip every polygon walked both ways */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };
@@ -67,6 +72,10 @@ struct checker {
 /* Draw scene s both ways, triangle by triangle; false (and v) at the first
  * triangle after which they differ in what C->kind compares. */
 bool evaluate(struct checker *C, const struct scene *s, struct verdict *v);
+
+/* A 3-D scene's screen triangles as the exercise's front end makes them
+ * (exercise_front), in a copy of s; false when out of memory. */
+bool exercise_projected(struct scene *out, const struct scene *s);
 
 /* x, then y, of each vertex of the scene in order: coordinate k. */
 double *scene_coord(struct scene *s, int k);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "front/front.h"    /* front_scene: the exact picture's triangles */
 
 static bool prepare(struct target *fb, const struct scene *s, int samples)
 {
@@ -171,11 +172,93 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     return true;
 }
 
+bool exercise_projected(struct scene *out, const struct scene *s)
+{
+    if (!scene_copy(out, s))
+        return false;
+    if (exercise_front(out))
+        return true;
+    scene_free(out);
+    return false;
+}
+
+/* Draw screen triangles [*i, end of world triangle w) of s with fn into fb. */
+static void draw_world_tri(struct checker *C, const struct scene *s, int w, int *i,
+                           const struct lesson_variant *v, struct target *fb, bool watch_faults)
+{
+    struct raster_params p = C->p;
+    p.scene = s;
+    for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
+        struct tri_setup t;
+        tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);
+        struct trace tr = { .sink = NULL };
+        trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
+        if (watch_faults && check_guard)
+            check_guard->tri = *i;
+        v->rasterize(&t, &p, fb, watch_faults ? &tr : NULL);
+        if (watch_faults)
+            C->triangles++;
+    }
+}
+
+/* A 3-D scene: the exact picture from the lesson's front end, the
+ * exercise's from its own (exercise_front), compared after each world
+ * triangle; the clipper's faults first. */
+static bool evaluate_world(struct checker *C, const struct scene *s, struct verdict *v)
+{
+    struct scene want, got;
+    if (!scene_copy(&want, s))
+        return true;    /* out of memory: said by the caller */
+    exercise_clip_both_ways(C->both_ways);
+    if (!front_scene(&want) || !exercise_projected(&got, s)) {
+        scene_free(&want);
+        return true;
+    }
+    bool ok = prepare(&C->want, s, 1) && prepare(&C->got, s, 1);
+    C->evaluations += ok;
+    const struct lesson_variant *exact = exercise_exact(true);
+    const struct clip_fault *cf = exercise_clip_fault();
+    int a = 0, b = 0;
+    for (int w = 0; ok && w < s->world.ntris; w++) {
+        int a0 = a, b0 = b;
+        draw_world_tri(C, &want, w, &a, exact, &C->want, false);
+        struct verdict base = { .world = true, .tri = w, .samples = 1 };
+        if (cf->what != CLIP_OK && cf->tri == w) {
+            *v = base;
+            v->what = WRONG_CLIP;
+            v->clip = *cf;
+            ok = false;
+            break;
+        }
+        exercise_fault_clear();
+        draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true);
+        const struct exercise_fault *f = exercise_fault();
+        if (f->any) {
+            *v = base;
+            v->what = WRONG_OUTSIDE, v->x = f->x, v->y = f->y;
+            ok = false;
+        } else if (!compare(C, w, v)) {
+            v->world = true;
+            ok = false;
+        }
+        v->want_tris = a - a0, v->got_tris = b - b0;
+    }
+    scene_free(&want);
+    scene_free(&got);
+    return ok;
+}
+
 /* Every sample count of the lesson in turn (lesson_exercise.samples), or the
  * pixel centre alone; at a failure C->p.samples stays the count it failed at. */
 bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
 {
     *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
+    if (s->world.camera_line) {
+        C->p.samples = 0;
+        if (evaluate_world(C, s, v))
+            *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
+        return v->what == WRONG_NONE;
+    }
     const int *counts = C->l->exercise.samples;
     if (!counts) {
         C->p.samples = 0;

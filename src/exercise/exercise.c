@@ -20,6 +20,8 @@ void exercise_use(const struct lesson *l, rasterize_fn fn)
 {
     current_lesson = l;
     current_fn = fn;
+    exercise_use_clip(NULL);
+    exercise_use_front(NULL);
 }
 
 const struct exercise_fault *exercise_fault(void)
@@ -253,5 +255,11 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
     variants[1].what = what;
     out->variants = variants;
     out->nvariants = 2;
+    /* the exact picture by the lesson's front end, the exercise's by the
+     * one around the student's clipper (lesson 06); the depth buffer holds
+     * z in both */
+    static const front_fn fronts[2] = { NULL, exercise_front };
+    out->fronts = l->exercise.clip ? fronts : NULL;
+    out->other_depth = NULL;
     out->exhibit_scene = NULL;      /* X toggles on the student's scene */
 }

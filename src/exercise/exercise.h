@@ -33,6 +33,50 @@
  * lesson it is an exercise of. */
 void exercise_use(const struct lesson *l, rasterize_fn fn);
 
+/* Lesson 06's exercise (lesson_exercise.clip): the student's clipper against
+ * one plane, exercise_clip() (student.h), and the front end around it. */
+struct poly;
+struct plane;
+typedef void (*clip_fn)(struct poly *out, const struct poly *in, const struct plane *pl);
+
+/* The clipper the exercise's front end runs from now on (NULL: the
+ * lesson's own, clip_polygon), or a whole front end of another making (a
+ * lesson 06 exhibit's; NULL: none). exercise_use resets both. */
+void exercise_use_clip(clip_fn clip);
+void exercise_use_front(front_fn front);
+
+/* The exercise variant's front end: a 3-D scene's screen triangles made
+ * by the front end given to exercise_use_front, else by lesson 06's front
+ * end with the clipper given to exercise_use_clip in place of its own for
+ * near and far, else by front_scene. */
+bool exercise_front(struct scene *s);
+
+/* What the student's clipper did wrong since exercise_fault_clear(): the
+ * first world triangle whose polygon came out of it with a vertex on the
+ * wrong side of the plane, not finite, or too many vertices (the front end
+ * then draws what it can: depths held to at least near, as a projection
+ * before clipping would; a polygon it cannot use is dropped). */
+enum clip_wrong { CLIP_OK, CLIP_OUTSIDE, CLIP_NOT_FINITE, CLIP_TOO_MANY, CLIP_ORDER };
+struct clip_fault {
+    enum clip_wrong what;
+    int tri;                    /* the world triangle */
+    int plane;                  /* enum plane_id: PLANE_NEAR or PLANE_FAR */
+    double at;                  /* the plane's depth */
+    int n_in, n;                /* vertices in and out */
+    int vertex;                 /* CLIP_OUTSIDE, CLIP_NOT_FINITE: which (0-based) */
+    double d;                   /* CLIP_OUTSIDE: its depth */
+    double made[3];             /* CLIP_ORDER: a new vertex one walk made and the other did not */
+    bool reversed;              /* ... made walking the polygon the other way */
+};
+const struct clip_fault *exercise_clip_fault(void);
+
+/* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
+ * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
+ * count a new vertex made one way and not, to the last bit, the other as
+ * a fault (CLIP_ORDER): the canonical order's promise, checked on the
+ * vertices themselves. */
+void exercise_clip_both_ways(bool on);
+
 /* The variant that runs the code given to exercise_use: every write checked,
  * a bare target_write narrated as a step of its own. */
 extern const struct lesson_variant exercise_variant;
@@ -94,6 +138,7 @@ struct exercise_code {
     const char *lesson;             /* "02" */
     rasterize_fn skeleton;          /* lessons/NN-name/exercise.c as given */
     rasterize_fn answer;            /* lessons/NN-name/answer.c */
+    clip_fn skeleton_clip, answer_clip;     /* their exercise_clip (lesson 06), or NULL */
 };
 extern const struct exercise_code all_exercises[];     /* ends with lesson == NULL */
 

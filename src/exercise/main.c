@@ -16,6 +16,9 @@
 extern const struct lesson LESSON;
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr);
+/* the student's clipper (lesson 06), or the lesson's own from the library's
+ * clip_default.c when the file has none */
+void exercise_clip(struct poly *out, const struct poly *in, const struct plane *pl);
 
 int main(int argc, char **argv)
 {
@@ -48,6 +51,8 @@ int main(int argc, char **argv)
     }
 
     exercise_use(&LESSON, exercise_rasterize);
+    if (LESSON.exercise.clip)
+        exercise_use_clip(exercise_clip);
     int status;
     if (check) {
         char cmd[600];

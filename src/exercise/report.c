@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "explore/replay.h"
+#include "front/front.h"      /* the view depths of a world triangle */
 #include "util/file.h"
 
 
@@ -54,12 +55,74 @@ static void neighbourhood(const struct checker *C, FILE *out, int px, int py)
         fprintf(out, "      (# covered once, 2 twice, . not covered; x from %d to %d)\n", x0, x1);
 }
 
+static void say_pixels(const struct checker *C, FILE *out, const struct verdict *v);
+
+/* A world triangle: its vertices in the world and their view depths. */
+static void say_world_tri(FILE *out, const struct scene *s, int w)
+{
+    struct frustum fr;
+    frustum_init(&fr, &s->world.cam, s->w, s->h);
+    const struct world_tri *t = &s->world.tris[w];
+    fprintf(out, "      world triangle %d:", w + 1);
+    for (int k = 0; k < 3; k++)
+        fprintf(out, " (%g, %g, %g)", t->p[k][0], t->p[k][1], t->p[k][2]);
+    fprintf(out, "\n      view depths d = ");
+    for (int k = 0; k < 3; k++)
+        fprintf(out, "%.6g%s", view_vertex(&fr, t->p[k], t->rgb[k]).pos[2], k < 2 ? ", " : "");
+    fprintf(out, " (near %g, far %g)\n", fr.near, fr.far);
+}
+
+static void say_clip(FILE *out, const struct clip_fault *f)
+{
+    const char *plane = f->plane == PLANE_FAR ? "d <= far" : "d >= near";
+    switch (f->what) {
+    case CLIP_OUTSIDE:
+        fprintf(out, "      your clipper against %s (%g) kept vertex %d at d = %.17g: %s the plane\n"
+                "      (a kept vertex lies inside; a new one gets d = %g exactly)\n", plane, f->at,
+                f->vertex + 1, f->d, f->plane == PLANE_FAR ? "beyond" : "behind", f->at);
+        break;
+    case CLIP_NOT_FINITE:
+        fprintf(out, "      your clipper against %s made vertex %d with a coordinate or colour that is not finite\n",
+                plane, f->vertex + 1);
+        break;
+    case CLIP_TOO_MANY:
+        fprintf(out, "      your clipper against %s returned %d vertices for a polygon of %d: one plane cuts\n"
+                "      a convex polygon into one of at most %d\n", plane, f->n, f->n_in, f->n_in + 1);
+        break;
+    case CLIP_ORDER: {
+        const char *made = f->reversed ? "the other way" : "this way", *not = f->reversed ? "this way" : "the other way";
+        fprintf(out, "      your clipper against %s made the new vertex\n"
+                "      (%.17g, %.17g, %.17g) walking the polygon %s,\n"
+                "      and walking it %s (as the triangle across a shared edge walks it) did not\n"
+                "      make it to the last bit: the new vertex depends on the walk, and two triangles\n"
+                "      sharing the edge would make two (take the edge's ends in the canonical order)\n",
+                plane, f->made[0], f->made[1], f->made[2], made, not);
+        break;
+    }
+    case CLIP_OK:
+        break;
+    }
+}
+
 void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
                         const struct scene *s)
 {
-    const struct vertex *tv = s->tris[v->tri].v;
-    fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", v->tri + 1, tv[0].x, tv[0].y,
-            tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+    if (v->world) {
+        say_world_tri(out, s, v->tri);
+        if (v->what != WRONG_CLIP && v->what != WRONG_NONE)
+            fprintf(out, "      made %d screen triangle%s (the lesson's front end: %d)\n", v->got_tris,
+                    v->got_tris == 1 ? "" : "s", v->want_tris);
+    } else {
+        const struct vertex *tv = s->tris[v->tri].v;
+        fprintf(out, "      triangle %d: (%g, %g) (%g, %g) (%g, %g)\n", v->tri + 1, tv[0].x, tv[0].y,
+                tv[1].x, tv[1].y, tv[2].x, tv[2].y);
+    }
+    say_pixels(C, out, v);
+}
+
+/* What is wrong at the pixel (or in the clipper), with its neighbourhood. */
+static void say_pixels(const struct checker *C, FILE *out, const struct verdict *v)
+{
     if (v->samples > 1 && v->what != WRONG_NONE)
         fprintf(out, "      at %d samples per pixel (SAMPLES=%d; the explorer's samples view shows them)\n",
                 v->samples, v->samples);
@@ -105,6 +168,9 @@ void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
         fprintf(out, "      block (%d, %d)-(%d, %d) is covered in full, but was not narrated FULL\n",
                 v->bx, v->by, v->bx1, v->by1);
         break;
+    case WRONG_CLIP:
+        say_clip(out, &v->clip);
+        break;
     case WRONG_NONE:
         break;
     }
@@ -133,6 +199,19 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
 {
     *f = (struct trail){ .x = v->x, .y = v->y };
     struct replay r;
+    if (v->world) {
+        /* other triangles than the exact picture's: the explorer compares
+         * the whole picture, at the end of the run */
+        struct scene got;
+        if (!exercise_projected(&got, s))
+            return 0;
+        struct raster_params p = C->p;
+        p.scene = &got;
+        uint64_t total = replay_init(&r, &got, &exercise_variant, &p) ? r.total : 0;
+        replay_free(&r);
+        scene_free(&got);
+        return total;
+    }
     if (!replay_init(&r, s, &exercise_variant, &C->p))
         return 0;
     uint64_t step = r.start[v->tri + 1];
@@ -169,6 +248,8 @@ static const char *const edge_names[3] = { "AB", "BC", "CA" };
 void explain(const struct checker *C, FILE *out, const struct verdict *v,
                     const struct scene *s, const struct trail *f)
 {
+    if (v->world)
+        return;     /* the verdict said what there is to say of a world triangle */
     if (v->what == WRONG_COUNT || v->what == WRONG_COLOUR || v->what == WRONG_DEPTH) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[v->tri].v, s->w, s->h, C->p.subpixel_bits);

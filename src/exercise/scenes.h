@@ -18,4 +18,14 @@ bool gen_random(int i, struct scene *s, char *what, size_t n);      /* random tr
 bool gen_colour(int i, struct scene *s, char *what, size_t n);      /* colour and depth */
 bool gen_property(int i, struct scene *s, char *what, size_t n);    /* the lesson's property */
 
+/* 3-D scenes for lesson 06's clipper, simplest first */
+bool gen_no_clip(int i, struct scene *s, char *what, size_t n);         /* between near and far */
+bool gen_behind_one(int i, struct scene *s, char *what, size_t n);      /* one vertex behind near */
+bool gen_behind_two(int i, struct scene *s, char *what, size_t n);      /* two behind */
+bool gen_crossing_far(int i, struct scene *s, char *what, size_t n);    /* beyond far, or both */
+bool gen_shared_edge(int i, struct scene *s, char *what, size_t n);     /* shared edges cut */
+bool gen_box_inside(int i, struct scene *s, char *what, size_t n);      /* a closed box, inside */
+bool gen_floor(int i, struct scene *s, char *what, size_t n);           /* past the guard band */
+bool gen_random_cameras(int i, struct scene *s, char *what, size_t n);  /* anything */
+
 #endif

@@ -160,9 +160,65 @@ static void plain_attributes(struct shrinker *S, struct scene *s)
     try_candidate(S, s, &c);
 }
 
+/* --- a 3-D scene: fewer world triangles, rounder world coordinates ---------- */
+
+static void drop_world_triangles(struct shrinker *S, struct scene *s)
+{
+    bool progress = true;
+    while (progress && s->world.ntris > 1) {
+        progress = false;
+        for (int i = s->world.ntris - 1; i >= 0 && s->world.ntris > 1; i--) {
+            struct scene c;
+            if (!scene_copy(&c, s))
+                return;
+            struct world *w = &c.world;
+            memmove(&w->tris[i], &w->tris[i + 1], sizeof w->tris[0] * (size_t)(w->ntris - i - 1));
+            w->ntris--;
+            progress |= try_candidate(S, s, &c);
+        }
+    }
+}
+
+/* Each world coordinate to the coarsest grid (whole units, halves, ...,
+ * 1/64) that still fails; then plain colours, one per triangle. */
+static void round_world(struct shrinker *S, struct scene *s, bool plain)
+{
+    static const double steps[] = { 1, 0.5, 0.25, 0.125, 1.0 / 16, 1.0 / 64 };
+    for (int i = 0; i < s->world.ntris; i++)
+        for (int k = 0; k < 9; k++) {
+            double v = s->world.tris[i].p[k / 3][k % 3];
+            for (size_t g = 0; g < sizeof steps / sizeof steps[0]; g++) {
+                double u = round(v / steps[g]) * steps[g] + 0.0;     /* -0 as 0 */
+                if (u == v)
+                    break;
+                struct scene c;
+                if (!scene_copy(&c, s))
+                    return;
+                c.world.tris[i].p[k / 3][k % 3] = u;
+                if (try_candidate(S, s, &c))
+                    break;
+            }
+        }
+    if (!plain)
+        return;
+    static const double rgb[3][3] = { { 1, 0.2, 0.2 }, { 0.2, 1, 0.2 }, { 0.3, 0.5, 1 } };
+    struct scene c;
+    if (!scene_copy(&c, s))
+        return;
+    for (int i = 0; i < c.world.ntris; i++)
+        for (int k = 0; k < 3; k++)
+            memcpy(c.world.tris[i].rgb[k], rgb[i % 3], sizeof rgb[0]);
+    try_candidate(S, s, &c);
+}
+
 void shrink(struct checker *C, struct scene *s)
 {
     struct shrinker S = { C, SHRINK_BUDGET };
+    if (s->world.camera_line) {
+        drop_world_triangles(&S, s);
+        round_world(&S, s, C->kind != CK_COLOUR);
+        return;
+    }
     drop_triangles(&S, s);
     round_coordinates(&S, s);
     if (C->kind == CK_COVERAGE || C->kind == CK_PROPERTY)

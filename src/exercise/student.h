@@ -24,6 +24,13 @@
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr);
 
+/* Lesson 06's exercise: the clipper against one plane (front/front.h),
+ * which the front end runs for near, then far. A FILE that does not define
+ * it gets the lesson's own (src/exercise/clip_default.c, linked only then). */
+struct poly;
+struct plane;
+void exercise_clip(struct poly *out, const struct poly *in, const struct plane *pl);
+
 void exercise_write(struct target *fb, int x, int y, float z, uint32_t rgba);
 void exercise_plot(struct target *fb, struct trace *tr, int line, int x, int y, float z,
                    uint32_t rgba);

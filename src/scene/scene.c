@@ -417,6 +417,38 @@ static void put_number(FILE *out, double v)
     fprintf(out, " %s", buf);
 }
 
+static void put_numbers(FILE *out, const double *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        put_number(out, v[i]);
+}
+
+/* A 3-D scene as its camera, culling and world triangles (an `obj` line's
+ * triangles written out as tri3 lines: the file stands alone). */
+static bool write_world(const struct world *w, FILE *out)
+{
+    static const char *const culls[] = { "none", "back", "front" };
+    const struct camera *c = &w->cam;
+    fputs("camera", out);
+    put_numbers(out, c->eye, 3);
+    put_numbers(out, c->target, 3);
+    put_numbers(out, c->up, 3);
+    put_numbers(out, (const double[]){ c->fovy, c->near, c->far }, 3);
+    fputc('\n', out);
+    if (w->cull != CULL_NONE)
+        fprintf(out, "cull %s\n", culls[w->cull]);
+    for (int i = 0; i < w->ntris; i++) {
+        fputs("tri3", out);
+        for (int k = 0; k < 3; k++) {
+            fputs(" ", out);
+            put_numbers(out, w->tris[i].p[k], 3);
+            put_numbers(out, w->tris[i].rgb[k], 3);
+        }
+        fputc('\n', out);
+    }
+    return !ferror(out);
+}
+
 bool scene_write(const struct scene *s, FILE *out)
 {
     fprintf(out, "size %d %d\n", s->w, s->h);
@@ -426,6 +458,8 @@ bool scene_write(const struct scene *s, FILE *out)
     fputc('\n', out);
     if (s->checker)
         fprintf(out, "texture checker %d\n", s->checker);
+    if (s->world.camera_line)
+        return write_world(&s->world, out);
     for (int i = 0; i < s->ntris; i++) {
         fputs("tri", out);
         for (int k = 0; k < 3; k++) {

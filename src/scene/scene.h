@@ -86,7 +86,8 @@ bool scene_parse(struct scene *s, const char *name, const char *text, size_t len
  * text is never held whole (a 2,000,000-triangle scene is some 330 MB of it). */
 bool scene_load(struct scene *s, const char *path, char *err, size_t errlen);
 /* Write a scene that scene_parse reads back to the same values (a 3-D scene
- * is written as the screen-space triangles the front end made of it). */
+ * as its camera, culling and world triangles, an obj's triangles as tri3
+ * lines: the front end makes the same screen triangles of it again). */
 bool scene_write(const struct scene *s, FILE *out);
 void scene_free(struct scene *s);
 /* A copy with triangles (and a 3-D world) of its own; false (dst empty)

@@ -41,7 +41,8 @@ static void check_ranges(const struct scene *s)
 }
 
 /* scene_write then scene_parse gives back the very same values (a 3-D scene
- * as the screen triangles the front end made). */
+ * as its camera, culling and world triangles, which the front end makes the
+ * same screen triangles of). */
 static void check_round_trip(const struct scene *s)
 {
     char *text = NULL;
@@ -57,10 +58,21 @@ static void check_round_trip(const struct scene *s)
         fuzz_fail("scene_write failed");
     if (!scene_parse(&back, "written", text, len, err, sizeof err))
         fuzz_fail("the written scene does not read back: %s", err);
-    if (back.w != s->w || back.h != s->h || back.checker != s->checker || back.ntris != s->ntris
+    if (back.w != s->w || back.h != s->h || back.checker != s->checker
+        || (!s->world.camera_line && back.ntris != s->ntris)
         || memcmp(back.background, s->background, sizeof s->background) != 0)
         fuzz_fail("the written scene reads back different");
-    for (int i = 0; i < s->ntris; i++)
+    const struct world *w = &s->world, *bw = &back.world;
+    if (w->camera_line
+        && (!bw->camera_line || bw->cull != w->cull || bw->ntris != w->ntris
+            || memcmp(&bw->cam, &w->cam, sizeof w->cam) != 0
+            || (w->ntris && memcmp(bw->tris, w->tris, (size_t)w->ntris * sizeof *w->tris) != 0)))
+        fuzz_fail("the written 3-D scene reads back a different world");
+    if (w->camera_line && front_scene(&back)
+        && (back.ntris != s->ntris
+            || (s->ntris && memcmp(back.tris, s->tris, (size_t)s->ntris * sizeof *s->tris) != 0)))
+        fuzz_fail("the written 3-D scene projects to other screen triangles");
+    for (int i = 0; i < s->ntris && !w->camera_line; i++)
         for (int k = 0; k < 3; k++) {
             struct vertex a = s->tris[i].v[k], b = back.tris[i].v[k];
             if (!s->has_st)

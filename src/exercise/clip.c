@@ -1,0 +1,160 @@
+/* clip.c - lesson 06's exercise: the front end of src/front/ around the
+ * student's clipper (exercise_clip, one plane at a time), or around a whole
+ * front end of an exhibit's making (exercise.h).
+ *
+ *   world --view_vertex--> view --YOUR CLIP, near--> --YOUR CLIP, far-->
+ *         --project--> screen --guard band (the lesson's)--> --fan, cull--> 2-D triangles
+ *
+ * Whatever the clipper returns is looked at before it goes on: a vertex on
+ * the wrong side of the plane, a coordinate that is not finite, or more
+ * vertices than one plane can make of a convex polygon is a fault the check
+ * reports (exercise_clip_fault). The picture is still drawn as far as it can
+ * be, never with undefined behaviour: a depth below near is held to
+ * max(|d|, near), which draws what projecting before clipping draws; a
+ * polygon that cannot be used is dropped; colours are held to [0, 1]. */
+#include "exercise.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "front/front.h"
+
+static clip_fn current_clip;
+static front_fn current_front;
+static struct clip_fault fault;
+static const struct world_tri *world_base;     /* the scene's world triangles */
+static bool both_ways;
+
+void exercise_clip_both_ways(bool on)
+{
+    both_ways = on;
+}
+
+void exercise_use_clip(clip_fn clip)
+{
+    current_clip = clip;
+}
+
+void exercise_use_front(front_fn front)
+{
+    current_front = front;
+}
+
+const struct clip_fault *exercise_clip_fault(void)
+{
+    return &fault;
+}
+
+static bool on_kept_side(const struct plane *pl, double d)
+{
+    return pl->keep > 0 ? d >= pl->at : d <= pl->at;
+}
+
+static void first_fault(struct clip_fault f)
+{
+    if (fault.what == CLIP_OK)
+        fault = f;
+}
+
+/* Is every vertex of a among those of b, to the last bit? */
+static const struct pvert *missing_from(const struct poly *a, const struct poly *b)
+{
+    for (int i = 0; i < a->n; i++) {
+        bool found = false;
+        for (int k = 0; k < b->n && !found; k++)
+            found = memcmp(a->v[i].pos, b->v[k].pos, sizeof a->v[i].pos) == 0
+                    && memcmp(a->v[i].rgb, b->v[k].rgb, sizeof a->v[i].rgb) == 0;
+        if (!found)
+            return &a->v[i];
+    }
+    return NULL;
+}
+
+/* The polygon clipped walking it the other way gives the same vertices as
+ * r, clipped this way (a usable polygon): else f says which is missing. */
+static bool same_both_ways(const struct poly *r, const struct poly *in, const struct plane *pl,
+                           struct clip_fault *f)
+{
+    struct poly rev = { .n = in->n }, back;
+    for (int k = 0; k < in->n; k++)
+        rev.v[k] = in->v[(in->n - k) % in->n];
+    memset(&back, 0, sizeof back);
+    current_clip(&back, &rev, pl);
+    if (back.n < 0 || back.n > POLY_MAX)
+        back.n = 0;
+    const struct pvert *m = missing_from(r, &back);
+    f->reversed = m == NULL;
+    if (!m)
+        m = missing_from(&back, r);
+    if (!m)
+        return true;
+    memcpy(f->made, m->pos, sizeof f->made);
+    return false;
+}
+
+/* The student's clipper against one plane, looked at: false when its
+ * polygon cannot be used (dropped). */
+static bool student_clip(struct poly *out, const struct poly *in, const struct plane *pl, int tri)
+{
+    struct poly r;
+    memset(&r, 0, sizeof r);
+    current_clip(&r, in, pl);
+    struct clip_fault f = { .tri = tri, .plane = (int)pl->id, .at = pl->at, .n_in = in->n, .n = r.n };
+    if (r.n < 0 || r.n > in->n + 1) {   /* a convex polygon gains one vertex at most */
+        f.what = CLIP_TOO_MANY;
+        first_fault(f);
+        return false;
+    }
+    for (int k = 0; k < r.n; k++) {
+        struct pvert *v = &r.v[k];
+        for (int c = 0; c < 3; c++)
+            if (!isfinite(v->pos[c]) || !isfinite(v->rgb[c])) {
+                f.what = CLIP_NOT_FINITE, f.vertex = k;
+                first_fault(f);
+                return false;
+            }
+        if (!on_kept_side(pl, v->pos[2])) {
+            f.what = CLIP_OUTSIDE, f.vertex = k, f.d = v->pos[2];
+            first_fault(f);
+        }
+        for (int c = 0; c < 3; c++)
+            v->rgb[c] = fmin(fmax(v->rgb[c], 0), 1);
+    }
+    if (both_ways && fault.what == CLIP_OK && !same_both_ways(&r, in, pl, &f)) {
+        f.what = CLIP_ORDER;
+        first_fault(f);
+    }
+    *out = r;
+    return true;
+}
+
+/* Lesson 06's pipeline (front_triangle in src/front/front.c) with the
+ * student's clipper for near and far. */
+static int clip_pipeline(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                         struct vertex out[][3])
+{
+    struct poly p = { .n = 3 }, q;
+    for (int k = 0; k < 3; k++)
+        p.v[k] = view_vertex(v, t->p[k], t->rgb[k]);
+    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
+    int tri = (int)(t - world_base);
+    if (!student_clip(&q, &p, &near, tri) || !student_clip(&p, &q, &far, tri))
+        return 0;
+    for (int k = 0; k < p.n; k++)       /* what is left behind near: drawn, not divided by d <= 0 */
+        p.v[k].pos[2] = fmax(fabs(p.v[k].pos[2]), v->near);
+    project(v, &p);
+    if (!in_guard_band(&p))
+        clip_guard_band(&p, NULL);
+    return fan(&p, cull, out);
+}
+
+bool exercise_front(struct scene *s)
+{
+    if (current_front)
+        return current_front(s);
+    if (!current_clip)
+        return front_scene(s);
+    fault = (struct clip_fault){ .what = CLIP_OK };
+    world_base = s->world.tris;
+    return front_scene_with(s, clip_pipeline);
+}
