@@ -116,12 +116,6 @@ struct tri {
     float st[3 * ST_COUNT];     /* P0, Px, Py of s, then of t */
 };
 
-/* Floor of a / 256 for any sign (a >> 8 without implementation-defined shifts). */
-static int64_t floor_div256(int64_t a)
-{
-    return a >= 0 ? a / 256 : -((-a + 255) / 256);
-}
-
 /* The record of a triangle that tri_setup() has snapped and normalised
  * (tristep's shared set-up, so coverage is decided on the same numbers as
  * every other lesson); the texture planes only for a textured scene. */
@@ -436,7 +430,7 @@ static struct tt tt_make(const struct tri *t, struct rect r)
 {
     struct tt c = { t, t->textured ? t->st : NULL, r.x0, r.y0, { 0, 0, 0 } };
     for (int k = 0; k < 3; k++) {
-        int64_t e = floor_div256(edge_at(t, k, r.x0, r.y0));
+        int64_t e = floor_div(edge_at(t, k, r.x0, r.y0), SUBPIXEL_ONE);    /* no branch on the sign */
         c.e0[k] = (int32_t)(e > E_LIMIT ? E_LIMIT : e < -E_LIMIT - 1 ? -E_LIMIT - 1 : e);
     }
     return c;
