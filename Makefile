@@ -139,7 +139,7 @@ EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
 FILE     ?= $(EX_LESSON)/exercise.c
 $(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(FIRST)
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) -c $< -o $@
-$(B)/exercises.c: Makefile lessons | $(FIRST)
+$(B)/exercises.c: Makefile $(wildcard lessons/*/) | $(FIRST)
 	@printf '#include "exercise/exercise.h"\n' > $@
 	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); done >> $@
 	@printf 'const struct exercise_code all_exercises[] = {\n' >> $@

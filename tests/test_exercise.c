@@ -128,7 +128,7 @@ Test(exercise, every_worked_answer_passes_its_check)
         cr_expect(strstr(run.report, "checks pass"), "no short report on success:\n%s", run.report);
         run_free(&run);
     }
-    cr_expect_geq(n, 6, "a skeleton and an answer for lessons 01 to 05 and 08");
+    cr_expect_geq(n, 7, "a skeleton and an answer for lessons 01 to 05, 07 and 08");
 }
 
 /* The exercise_rasterize form is the same for every lesson: a rasterizer
@@ -526,6 +526,20 @@ static const struct mutant mutants[] = {
       "edge_at(e, k, x0, y0) > 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
     { "05-block-classification", "|| for full", "mask[0] == 0xF && mask[1] == 0xF && mask[2] == 0xF",
       "(mask[0] == 0xF || mask[1] == 0xF || mask[2] == 0xF)", "single triangle", "classified FULL" },
+    { "07-tiles", "the wrong corner", "if (reject_corner(e, k, r) < 0)", "if (accept_corner(e, k, r) < 0)",
+      "single triangle", "classified EMPTY" },
+    { "07-tiles", "accepted at the reject corner", "full = full && accept_corner(e, k, r) >= 0;",
+      "full = full && reject_corner(e, k, r) >= 0;", "single triangle", "classified FULL" },
+    { "07-tiles", "the corner picked by dx alone", "e->dx[k] > 0 ? r.x1 : r.x0, e->dy[k] > 0 ? r.y1 : r.y0",
+      "e->dx[k] > 0 ? r.x1 : r.x0, r.y1", "single triangle", "a missing pixel" },
+    { "07-tiles", "corner of the next tile", "e->dx[k] < 0 ? r.x1 : r.x0, e->dy[k] < 0 ? r.y1 : r.y0",
+      "e->dx[k] < 0 ? r.x1 + 1 : r.x0, e->dy[k] < 0 ? r.y1 + 1 : r.y0", "tiles and blocks",
+      "is covered in full, but was not narrated FULL" },
+    { "07-tiles", "accept corner tested with > 0", "full = full && accept_corner(e, k, r) >= 0;",
+      "full = full && accept_corner(e, k, r) > 0;", "tiles and blocks",
+      "is covered in full, but was not narrated FULL" },
+    { "07-tiles", "reject corner tested with <= 0", "if (reject_corner(e, k, r) < 0)",
+      "if (reject_corner(e, k, r) <= 0)", "watertight meshes", "classified EMPTY" },
     { "08-multisampling", "no bias", "+ t->K[k] + t->bias[k];", "+ t->K[k];", "fill-rule ties",
       "a sample too many" },
     { "08-multisampling", "offsets from the corner", "pt.dx[s] = sp->x[s] - SUBPIXEL_HALF;",

@@ -13,7 +13,10 @@
  *              on every pixel the exact rule covers;
  *   property   what the lesson is about: no multiplication between two
  *              pixels of a row (lesson 03), every block narrated full
- *              really full and every full block found (lesson 05).
+ *              really full and every full block found (lessons 05, 07).
+ *
+ * Lesson 07 adds a check of its own scenes, over many tiles (gen_tiles),
+ * that compares all three at once.
  *
  * A write outside the target fails any check. */
 #define _DEFAULT_SOURCE           /* fork, MAP_ANONYMOUS, strsignal */
@@ -161,7 +164,7 @@ static bool gen_user(int i, struct scene *s, char *what, size_t n)
 
 /* The checks of lesson l, in order; false when a SCENE= file does not load. */
 struct plan {
-    struct check checks[8];
+    struct check checks[10];
     int n;
 };
 
@@ -200,6 +203,8 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties };
     c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes };
     c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random };
+    if (l->exercise.tiles)
+        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
                                 CK_COLOUR, gen_colour };
     if (l->exercise.no_pixel_mul)

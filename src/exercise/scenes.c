@@ -390,3 +390,80 @@ bool gen_property(int i, struct scene *s, char *what, size_t n)
     }
     return false;
 }
+
+/* Lesson 07's scenes: 64 x 64 tiles and their 8 x 8 blocks, on targets
+ * whose last column and row of tiles the screen cuts (200 x 150: tiles 8
+ * pixels wide and 22 tall there, blocks 6 tall), simplest first. */
+#define TILE_SCENES_RANDOM 48
+bool gen_tiles(int i, struct scene *s, char *what, size_t n)
+{
+    struct rng r = { 0x7113u + (uint64_t)i };
+    scene_start(s, 200, 150);
+    switch (i) {
+    case 0:
+        add(s, vtx(65.3, 66.2, 1, 1, 0, 0), vtx(71.1, 67.9, 2, 0, 1, 0), vtx(66.8, 70.7, 3, 0, 0, 1));
+        snprintf(what, n, "a triangle inside one 8 x 8 block of tile (1, 1)");
+        return true;
+    case 1:
+        add(s, vtx(70.2, 68.9, 1, 1, 0, 0), vtx(121.7, 80.3, 2, 0, 1, 0), vtx(83.4, 122.6, 3, 0, 0, 1));
+        snprintf(what, n, "a triangle inside tile (1, 1), across its blocks");
+        return true;
+    case 2:
+        add(s, vtx(40.3, 20.7, 1, 1, 0, 0), vtx(100.6, 35.2, 2, 0, 1, 0), vtx(55.9, 58.1, 3, 0, 0, 1));
+        snprintf(what, n, "a triangle across the border of two tiles");
+        return true;
+    case 3:
+        add(s, vtx(-30.2, -20.7, 1, 1, 0, 0), vtx(260.4, 30.1, 2, 0, 1, 0), vtx(40.8, 230.3, 3, 0, 0, 1));
+        snprintf(what, n, "a large triangle over many tiles, some of them inside it in full");
+        return true;
+    case 4:     /* F = 0 exactly at corners of tiles: the fill rule decides them */
+        add(s, vtx(0.5, 0.5, 1, 1, 0, 0), vtx(128.5, 0.5, 2, 0, 1, 0), vtx(128.5, 128.5, 3, 0, 0, 1));
+        add(s, vtx(0.5, 0.5, 2, 1, 1, 0), vtx(128.5, 128.5, 3, 0, 1, 1), vtx(0.5, 128.5, 1, 1, 0, 1));
+        snprintf(what, n, "two triangles sharing the diagonal through the corner pixel centres of "
+                 "tiles (0, 0) and (1, 1), edges along the first row and column of tiles");
+        return true;
+    case 5:     /* a left and a top edge on the first centres of tile (1, 0): inside, the tile full */
+        add(s, vtx(64.5, 0.5, 1, 1, 0, 0), vtx(400.5, 0.5, 2, 0, 1, 0), vtx(64.5, 400.5, 3, 0, 0, 1));
+        /* a right and a bottom edge on the last centres of tile (1, 1): outside */
+        add(s, vtx(127.5, 64.5, 1, 1, 1, 0), vtx(127.5, 127.5, 2, 0, 1, 1), vtx(64.5, 127.5, 3, 1, 0, 1));
+        snprintf(what, n, "edges exactly on the corner pixel centres of tiles: left and top edges "
+                 "(those centres inside), right and bottom ones (outside)");
+        return true;
+    case 6:
+        add(s, vtx(-300, -300, 1, 1, 0, 0), vtx(900, -300, 2, 0, 1, 0), vtx(-300, 900, 3, 0, 0, 1));
+        snprintf(what, n, "a triangle over the whole screen: every tile inside it, the cut ones too");
+        return true;
+    case 7:     /* the tiles of the last column and row lie inside; the tiles' full 64 x 64 do not */
+        add(s, vtx(200.25, 10.3, 1, 1, 0, 0), vtx(200.25, 150.25, 2, 0, 1, 0), vtx(60.1, 150.25, 3, 0, 0, 1));
+        snprintf(what, n, "a triangle whose edges run just past the screen's right and bottom edges "
+                 "(the tiles cut by the screen inside it)");
+        return true;
+    case 8:
+        grid_mesh(s, &r, 10, 8, -3.5, -2.5, 203.5, 152.5, 0.3);
+        snprintf(what, n, "a jittered 10 x 8 grid of 160 triangles over 4 x 3 tiles");
+        return true;
+    }
+    if (i >= 9 + TILE_SCENES_RANDOM)
+        return false;
+    /* random scenes: targets of 1 to 4 x 3 tiles, triangles small and large,
+     * vertices drawn towards the borders of tiles and blocks */
+    static const int sizes[][2] = { { 200, 150 }, { 130, 70 }, { 64, 64 }, { 129, 65 } };
+    int k = (i - 9) % 4;
+    scene_start(s, sizes[k][0], sizes[k][1]);
+    for (int tri = 0; tri < 6; tri++) {
+        struct vertex v[3];
+        double scale = tri % 3 == 0 ? 160 : tri % 3 == 1 ? 24 : 5;
+        double cx = rng_range(&r, -10, s->w + 10), cy = rng_range(&r, -10, s->h + 10);
+        for (int q = 0; q < 3; q++) {
+            double x = cx + rng_range(&r, -scale, scale), y = cy + rng_range(&r, -scale, scale);
+            /* a third of them onto a border of blocks: the centre on either side */
+            x = rng_unit(&r) < 0.3 ? 8 * floor(x / 8 + 0.5) + (rng_unit(&r) < 0.5 ? -0.5 : 0.5) : grid(&r, x);
+            y = rng_unit(&r) < 0.3 ? 8 * floor(y / 8 + 0.5) + (rng_unit(&r) < 0.5 ? -0.5 : 0.5) : grid(&r, y);
+            v[q] = rvtx(&r, x, y, 1, 6);
+        }
+        add(s, v[0], v[1], v[2]);
+    }
+    snprintf(what, n, "random scene %d of %d: 6 triangles on %d x %d pixels", i - 8, TILE_SCENES_RANDOM,
+             s->w, s->h);
+    return true;
+}

@@ -17,5 +17,6 @@ bool gen_meshes(int i, struct scene *s, char *what, size_t n);      /* watertigh
 bool gen_random(int i, struct scene *s, char *what, size_t n);      /* random triangles */
 bool gen_colour(int i, struct scene *s, char *what, size_t n);      /* colour and depth */
 bool gen_property(int i, struct scene *s, char *what, size_t n);    /* the lesson's property */
+bool gen_tiles(int i, struct scene *s, char *what, size_t n);       /* tiles and blocks (lesson 07) */
 
 #endif
