@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 
 #include "testlib.h"
+#include "util/file.h"
 
 #define MAX_CSV_ROWS 256
 
@@ -167,7 +168,21 @@ Test(bench, bad_options_exit_2)
     char path[256];
     snprintf(path, sizeof path, "%s/bench.csv", dir);
     cr_expect_null(fopen(path, "r"), "a refused run wrote %s", path);
+
+    /* an --out that cannot be made is refused before any timing, not found
+     * unwritable at the end of the run */
     char cmd[512];
+    snprintf(cmd, sizeof cmd, "'%s/tristep-bench' --quick --no-large-scene --out '%s/no/such' "
+             ">'%s/stdout.txt' 2>'%s/stderr.txt'", test_build_dir(), dir, dir, dir);
+    int status = system(cmd);
+    cr_expect(WIFEXITED(status) && WEXITSTATUS(status) == 2, "an --out in a missing directory: %d",
+              status);
+    snprintf(path, sizeof path, "%s/stdout.txt", dir);
+    char *out, err[256];
+    size_t len;
+    cr_assert(read_text_file(path, &out, &len, err, sizeof err), "%s", err);
+    cr_expect_null(strstr(out, "round 1"), "timed before finding --out unusable:\n%s", out);
+    free(out);
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     cr_expect_eq(system(cmd), 0);
 }

@@ -761,3 +761,105 @@ Test(front, guard_band_clip_depth_below_near)
         }
     scene_free(&s);
 }
+
+/* --- dragging a vertex of a 3-D scene (the explorer) --------------------------------- */
+
+/* A box in front of random cameras: a screen vertex dragged to (x, y)
+ * moves the model's vertex at its own view depth so that it projects there
+ * (checked with this file's own projection), every copy of it moves (the
+ * box stays closed: counts stay even), and nothing else moves. */
+Test(front, dragging_a_screen_vertex_moves_the_model_vertex_at_its_depth, .timeout = 60)
+{
+    struct rng r = rng_for(6011);
+    int moved = 0;
+    for (int c = 0; c < 60; c++) {
+        int w = rng_int(&r, 16, 80), h = rng_int(&r, 16, 64);
+        double centre[3] = { rng_range(&r, -5, 5), rng_range(&r, -5, 5), rng_range(&r, -5, 5) };
+        double dir[3], eye[3];
+        random_dir(&r, dir);
+        for (int k = 0; k < 3; k++)
+            eye[k] = centre[k] + rng_range(&r, 4, 9) * dir[k];
+        struct camera cam = random_camera(&r, eye, 0.01, 100);
+        for (int k = 0; k < 3; k++)
+            cam.target[k] = centre[k];
+        double x3[3], f[3] = { centre[0] - eye[0], centre[1] - eye[1], centre[2] - eye[2] };
+        cross3(x3, f, cam.up);
+        if (dot3(x3, x3) < 1e-3 * dot3(f, f) * dot3(cam.up, cam.up))
+            continue;
+        struct scene s = scene3_new(w, h, &cam);
+        double axes[3][3], half[3] = { 1, 1.2, 0.9 }, corner[8][3];
+        random_axes(&r, axes);
+        box_corners(centre, half, axes, corner);
+        add_box(&r, &s, corner);
+        cr_assert(front_scene(&s));
+        if (s.ntris == 0) {
+            scene_free(&s);
+            continue;
+        }
+        int i = rng_int(&r, 0, s.ntris - 1), k = rng_int(&r, 0, 2);
+        struct vertex old = s.tris[i].v[k];
+        double x = old.x + rng_range(&r, -4, 4), y = old.y + rng_range(&r, -4, 4);
+        struct world before = s.world;
+        struct world_tri *copy = malloc((size_t)before.ntris * sizeof *copy);
+        memcpy(copy, s.world.tris, (size_t)before.ntris * sizeof *copy);
+        cr_assert(front_move_vertex(&s, i, old.x, old.y, x, y), "case %d: no model vertex at (%g, %g)",
+                  c, old.x, old.y);
+        moved++;
+        /* the world vertex that projected to the old place now projects to the new one */
+        int changed = 0;
+        for (int t = 0; t < s.world.ntris; t++)
+            for (int v = 0; v < 3; v++) {
+                const double *p = s.world.tris[t].p[v], *q = copy[t].p[v];
+                if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+                    continue;
+                changed++;
+                struct vertex was = project_point(&cam, w, h, q, copy[t].rgb[v]);
+                struct vertex now = project_point(&cam, w, h, p, copy[t].rgb[v]);
+                cr_assert(fabs(was.x - old.x) < 1e-6 && fabs(was.y - old.y) < 1e-6,
+                          "case %d: a vertex that was elsewhere moved", c);
+                cr_assert(fabs(now.x - x) < 1e-6 && fabs(now.y - y) < 1e-6,
+                          "case %d: moved to (%g, %g), not (%g, %g)", c, now.x, now.y, x, y);
+                cr_assert(fabs(now.z - was.z) < 1e-9 * was.z, "case %d: depth %g became %g", c,
+                          was.z, now.z);
+            }
+        /* a box corner is shared by 3 to 6 of its 12 triangles */
+        cr_assert(changed >= 3 && changed <= 6, "case %d: %d copies of the corner moved", c, changed);
+        cr_assert(front_scene(&s));
+        uint8_t *mask = scene_coverage(&s);
+        uint8_t *skip = calloc((size_t)w * h, 1);
+        mark_folds(&s, skip);
+        expect_counts(&s, mask, skip, 0x55555555u, -1, "dragged box", test_seed(), c);
+        free(mask);
+        free(skip);
+        free(copy);
+        scene_free(&s);
+    }
+    cr_expect_gt(moved, 30, "only %d boxes were dragged", moved);
+}
+
+/* A vertex the near plane made is not the model's: it stays, and so does
+ * the model. */
+Test(front, a_vertex_made_by_clipping_cannot_be_dragged)
+{
+    struct camera cam = { .eye = { 0, 0, 0 }, .target = { 0, 0, -1 }, .up = { 0, 1, 0 },
+                          .fovy = 60, .near = 1, .far = 100 };
+    struct scene s = scene3_new(64, 48, &cam);
+    const double a[3] = { -1, -1, -4 }, b[3] = { 1, -1, -4 }, c[3] = { 0, 1, 2 }, rgb[3] = { 1, 1, 1 };
+    add_world_tri(&s, a, b, c, rgb);            /* c is behind the eye: near cuts two edges */
+    cr_assert(front_scene(&s));
+    cr_assert_gt(s.ntris, 0);
+    struct world_tri before = s.world.tris[0];
+    int made = 0;
+    for (int i = 0; i < s.ntris; i++)
+        for (int k = 0; k < 3; k++) {
+            struct vertex v = s.tris[i].v[k];
+            if (fabs(v.z - cam.near) > 1e-9)
+                continue;               /* a vertex of the model, at d = 4 */
+            made++;
+            cr_assert(!front_move_vertex(&s, i, v.x, v.y, v.x + 3, v.y + 2));
+            cr_assert(memcmp(&before, &s.world.tris[0], sizeof before) == 0);
+        }
+    /* near makes two vertices; the fan of the clipped quad uses one of them twice */
+    cr_assert_eq(made, 3, "%d vertices at d = near in the fan", made);
+    scene_free(&s);
+}

@@ -231,12 +231,25 @@ static void paint_triangle(struct painter *p)
     /* vertex handles */
     for (int k = 0; k < 3; k++) {
         double r = (ex->hover_vertex == k ? 8 : 6) * p->s;
-        cairo_arc(cr, vx[k], vy[k], r, 0, 2 * G_PI);
-        set_rgb(cr, p->pal->vertex[k]);
-        cairo_fill_preserve(cr);
-        cairo_set_line_width(cr, 1.5 * p->s);
-        set_rgb(cr, p->pal->handle_rim);
-        cairo_stroke(cr);
+        if (L->zoom >= 24) {
+            /* cells large enough to carry numbers: a ring around the
+             * vertex's cell number rather than a disc over it */
+            r = fmax(r, (ex->hover_vertex == k ? 0.36 : 0.3) * L->zoom);
+            cairo_arc(cr, vx[k], vy[k], r, 0, 2 * G_PI);
+            cairo_set_line_width(cr, 5 * p->s);
+            set_rgb(cr, p->pal->handle_rim);
+            cairo_stroke_preserve(cr);
+            cairo_set_line_width(cr, 2.5 * p->s);
+            set_rgb(cr, p->pal->vertex[k]);
+            cairo_stroke(cr);
+        } else {
+            cairo_arc(cr, vx[k], vy[k], r, 0, 2 * G_PI);
+            set_rgb(cr, p->pal->vertex[k]);
+            cairo_fill_preserve(cr);
+            cairo_set_line_width(cr, 1.5 * p->s);
+            set_rgb(cr, p->pal->handle_rim);
+            cairo_stroke(cr);
+        }
         double dx = vx[k] - gx, dy = vy[k] - gy, d = hypot(dx, dy);
         if (d > 0)
             dx /= d, dy /= d;

@@ -121,8 +121,14 @@ static int coverage_legend(const struct view_ctx *v, struct swatch *out, const c
     out[0] = (struct swatch){ c->covered, "covered by this triangle" };
     out[1] = (struct swatch){ c->outside, "tested, outside" };
     out[2] = (struct swatch){ c->untested, "in the box, not tested yet" };
-    out[3] = (struct swatch){ c->earlier1, "covered once before" };
-    out[4] = (struct swatch){ c->earlier2, "covered twice or more" };
+    if (v->ex->fb.samples && v->ex->fb.samples->n > 1) {
+        /* lesson 08 counts covered samples, not pixels */
+        out[3] = (struct swatch){ c->earlier1, "1 sample covered before" };
+        out[4] = (struct swatch){ c->earlier2, "2 or more samples before" };
+    } else {
+        out[3] = (struct swatch){ c->earlier1, "covered once before" };
+        out[4] = (struct swatch){ c->earlier2, "covered twice or more" };
+    }
     return 5;
 }
 

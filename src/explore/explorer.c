@@ -600,6 +600,17 @@ bool explorer_move_vertex(struct explorer *ex, int k, double x, double y)
     double ox = v->x, oy = v->y;
     if (x == ox && y == oy)
         return true;
+    if (ex->scene.world.camera_line) {
+        /* a 3-D scene: the model's vertex moves, and the front end runs again */
+        if (!front_move_vertex(&ex->scene, ex->focus, ox, oy, x, y)) {
+            snprintf(ex->message, sizeof ex->message,
+                     "%c is not a vertex of the model (the clipper made it): drag one that is",
+                     "ABC"[k]);
+            return true;
+        }
+        ex->projected_by = NULL;
+        return rerun(ex, ex->step);
+    }
     for (int i = 0; i < ex->scene.ntris; i++)
         for (int j = 0; j < 3; j++) {
             struct vertex *u = &ex->scene.tris[i].v[j];

@@ -192,7 +192,9 @@ bool explorer_cycle_twin(struct explorer *ex);
 
 /* Move vertex `k` (0..2, as labelled A, B, C after setup) of the focus
  * triangle to (x, y) snapped to 1/256 pixel; vertices of other triangles at
- * the same place move with it. The lesson re-runs; the step is kept. */
+ * the same place move with it. The lesson re-runs; the step is kept. In a
+ * 3-D scene the model's vertex moves at its own view depth (front.h,
+ * front_move_vertex); a vertex the clipper made stays, with a message. */
 bool explorer_move_vertex(struct explorer *ex, int k, double x, double y);
 
 /* Triangles finished at this step: those before the current one, and the

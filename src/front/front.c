@@ -284,3 +284,40 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
     }
     return true;
 }
+
+bool front_move_vertex(struct scene *s, int i, double ox, double oy, double x, double y)
+{
+    struct world *w = &s->world;
+    if (!w->camera_line || !w->from || i < 0 || i >= s->ntris || w->from[i] < 0
+        || w->from[i] >= w->ntris)
+        return false;
+    struct frustum v;
+    frustum_init(&v, &w->cam, s->w, s->h);
+    const struct world_tri *t = &w->tris[w->from[i]];
+    for (int k = 0; k < 3; k++) {
+        struct poly p = { .n = 1, .v = { view_vertex(&v, t->p[k], t->rgb[k]) } };
+        double d = p.v[0].pos[2];
+        if (!(d >= v.near && d <= v.far))
+            continue;           /* clipped away: not a vertex on the screen */
+        project(&v, &p);
+        if (fabs(p.v[0].pos[0] - ox) > 1e-9 * fmax(1, fabs(ox))
+            || fabs(p.v[0].pos[1] - oy) > 1e-9 * fmax(1, fabs(oy)))
+            continue;
+        /* project() backwards at depth d, then view space back to the world */
+        double xv = (x / v.half_w - 1) * v.aspect * d / v.g;
+        double yv = (1 - y / v.half_h) * d / v.g;
+        double old[3] = { t->p[k][0], t->p[k][1], t->p[k][2] }, now[3];
+        for (int a = 0; a < 3; a++) {
+            now[a] = v.eye[a] + xv * v.s[a] + yv * v.u[a] + d * v.f[a];
+            now[a] = fmin(fmax(now[a], -WORLD_LIMIT), WORLD_LIMIT);
+        }
+        for (int j = 0; j < w->ntris; j++)
+            for (int m = 0; m < 3; m++) {
+                double *q = w->tris[j].p[m];
+                if (q[0] == old[0] && q[1] == old[1] && q[2] == old[2])
+                    memcpy(q, now, sizeof now);
+            }
+        return true;
+    }
+    return false;
+}

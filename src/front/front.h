@@ -128,4 +128,13 @@ typedef int (*pipeline_fn)(const struct frustum *v, enum cull cull, const struct
                            struct vertex out[][3]);
 bool front_scene_with(struct scene *s, pipeline_fn pipeline);
 
+/* Dragging a vertex of a 3-D scene (the explorer): the world vertex of the
+ * world triangle that screen triangle i came from which projects to
+ * (ox, oy) moves, at its own view depth, to where it projects to (x, y).
+ * Every world vertex at the same place moves with it, so a closed mesh
+ * stays closed. Returns false when none of them projects there (a vertex
+ * made by the clipper): the world is left as it was. Run the front end
+ * again afterwards. */
+bool front_move_vertex(struct scene *s, int i, double ox, double oy, double x, double y);
+
 #endif

@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/utsname.h>
 #include <time.h>
 #include <unistd.h>
@@ -91,7 +92,7 @@ static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not m
 
 /* The targets as printed, kept for bench.csv. */
 struct target_line {
-    char id[64];
+    char id[64], what[96], unit[8];
     double got, goal;
     bool under, met, measured;
 };
@@ -535,6 +536,35 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
 /* The table as markdown: machine, date, one table per scene (medians,
  * spread), the memory limit, the explorer's frame. Written to a temporary
  * file and renamed, so a failed run leaves the old one. */
+/* Lesson 07 one idea at a time: each of its variants that takes one idea
+ * away, against the whole (ratios of medians: > 1, the idea helps). */
+static void write_journey(FILE *f, const struct bench_scene *sc)
+{
+    static const struct { const char *idea, *without, *with; } step[] = {
+        { "binning", "no-bins", "1-thread" },
+        { "one corner per edge", "four-corners", "1-thread" },
+        { "tile buffers", "in-place", "1-thread" },
+        { "4 pixels a register (SSE2) over plain C", "scalar", "sse2" },
+        { "8 pixels a register (AVX2) over SSE2", "sse2", "1-thread" },
+        { "threads, one per core", "1-thread", "tiles" },
+    };
+    if (!find_row("07-", "1-thread"))
+        return;
+    fprintf(f, "\n## Lesson 07, one idea at a time\n\nWhat each idea gains: the median of "
+               "the variant without it over the median with it (above 1: it helps).\n\n"
+               "| idea | from | to | %s | %s | %s |\n| --- | --- | --- | ---: | ---: | ---: |\n",
+            sc[0].name, sc[1].name, sc[2].name);
+    for (size_t k = 0; k < sizeof step / sizeof step[0]; k++) {
+        const struct row *a = find_row("07-", step[k].without), *b = find_row("07-", step[k].with);
+        if (!a || !b)
+            continue;
+        fprintf(f, "| %s | `%s` | `%s` |", step[k].idea, step[k].without, step[k].with);
+        for (int i = 0; i < NSCENES; i++)
+            fprintf(f, " %.2fx |", a->t[i].median / b->t[i].median);
+        fprintf(f, "\n");
+    }
+}
+
 static bool write_markdown(const char *path, const struct bench_scene *sc, double limit,
                            const char *cpu, const char *date, const char *system,
                            const struct options *o)
@@ -573,6 +603,20 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
             fprintf(f, "| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r->program,
                     r->variant, r->exhibit ? " (exhibit)" : "", c.median, c.spread, c.mtri, c.mpix,
                     c.ratio, c.mem, c.dref, c.dpeer);
+        }
+    }
+    write_journey(f, sc);
+    if (ntargets > 0) {
+        fprintf(f, "\n## Targets\n\n| target | measured | goal | |\n| --- | ---: | ---: | --- |\n");
+        for (int k = 0; k < ntargets; k++) {
+            const struct target_line *t = &targets[k];
+            if (!t->measured) {
+                fprintf(f, "| %s | not measured | %s%.2f%s | |\n", t->what, t->under ? "under " : "",
+                        t->goal, t->unit);
+                continue;
+            }
+            fprintf(f, "| %s | %.2f%s | %s%.2f%s | %s |\n", t->what, t->got, t->unit,
+                    t->under ? "under " : "", t->goal, t->unit, t->met ? "met" : "MISSED");
         }
     }
     fprintf(f, "\n## Limits and the explorer\n\n");
@@ -653,6 +697,8 @@ static void print_target(const char *id, const char *what, double got, double go
 {
     struct target_line *t = ntargets < 24 ? &targets[ntargets++] : &targets[23];
     snprintf(t->id, sizeof t->id, "%s", id);
+    snprintf(t->what, sizeof t->what, "%s", what);
+    snprintf(t->unit, sizeof t->unit, "%s", unit);
     t->got = got, t->goal = goal, t->under = under, t->measured = got > 0;
     if (got <= 0) {
         printf("  %-60s not measured\n", what);
@@ -819,6 +865,16 @@ int main(int argc, char **argv)
             return usage(stdout, 0);
     if (!parse(&o, argc, argv))
         return usage(stderr, 2);
+    /* the outputs' directory, made if missing: found unwritable only after
+     * minutes of timing would throw the run away */
+    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "tristep-bench: --out %s: %s\n", o.out, strerror(errno));
+        return 2;
+    }
+    if (access(o.out, W_OK) != 0) {
+        fprintf(stderr, "tristep-bench: --out %s: %s\n", o.out, strerror(errno));
+        return 2;
+    }
 
     double start = now();
     char cpu[160], date[64];
@@ -1052,8 +1108,11 @@ int main(int argc, char **argv)
     }
     snprintf(title, sizeof title, "tristep bench, %s, %s%s", cpu, date, o.quick ? " (quick)" : "");
     ok = write_chart(o.out, sc, limit, title) && ok;
-    printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
-           now() - start);
+    if (ok)
+        printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
+               now() - start);
+    else
+        printf("not every output was written (see above); %.0f s in all\n", now() - start);
 
     for (int i = 0; i < NSCENES; i++)
         free(peer_cov[i]);
