@@ -498,10 +498,24 @@ Test(explorer, drag_keeps_step)
         int focus = ex.focus;
         /* vertex A after setup is the scene's first vertex */
         double x = ex.scene.tris[focus].v[0].x + 0.3, y = ex.scene.tris[focus].v[0].y - 0.7;
+        size_t wbytes = (size_t)ex.scene.world.ntris * sizeof *ex.scene.world.tris;
+        struct world_tri *world = malloc(wbytes ? wbytes : 1);
+        cr_assert_not_null(world);
+        if (wbytes)
+            memcpy(world, ex.scene.world.tris, wbytes);
         cr_assert(explorer_move_vertex(&ex, 0, x, y));
         cr_assert_eq(ex.step, at, "%s: the step moved with the vertex", l->id);
-        cr_assert_eq(ex.scene.tris[focus].v[0].x, (double)lrint(x * 256) / 256, "%s", l->id);
-        cr_assert_eq(ex.scene.tris[focus].v[0].y, (double)lrint(y * 256) / 256, "%s", l->id);
+        if (!ex.scene.world.camera_line) {
+            cr_assert_eq(ex.scene.tris[focus].v[0].x, (double)lrint(x * 256) / 256, "%s", l->id);
+            cr_assert_eq(ex.scene.tris[focus].v[0].y, (double)lrint(y * 256) / 256, "%s", l->id);
+        } else {
+            /* a 3-D scene: the model moved (tests/test_front.c checks where
+             * to), or the vertex was the clipper's and the window says so */
+            bool moved = memcmp(world, ex.scene.world.tris, wbytes) != 0;
+            cr_assert(moved || strstr(ex.message, "the clipper made it"), "%s: %s", l->id,
+                      ex.message);
+        }
+        free(world);
         /* the lesson re-ran: the picture is the moved scene's, frozen at the step */
         struct target fb;
         run_frozen(l, 0, &ex.scene, at, &fb, NULL);
