@@ -322,6 +322,46 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
     run_free(&run);
 }
 
+/* The explorer of an exercise runs the student's code, one triangle at a
+ * time, in every mode: lesson 07's whole-scene runs (bins, threads) and the
+ * order they narrate in are the lesson's own variants', not the exercise's.
+ * Lesson 07's skeleton, which draws nothing, must then give an empty
+ * picture where the lesson's scene run would draw the built-in scene. */
+Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
+{
+    for (int i = 0; all_lessons[i]; i++) {
+        struct lesson el;
+        struct lesson_variant ev[2];
+        exercise_lesson(&el, ev, all_lessons[i], "test.c");
+        cr_expect_null(lesson_scene_fn(&el, &ev[0]), "%s", el.id);
+        cr_expect_null(lesson_scene_fn(&el, &ev[1]), "%s", el.id);
+        cr_expect_null(el.narration_units, "%s", el.id);
+    }
+    const struct lesson *l07 = lesson_nn("07");
+    rasterize_fn skeleton = NULL;
+    for (int i = 0; all_exercises[i].lesson; i++)
+        if (strcmp(all_exercises[i].lesson, "07") == 0)
+            skeleton = all_exercises[i].skeleton;
+    cr_assert_not_null(skeleton);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_builtin(&s, l07->builtin_scene, err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l07, "test.c");
+    exercise_use(l07, skeleton);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step_end = true }, err, sizeof err), "%s", err);
+    size_t covered = 0;
+    for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++)
+        covered += ex.fb.count[i] != 0;
+    cr_expect_eq(covered, 0, "the skeleton draws nothing, yet %zu pixels are covered", covered);
+    cr_expect_gt(ex.missing, 0, "the diff marks the pixels the skeleton leaves out");
+    explorer_free(&ex);
+    scene_free(&s);
+}
+
 /* --- the counterexample in the explorer --------------------------------------- */
 
 /* Open the counterexample as make exercise does, at the step the check
