@@ -173,30 +173,18 @@ static bool own_front(const struct explorer *ex)
  * and the diff would show nothing. -1: out of memory. */
 static int own_order(struct explorer *ex)
 {
-    const struct lesson_variant *v0 = ex->lesson->variants;
     if (ex->own_order >= 0)
         return ex->own_order;
-    ex->own_order = 0;
     if (!ex->replay.units_fn || !ex->replay.units || ex->variant == 0)
-        return 0;
+        return ex->own_order = 0;
     long n = ex->replay.ntris;
     struct lesson_unit *u = malloc((size_t)(n > 0 ? n : 1) * sizeof *u);
-    if (!u) {
-        ex->own_order = -1;
-        return -1;
-    }
-    long m = ex->replay.units_fn(ex->replay.scene, v0, &ex->replay.params, u, n);
-    if (m < 0) {
-        free(u);
-        ex->own_order = -1;
-        return -1;
-    }
+    long m = u ? ex->replay.units_fn(ex->replay.scene, ex->lesson->variants, &ex->replay.params, u, n) : -1;
     bool same = m == n;
     for (long i = 0; same && i < n; i++)
         same = u[i].tri == ex->replay.units[i].tri && u[i].tile == ex->replay.units[i].tile;
     free(u);
-    ex->own_order = !same;
-    return ex->own_order;
+    return m < 0 ? -1 : (ex->own_order = !same);
 }
 
 static bool exact_whole_scene(struct explorer *ex)
