@@ -143,7 +143,7 @@ FILE     ?= $(EX_LESSON)/exercise.c
 $(EX_SRC:%.c=$(B)/obj/%.o): $(B)/obj/%.o: %.c | $(FIRST)
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -Dexercise_rasterize=exercise_$(call nn,$<)_$(basename $(notdir $<)) \
 	  -Dexercise_clip=exercise_$(call nn,$<)_$(basename $(notdir $<))_clip -c $< -o $@
-$(B)/exercises.c: Makefile lessons $(EX_SRC) | $(FIRST)
+$(B)/exercises.c: Makefile $(wildcard lessons/*/) $(EX_SRC) | $(FIRST)
 	@printf '#include "exercise/exercise.h"\n' > $@
 	@printf 'struct poly;\nstruct plane;\n' >> $@
 	@for f in $(EX_SRC); do n=$$(basename $$(dirname $$f) | cut -c1-2); printf 'void exercise_%s_%s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$n $$(basename $$f .c); \

@@ -109,8 +109,16 @@ struct lesson_exercise {
      * a row, by the counters (lesson 03) */
     bool no_pixel_mul;
     /* ... every block narrated FULL covered in full, every block covered
-     * in full narrated FULL (lesson 05) */
+     * in full narrated FULL (lesson 05; lesson 07, tiles and blocks alike) */
     bool full_blocks;
+    /* which pseudo-code lines narrate a block's class, -1-terminated (lesson
+     * 07: a triangle whose box fits a block is narrated as that box, tested
+     * pixel by pixel, never classified); NULL: every block event */
+    const int *class_lines;
+    /* a check on scenes over many 64 x 64 tiles (lesson 07): triangles
+     * inside one block, one tile, across many; edges through the corners of
+     * tiles; the partial tiles at the screen's right and bottom */
+    bool tiles;
     /* the sample counts every scene of the check is drawn at, in order,
      * 0-terminated (lesson 08: 4, 8, 1); NULL: one sample per pixel. At
      * n > 1 the exact rule decides every sample (reference_point_covered)

@@ -137,7 +137,7 @@ Test(exercise, every_worked_answer_passes_its_check)
         cr_expect(strstr(run.report, "checks pass"), "no short report on success:\n%s", run.report);
         run_free(&run);
     }
-    cr_expect_geq(n, 7, "a skeleton and an answer for lessons 01 to 06 and 08");
+    cr_expect_geq(n, 8, "a skeleton and an answer for every lesson, 01 to 08");
 }
 
 /* The exercise_rasterize form is the same for every lesson: a rasterizer
@@ -341,6 +341,46 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
     check(&run, l05, lesson_nn("04")->variants[0].rasterize, NULL);
     cr_expect(run.ok, "%s", run.report);
     run_free(&run);
+}
+
+/* The explorer of an exercise runs the student's code, one triangle at a
+ * time, in every mode: lesson 07's whole-scene runs (bins, threads) and the
+ * order they narrate in are the lesson's own variants', not the exercise's.
+ * Lesson 07's skeleton, which draws nothing, must then give an empty
+ * picture where the lesson's scene run would draw the built-in scene. */
+Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
+{
+    for (int i = 0; all_lessons[i]; i++) {
+        struct lesson el;
+        struct lesson_variant ev[2];
+        exercise_lesson(&el, ev, all_lessons[i], "test.c");
+        cr_expect_null(lesson_scene_fn(&el, &ev[0]), "%s", el.id);
+        cr_expect_null(lesson_scene_fn(&el, &ev[1]), "%s", el.id);
+        cr_expect_null(el.narration_units, "%s", el.id);
+    }
+    const struct lesson *l07 = lesson_nn("07");
+    rasterize_fn skeleton = NULL;
+    for (int i = 0; all_exercises[i].lesson; i++)
+        if (strcmp(all_exercises[i].lesson, "07") == 0)
+            skeleton = all_exercises[i].skeleton;
+    cr_assert_not_null(skeleton);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_builtin(&s, l07->builtin_scene, err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l07, "test.c");
+    exercise_use(l07, skeleton);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step_end = true }, err, sizeof err), "%s", err);
+    size_t covered = 0;
+    for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++)
+        covered += ex.fb.count[i] != 0;
+    cr_expect_eq(covered, 0, "the skeleton draws nothing, yet %zu pixels are covered", covered);
+    cr_expect_gt(ex.missing, 0, "the diff marks the pixels the skeleton leaves out");
+    explorer_free(&ex);
+    scene_free(&s);
 }
 
 /* --- the counterexample in the explorer --------------------------------------- */
@@ -633,6 +673,20 @@ static const struct mutant mutants[] = {
       "const struct pvert *p0 = a, *p1 = b;", "shared edges, clipped", "the new vertex depends on the walk" },
     { "06-clipping", "a new vertex only leaving", "if (ina != inb && in_end->pos[2] != pl->at)",
       "if (ina && !inb && in_end->pos[2] != pl->at)", "one vertex behind near", "a missing pixel" },
+    { "07-tiles", "the wrong corner", "if (reject_corner(e, k, r) < 0)", "if (accept_corner(e, k, r) < 0)",
+      "single triangle", "classified EMPTY" },
+    { "07-tiles", "accepted at the reject corner", "full = full && accept_corner(e, k, r) >= 0;",
+      "full = full && reject_corner(e, k, r) >= 0;", "single triangle", "classified FULL" },
+    { "07-tiles", "the corner picked by dx alone", "e->dx[k] > 0 ? r.x1 : r.x0, e->dy[k] > 0 ? r.y1 : r.y0",
+      "e->dx[k] > 0 ? r.x1 : r.x0, r.y1", "single triangle", "a missing pixel" },
+    { "07-tiles", "corner of the next tile", "e->dx[k] < 0 ? r.x1 : r.x0, e->dy[k] < 0 ? r.y1 : r.y0",
+      "e->dx[k] < 0 ? r.x1 + 1 : r.x0, e->dy[k] < 0 ? r.y1 + 1 : r.y0", "tiles and blocks",
+      "is covered in full, but was not narrated FULL" },
+    { "07-tiles", "accept corner tested with > 0", "full = full && accept_corner(e, k, r) >= 0;",
+      "full = full && accept_corner(e, k, r) > 0;", "tiles and blocks",
+      "is covered in full, but was not narrated FULL" },
+    { "07-tiles", "reject corner tested with <= 0", "if (reject_corner(e, k, r) < 0)",
+      "if (reject_corner(e, k, r) <= 0)", "watertight meshes", "classified EMPTY" },
     { "08-multisampling", "no bias", "+ t->K[k] + t->bias[k];", "+ t->K[k];", "fill-rule ties",
       "a sample too many" },
     { "08-multisampling", "offsets from the corner", "pt.dx[s] = sp->x[s] - SUBPIXEL_HALF;",

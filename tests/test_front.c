@@ -227,17 +227,6 @@ static void add_round(struct rng *r, struct scene *s, const double centre[3], do
 
 /* --- coverage of a projected scene ---------------------------------------------------- */
 
-static uint8_t *scene_coverage(const struct scene *s)
-{
-    uint8_t *mask = calloc((size_t)s->w * (size_t)s->h, 1);
-    for (int i = 0; i < s->ntris; i++) {
-        struct tri_setup t;
-        tri_setup(&t, s->tris[i].v, s->w, s->h);
-        reference_mask(&t, mask);
-    }
-    return mask;
-}
-
 /* Pixels next to a fold, kept out of the checks (CONVENTIONS.md: snapping
  * the new vertices of a clipped polygon whose vertices are nearly in line
  * can fold it). A world triangle's fan folds when its drawn triangles do not
@@ -413,7 +402,7 @@ Test(front, inside_a_closed_box_every_pixel_is_covered_once, .timeout = 120)
             project(&fr, &d);
             guard_clipped += !in_guard_band(&d);
         }
-        uint8_t *mask = scene_coverage(&s);
+        uint8_t *mask = reference_scene(&s);
         uint8_t *skip = calloc((size_t)w * h, 1);
         folds += mark_folds(&s, skip);
         expect_counts(&s, mask, skip, 1u << 1, 1, "inside a box (reference)", test_seed(), c);
@@ -486,7 +475,7 @@ Test(front, closed_meshes_from_outside_cover_pixels_an_even_number_of_times, .ti
         }
         s.world.cam.near = fmin(cam.near, dmin * 0.999);
         cr_assert(front_scene(&s));
-        uint8_t *mask = scene_coverage(&s);
+        uint8_t *mask = reference_scene(&s);
         uint8_t *skip = calloc((size_t)w * h, 1);
         folds += mark_folds(&s, skip);
         unsigned allowed = kind == 2 ? 0x55555555u : (1u << 0 | 1u << 2);   /* even, or 0 and 2 */
@@ -556,7 +545,7 @@ Test(front, a_floor_past_the_guard_band_has_no_holes, .timeout = 120)
             for (int k = 0; k < 3; k++)
                 guard_clipped += fabs(s.tris[i].v[k].x) >= GUARD_BAND - 1
                                  || fabs(s.tris[i].v[k].y) >= GUARD_BAND - 1;
-        uint8_t *mask = scene_coverage(&s);
+        uint8_t *mask = reference_scene(&s);
         uint8_t *skip = calloc((size_t)w * h, 1);
         mark_folds(&s, skip);
         for (int y = 0; y < h; y++)
@@ -825,7 +814,7 @@ Test(front, dragging_a_screen_vertex_moves_the_model_vertex_at_its_depth, .timeo
         /* a box corner is shared by 3 to 6 of its 12 triangles */
         cr_assert(changed >= 3 && changed <= 6, "case %d: %d copies of the corner moved", c, changed);
         cr_assert(front_scene(&s));
-        uint8_t *mask = scene_coverage(&s);
+        uint8_t *mask = reference_scene(&s);
         uint8_t *skip = calloc((size_t)w * h, 1);
         mark_folds(&s, skip);
         expect_counts(&s, mask, skip, 0x55555555u, -1, "dragged box", test_seed(), c);

@@ -285,6 +285,49 @@ void reference_mask(const struct tri_setup *t, uint8_t *mask)
     reference_coverage(t, mask_cover, &m);
 }
 
+uint8_t *reference_scene(const struct scene *s)
+{
+    uint8_t *ref = calloc((size_t)s->w * (size_t)s->h, 1);
+    for (int i = 0; ref && i < s->ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, s->tris[i].v, s->w, s->h);
+        reference_mask(&t, ref);
+    }
+    return ref;
+}
+
+static int channel(uint32_t c, int k)
+{
+    return (int)(c >> (16 - 8 * k) & 255);
+}
+
+int reference_shading_check(const struct target *fb, const struct tri_setup *t, int tolerance,
+                            double depth_rel, char *why, size_t n)
+{
+    int checked = 0;
+    for (int y = 0; y < fb->h; y++)
+        for (int x = 0; x < fb->w; x++) {
+            size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
+            if (!fb->count[i])
+                continue;
+            double z, rgb[3], st[2];
+            reference_shade(t, x, y, true, &z, rgb, st);
+            uint32_t want = pack_rgb(rgb[0], rgb[1], rgb[2]);
+            for (int c = 0; c < 3; c++)
+                if (abs(channel(fb->color[i], c) - channel(want, c)) > tolerance) {
+                    snprintf(why, n, "pixel (%d, %d) channel %d is %d, the reference %d", x, y, c,
+                             channel(fb->color[i], c), channel(want, c));
+                    return -1;
+                }
+            if (!(fabs(fb->depth[i] - z) <= depth_rel * z)) {
+                snprintf(why, n, "pixel (%d, %d) z = %.9g, the reference %.9g", x, y, fb->depth[i], z);
+                return -1;
+            }
+            checked++;
+        }
+    return checked;
+}
+
 /* --- reporting ---------------------------------------------------------------------- */
 
 void print_case(const struct case_info *info)

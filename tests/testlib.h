@@ -94,6 +94,15 @@ void rasterize_one(const struct lesson_variant *v, const struct raster_params *p
 
 /* Add reference_coverage() of t to a w x h mask of counts (saturating at 255). */
 void reference_mask(const struct tri_setup *t, uint8_t *mask);
+/* Coverage counts of a whole scene by the exact reference, triangle after
+ * triangle (a fresh w x h array to free; NULL when out of memory). */
+uint8_t *reference_scene(const struct scene *s);
+/* Does every pixel fb covers have the reference's perspective-correct
+ * colour of triangle t within `tolerance` levels per channel, and its depth
+ * within depth_rel of it? The number of pixels compared, or -1 with the
+ * first that is not in why. */
+int reference_shading_check(const struct target *fb, const struct tri_setup *t, int tolerance,
+                            double depth_rel, char *why, size_t n);
 
 /* What a failure message says about the case. */
 struct case_info {

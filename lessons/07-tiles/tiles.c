@@ -923,11 +923,21 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
     }
     for (int by = y0 & ~(BLOCK - 1); by <= y1; by += BLOCK) {
         for (int bx = x0 & ~(BLOCK - 1); bx <= x1; bx += BLOCK) {
+            /* a block cut by the screen's right or bottom edge has its
+             * corners on its last pixels there, not on the next tile's */
+            int bx1 = bx + BLOCK - 1 < r.w ? bx + BLOCK - 1 : r.w - 1;
+            int by1 = by + BLOCK - 1 < r.h ? by + BLOCK - 1 : r.h - 1;
+            bool cut = bx1 - bx < BLOCK - 1 || by1 - by < BLOCK - 1;
             enum block_class klass = BLOCK_FULL;
             for (int k = 0; k < 3; k++) {
-                int32_t e = c.e0[k] + t->di[k] * bx + t->dj[k] * by, lo = e + acc[k], hi = e + rej[k];
+                int32_t a = t->di[k], b = t->dj[k];
+                int32_t e = c.e0[k] + a * bx + b * by, lo = e + acc[k], hi = e + rej[k];
+                if (cut) {
+                    lo = e + (a < 0 ? a : 0) * (bx1 - bx) + (b < 0 ? b : 0) * (by1 - by);
+                    hi = e + (a > 0 ? a : 0) * (bx1 - bx) + (b > 0 ? b : 0) * (by1 - by);
+                }
                 if (four) {     /* lesson 05's way, for the measurement: every corner */
-                    int32_t right = t->di[k] * (BLOCK - 1), down = t->dj[k] * (BLOCK - 1);
+                    int32_t right = a * (bx1 - bx), down = b * (by1 - by);
                     int32_t q[4] = { e, e + right, e + down, e + right + down };
                     lo = hi = q[0];
                     for (int i = 1; i < 4; i++) {
@@ -942,8 +952,6 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
                 if (lo < 0)
                     klass = BLOCK_PARTIAL;
             }
-            int bx1 = bx + BLOCK - 1 < r.w ? bx + BLOCK - 1 : r.w - 1;
-            int by1 = by + BLOCK - 1 < r.h ? by + BLOCK - 1 : r.h - 1;
             NARRATE(tr, .kind = TRACE_BLOCK,
                     .line = klass == BLOCK_EMPTY ? L_BLOCK_REJECT
                           : klass == BLOCK_FULL ? L_BLOCK_ACCEPT : L_BLOCK_PARTIAL,
@@ -1403,4 +1411,10 @@ const struct lesson lesson_07 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(QUAD_PLANES, PLANE_AT_COST), COST_TERM(1, RECIPROCAL_COST),
         COST_TERM(1, COLOUR_TIMES_Z_COST), { 0 } },
+    /* exercise.c: one triangle through the tiles; every tile and block
+     * called FULL covered in full and the other way round (the box of the
+     * small-triangle path is tested, not classified) */
+    .exercise = { .write_line = L_BLOCK_PARTIAL, .full_blocks = true, .tiles = true,
+                  .class_lines = (const int[]){ L_REJECT, L_FULL_TILE, L_PARTIAL_TILE, L_BLOCK_REJECT,
+                                                L_BLOCK_ACCEPT, L_BLOCK_PARTIAL, -1 } },
 };

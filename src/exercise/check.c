@@ -13,7 +13,10 @@
  *              on every pixel the exact rule covers;
  *   property   what the lesson is about: no multiplication between two
  *              pixels of a row (lesson 03), every block narrated full
- *              really full and every full block found (lesson 05).
+ *              really full and every full block found (lessons 05, 07).
+ *
+ * Lesson 07 adds a check of its own scenes, over many tiles (gen_tiles),
+ * that compares all three at once.
  *
  * A write outside the target fails any check. */
 #define _DEFAULT_SOURCE           /* fork, MAP_ANONYMOUS, strsignal */
@@ -207,6 +210,8 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false };
     c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false };
     c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false };
+    if (l->exercise.tiles)
+        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
                                 CK_COLOUR, gen_colour, false };
     if (l->exercise.no_pixel_mul)

@@ -69,6 +69,11 @@ static void watch(void *ctx, const struct trace_event *ev)
         C->in_row = false;
         if (!C->l->exercise.full_blocks || ev->x > ev->x1 || ev->y > ev->y1)
             break;
+        bool classified = !C->l->exercise.class_lines;
+        for (const int *line = C->l->exercise.class_lines; line && *line >= 0 && !classified; line++)
+            classified = ev->line == *line;
+        if (!classified)
+            break;
         int missing_x = -1, missing_y = -1;
         for (int y = ev->y; y <= ev->y1 && missing_x < 0; y++)
             for (int x = ev->x; x <= ev->x1; x++)

@@ -262,4 +262,8 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
     out->fronts = l->exercise.clip ? fronts : NULL;
     out->other_depth = NULL;
     out->exhibit_scene = NULL;      /* X toggles on the student's scene */
+    /* the exercise is one triangle at a time (lesson 07's whole-scene runs
+     * and their narrated order belong to the lesson's own variants) */
+    out->rasterize_scene = NULL;
+    out->narration_units = NULL;
 }

@@ -178,7 +178,7 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
 
 /* What the code's own narration says about the first wrong pixel: its
  * first write there, its last test of it, and the block or span that holds
- * it. From these, the step at which the explorer shows it: the write (or
+ * it (the smallest, where a tile holds blocks). From these, the step at which the explorer shows it: the write (or
  * the block or span), or the end of the triangle when the code never wrote
  * the pixel (a missing one). */
 static void follow(void *ctx, const struct trace_event *ev)
@@ -189,9 +189,11 @@ static void follow(void *ctx, const struct trace_event *ev)
         f->written = true, f->write = *ev;
     else if (ev->kind == TRACE_PIXEL_TEST && here)
         f->tested = true, f->test = *ev;
-    else if ((ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN) && !f->held && f->x >= ev->x
-             && f->x <= ev->x1 && f->y >= ev->y && f->y <= ev->y1)
-        f->held = true, f->hold = *ev;
+    else if ((ev->kind == TRACE_BLOCK || ev->kind == TRACE_SPAN) && f->x >= ev->x
+             && f->x <= ev->x1 && f->y >= ev->y && f->y <= ev->y1
+             && (!f->held || (ev->x >= f->hold.x && ev->x1 <= f->hold.x1 && ev->y >= f->hold.y
+                              && ev->y1 <= f->hold.y1)))
+        f->held = true, f->hold = *ev;      /* the innermost: lesson 07's block in its tile */
 }
 
 uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v,

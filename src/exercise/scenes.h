@@ -17,6 +17,7 @@ bool gen_meshes(int i, struct scene *s, char *what, size_t n);      /* watertigh
 bool gen_random(int i, struct scene *s, char *what, size_t n);      /* random triangles */
 bool gen_colour(int i, struct scene *s, char *what, size_t n);      /* colour and depth */
 bool gen_property(int i, struct scene *s, char *what, size_t n);    /* the lesson's property */
+bool gen_tiles(int i, struct scene *s, char *what, size_t n);       /* tiles and blocks (lesson 07) */
 
 /* 3-D scenes for lesson 06's clipper, simplest first */
 bool gen_no_clip(int i, struct scene *s, char *what, size_t n);         /* between near and far */

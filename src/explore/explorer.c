@@ -166,6 +166,27 @@ static bool own_front(const struct explorer *ex)
            && lesson_front(ex->lesson, v) != lesson_front(ex->lesson, ex->lesson->variants);
 }
 
+/* An exhibit of a scene-level lesson whose units come in an order of their
+ * own (lesson 07's `unordered`: a tile's triangles in another order than
+ * the scene's) is compared the same way: drawn unit after unit in the
+ * exhibit's order, the exact picture would take the exhibit's order too,
+ * and the diff would show nothing. -1: out of memory. */
+static int own_order(struct explorer *ex)
+{
+    if (ex->own_order >= 0)
+        return ex->own_order;
+    if (!ex->replay.units_fn || !ex->replay.units || ex->variant == 0)
+        return ex->own_order = 0;
+    long n = ex->replay.ntris;
+    struct lesson_unit *u = malloc((size_t)(n > 0 ? n : 1) * sizeof *u);
+    long m = u ? ex->replay.units_fn(ex->replay.scene, ex->lesson->variants, &ex->replay.params, u, n) : -1;
+    bool same = m == n;
+    for (long i = 0; same && i < n; i++)
+        same = u[i].tri == ex->replay.units[i].tri && u[i].tile == ex->replay.units[i].tile;
+    free(u);
+    return m < 0 ? -1 : (ex->own_order = !same);
+}
+
 static bool exact_whole_scene(struct explorer *ex)
 {
     if (ex->exact_upto == INT_MAX)
@@ -230,8 +251,11 @@ static bool compare_exhibit(struct explorer *ex)
     /* the picture of exactly the finished triangles */
     const struct target *have_fb = ex->cur >= 0 && done > ex->cur ? &ex->fb : &ex->replay.base;
     const uint8_t *count = have_fb->count;
-    if (own_front(ex)) {
-        if (done < ex->replay.ntris) {      /* other triangles: only the whole picture compares */
+    int order = own_order(ex);
+    if (order < 0)
+        return false;
+    if (own_front(ex) || order) {
+        if (done < ex->replay.ntris) {      /* other triangles or another order: only the whole picture compares */
             memset(ex->diff, 0, n);
             return true;
         }
@@ -470,6 +494,7 @@ static bool rerun(struct explorer *ex, uint64_t step)
         return false;
     ex->marks_tri = -1;
     ex->exact_upto = -1;
+    ex->own_order = -1;
     return explorer_set_step(ex, step);
 }
 
@@ -614,6 +639,7 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     ex->speed = 8;              /* 16 events per second */
     ex->marks_tri = -1;
     ex->exact_upto = -1;
+    ex->own_order = -1;
     ex->hover_vertex = -1;
     ex->count_later = d->count_later;
     const char *failed = NULL;

@@ -134,6 +134,7 @@ struct explorer {
     int exact_upto;
     uint8_t *diff;
     int diff_done;                  /* triangles compared (finished at this step) */
+    int own_order;                  /* the exhibit's units in an order of their own: 1, 0, -1 not known */
     uint64_t extra, missing, wrong_colour;
 
     /* earlier lessons on the same scene (lesson->compare), for the counters */
