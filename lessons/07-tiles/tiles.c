@@ -116,12 +116,6 @@ struct tri {
     float st[3 * ST_COUNT];     /* P0, Px, Py of s, then of t */
 };
 
-/* Floor of a / 256 for any sign (a >> 8 without implementation-defined shifts). */
-static int64_t floor_div256(int64_t a)
-{
-    return a >= 0 ? a / 256 : -((-a + 255) / 256);
-}
-
 /* The record of a triangle that tri_setup() has snapped and normalised
  * (tristep's shared set-up, so coverage is decided on the same numbers as
  * every other lesson); the texture planes only for a textured scene. */
@@ -140,7 +134,7 @@ static void tri_record(struct tri *r, const struct tri_setup *t, int checker)
 
     /* lesson 04's planes, in double at (minx, miny) (src/shade/quad.c), kept in float */
     struct planes pl;
-    planes_setup(&pl, t, &(struct raster_params){ .checker = checker });
+    planes_solve(&pl, t, &(struct raster_params){ .checker = checker });
     for (int q = 0; q < QUAD_PLANES; q++)
         r->p0[q] = (float)pl.p0[q], r->px[q] = (float)pl.px[q], r->py[q] = (float)pl.py[q];
     for (int q = 0; r->textured && q < ST_COUNT; q++) {
@@ -258,6 +252,7 @@ static struct rect tile_rect(const struct grid *g, int tile)
  * of blocks of BIN_BLOCK records (4 KB): read one after another, written
  * without ever moving. */
 #define BIN_BLOCK 30
+#define CACHE_LINE 64
 
 struct bin_block {
     struct bin_block *next;
@@ -298,6 +293,8 @@ static struct bin_block *block_get(void)
 static void bin_free(struct bin *bin)
 {
     struct bin_block *b = bin->first;
+    if (!b)
+        return;
     pthread_mutex_lock(&pool_lock);
     while (b) {
         struct bin_block *next = b->next;
@@ -312,6 +309,15 @@ static void bin_free(struct bin *bin)
     }
     pthread_mutex_unlock(&pool_lock);
     bin->first = bin->last = NULL;
+}
+
+/* Ask the cache for the lines of [p, p + n), to be written soon. */
+static void prefetch_for_write(const void *p, size_t n)
+{
+    const char *c = p;
+    for (size_t o = 0; o < n; o += CACHE_LINE)
+        __builtin_prefetch(c + o, 1);
+    __builtin_prefetch(c + n - 1, 1);
 }
 
 static bool bin_push(struct bin *bin, const struct tri *t, bool full)
@@ -329,6 +335,13 @@ static bool bin_push(struct bin *bin, const struct tri *t, bool full)
     }
     b->rec[b->n] = *t;
     b->rec[b->n++].full = full;
+    /* This bin's next triangle comes hundreds of triangles later, after
+     * the other bins': its slot, asked for now, is in the cache by then.
+     * Otherwise every record written waits for its lines from memory
+     * (hundreds of bins filled at once are more streams than the hardware
+     * prefetcher follows). */
+    if (b->n < BIN_BLOCK)
+        prefetch_for_write(&b->rec[b->n], sizeof *t);
     return true;
 }
 
@@ -417,7 +430,7 @@ static struct tt tt_make(const struct tri *t, struct rect r)
 {
     struct tt c = { t, t->textured ? t->st : NULL, r.x0, r.y0, { 0, 0, 0 } };
     for (int k = 0; k < 3; k++) {
-        int64_t e = floor_div256(edge_at(t, k, r.x0, r.y0));
+        int64_t e = floor_div(edge_at(t, k, r.x0, r.y0), SUBPIXEL_ONE);    /* no branch on the sign */
         c.e0[k] = (int32_t)(e > E_LIMIT ? E_LIMIT : e < -E_LIMIT - 1 ? -E_LIMIT - 1 : e);
     }
     return c;
@@ -498,22 +511,30 @@ static uint32_t byte_of(int32_t v)
 
 /* --- the three twins of the pixel work: plain C, SSE2, AVX2 ---------------
  *
- * cover8: which of the 8 pixels (i .. i + 7, j) of the tile pass (E) for all
- *         three edges (bit l for pixel i + l);
- * shade8: depth test and write the pixels of `mask`: 1/z from its plane,
- *         z = 1 / (1/z), nearer than the buffer -> colour = (255 a / z) z.
+ * A twin draws a strip: the columns i .. i + 7 of rows y0 .. y1 of the tile
+ * (a block, a small triangle's box, a column of a FULL tile), the lanes of
+ * `mask` only. Down the strip, what depends on the column alone is computed
+ * once: the column terms Px (x - minx) of every plane, and (E) of each edge
+ * at the strip's first row, which then steps by J_k a row (exact: integers).
+ * At each row, each pixel:
+ *
+ *   cover: (E) >= 0 for all three edges (when the strip is tested);
+ *   shade: 1/z = row term + column term, z = 1 / (1/z), nearer than the
+ *          buffer -> colour = (255 a / z) z, the same for r, g, b.
+ *
  * Same float operations in the same order in all three: same bytes. */
 
-static unsigned cover8_c(const struct tt *c, int i, int j)
+/* The lanes of `mask` whose pixel (i + l, j) passes (E) for all three edges. */
+static unsigned cover8_c(const struct tt *c, int i, int j, unsigned mask)
 {
-    unsigned mask = 0;
+    unsigned in = 0;
     for (int l = 0; l < LANES; l++) {
-        bool in = true;
+        bool inside = mask >> l & 1;
         for (int k = 0; k < 3; k++)
-            in = in && c->e0[k] + c->t->di[k] * (i + l) + c->t->dj[k] * j >= 0;
-        mask |= (unsigned)in << l;
+            inside = inside && c->e0[k] + c->t->di[k] * (i + l) + c->t->dj[k] * j >= 0;
+        in |= (unsigned)inside << l;
     }
-    return mask;
+    return in;
 }
 
 /* One pixel, column i + l: the scalar twin, also used by the narration. */
@@ -564,24 +585,20 @@ static void shade8_c(const struct tt *c, const struct dst *d, const struct rows 
     }
 }
 
-/* SSE2: two registers of four lanes. */
-static unsigned cover8_sse2(const struct tt *c, int i, int j)
+/* Plain C: row by row, pixel by pixel, straight from the formulas. */
+static void strip_c(const struct tt *c, const struct dst *d, int i, int y0, int y1, unsigned mask,
+                    bool test)
 {
-    const struct tri *t = c->t;
-    __m128i neg = _mm_setzero_si128(), neg_hi = _mm_setzero_si128();
-    for (int k = 0; k < 3; k++) {
-        int32_t base = c->e0[k] + t->di[k] * i + t->dj[k] * j;
-        int32_t d = t->di[k];
-        __m128i lo = _mm_add_epi32(_mm_set1_epi32(base), _mm_setr_epi32(0, d, 2 * d, 3 * d));
-        __m128i hi = _mm_add_epi32(lo, _mm_set1_epi32(4 * d));
-        neg = _mm_or_si128(neg, lo);
-        neg_hi = _mm_or_si128(neg_hi, hi);
+    for (int j = y0; j <= y1; j++) {
+        struct rows rw;
+        plane_rows(c, j, rw.p, rw.st);
+        unsigned m = test ? cover8_c(c, i, j, mask) : mask;
+        if (m)
+            shade8_c(c, d, &rw, i, j, m);
     }
-    unsigned m = (unsigned)_mm_movemask_ps(_mm_castsi128_ps(neg))
-               | (unsigned)_mm_movemask_ps(_mm_castsi128_ps(neg_hi)) << 4;
-    return ~m & 0xFFu;
 }
 
+/* SSE2: two registers of four lanes. */
 static __m128i clamp_byte_sse2(__m128i v)
 {
     v = _mm_and_si128(v, _mm_cmpgt_epi32(v, _mm_setzero_si128()));     /* max(v, 0) */
@@ -589,25 +606,20 @@ static __m128i clamp_byte_sse2(__m128i v)
     return _mm_or_si128(_mm_andnot_si128(big, v), _mm_and_si128(big, _mm_set1_epi32(255)));
 }
 
-static void shade4_sse2(const struct tt *c, const struct dst *d, const float row[QUAD_PLANES],
-                        const float st_row[ST_COUNT], int i, int j, unsigned mask4)
+/* The four pixels at o (rows of the planes `row`, columns `col`, `dxf`) whose
+ * lanes `in` has: depth test, shade, write. */
+static void shade4_sse2(const struct tt *c, const struct dst *d, const struct rows *rw,
+                        const __m128 col[QUAD_PLANES], __m128 dxf, __m128 in, size_t o)
 {
-    const struct tri *t = c->t;
-    __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
-    __m128 in = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)mask4), bits), bits));
-    __m128 dxf = _mm_cvtepi32_ps(_mm_add_epi32(_mm_set1_epi32(c->tx + i - t->minx),
-                                               _mm_setr_epi32(0, 1, 2, 3)));
-    __m128 inv_z = _mm_add_ps(_mm_set1_ps(row[PL_INV_Z]), _mm_mul_ps(_mm_set1_ps(t->px[PL_INV_Z]), dxf));
-    __m128 z = _mm_div_ps(_mm_set1_ps(1.0f), inv_z);
-    size_t o = (size_t)j * (size_t)d->stride + (size_t)i;
+    const float *row = rw->p, *st_row = rw->st;
+    __m128 z = _mm_div_ps(_mm_set1_ps(1.0f), _mm_add_ps(_mm_set1_ps(row[PL_INV_Z]), col[PL_INV_Z]));
     __m128 old_z = _mm_loadu_ps(d->depth + o);
     __m128 pass = _mm_and_ps(_mm_cmplt_ps(z, old_z), in);
-    int passed = _mm_movemask_ps(pass);
-    if (!passed)
+    if (!_mm_movemask_ps(pass))
         return;
-    __m128 r = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_R]), _mm_mul_ps(_mm_set1_ps(t->px[PL_R]), dxf)), z);
-    __m128 g = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_G]), _mm_mul_ps(_mm_set1_ps(t->px[PL_G]), dxf)), z);
-    __m128 b = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_B]), _mm_mul_ps(_mm_set1_ps(t->px[PL_B]), dxf)), z);
+    __m128 r = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_R]), col[PL_R]), z);
+    __m128 g = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_G]), col[PL_G]), z);
+    __m128 b = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(row[PL_B]), col[PL_B]), z);
     if (c->st) {
         __m128 s = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_S]), _mm_mul_ps(_mm_set1_ps(c->st[1]), dxf)), z);
         __m128 tt = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_T]), _mm_mul_ps(_mm_set1_ps(c->st[4]), dxf)), z);
@@ -631,36 +643,63 @@ static void shade4_sse2(const struct tt *c, const struct dst *d, const float row
                      _mm_or_si128(_mm_and_si128(pass_i, rgba), _mm_andnot_si128(pass_i, old_c)));
 }
 
-static void shade8_sse2(const struct tt *c, const struct dst *d, const struct rows *rw, int i,
-                        int j, unsigned mask)
+/* The lanes of `mask` (bit l: lane l) as a register of all-ones lanes. */
+static __m128 lanes_sse2(unsigned mask)
+{
+    __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
+    return _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)mask), bits), bits));
+}
+
+static void strip_sse2(const struct tt *c, const struct dst *d, int i, int y0, int y1,
+                       unsigned mask, bool test)
 {
     if (i + LANES > d->wide) {      /* no room for whole registers: lane by lane */
-        shade8_c(c, d, rw, i, j, mask);
+        strip_c(c, d, i, y0, y1, mask, test);
         return;
     }
-    count_lanes(d, i, j, mask);
-    if (mask & 0xF)
-        shade4_sse2(c, d, rw->p, rw->st, i, j, mask & 0xF);
-    if (mask >> 4)
-        shade4_sse2(c, d, rw->p, rw->st, i + 4, j, mask >> 4);
+    /* down the strip: the column terms of each plane and (E) at row y0,
+     * each edge stepping by J_k a row; lanes 0-3, then 4-7 */
+    const struct tri *t = c->t;
+    __m128 dx[2], cols[2][QUAD_PLANES], want[2];
+    __m128i edge[2][3], step[3];
+    for (int h = 0; h < 2; h++) {
+        dx[h] = _mm_cvtepi32_ps(_mm_add_epi32(_mm_set1_epi32(c->tx + i + 4 * h - t->minx),
+                                              _mm_setr_epi32(0, 1, 2, 3)));
+        for (int q = 0; q < QUAD_PLANES; q++)
+            cols[h][q] = _mm_mul_ps(_mm_set1_ps(t->px[q]), dx[h]);
+        want[h] = lanes_sse2(mask >> 4 * h & 0xF);
+    }
+    for (int k = 0; k < 3; k++) {
+        int32_t base = c->e0[k] + t->di[k] * i + t->dj[k] * y0, di = t->di[k];
+        edge[0][k] = _mm_add_epi32(_mm_set1_epi32(base), _mm_setr_epi32(0, di, 2 * di, 3 * di));
+        edge[1][k] = _mm_add_epi32(edge[0][k], _mm_set1_epi32(4 * di));
+        step[k] = _mm_set1_epi32(t->dj[k]);
+    }
+    size_t o = (size_t)y0 * (size_t)d->stride + (size_t)i;
+    for (int j = y0; j <= y1; j++, o += (size_t)d->stride) {
+        __m128 in[2] = { want[0], want[1] };
+        for (int h = 0; test && h < 2; h++) {
+            /* a lane is outside when some edge's (E) is negative: its sign
+             * bit, spread over the lane */
+            __m128i out = _mm_or_si128(_mm_or_si128(edge[h][0], edge[h][1]), edge[h][2]);
+            in[h] = _mm_andnot_ps(_mm_castsi128_ps(_mm_srai_epi32(out, 31)), want[h]);
+            for (int k = 0; k < 3; k++)
+                edge[h][k] = _mm_add_epi32(edge[h][k], step[k]);
+        }
+        unsigned m = (unsigned)_mm_movemask_ps(in[0]) | (unsigned)_mm_movemask_ps(in[1]) << 4;
+        if (!m)
+            continue;
+        count_lanes(d, i, j, m);
+        struct rows rw;
+        plane_rows(c, j, rw.p, rw.st);
+        for (int h = 0; h < 2; h++)
+            if (m >> 4 * h & 0xF)
+                shade4_sse2(c, d, &rw, cols[h], dx[h], in[h], o + (size_t)(4 * h));
+    }
 }
 
 #if TILES_AVX2
 #define AVX2 __attribute__((target("avx2")))
-
-AVX2 static inline __attribute__((always_inline)) unsigned cover8_avx2(const struct tt *c, int i, int j)
-{
-    const struct tri *t = c->t;
-    __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    __m256i neg = _mm256_setzero_si256();
-    for (int k = 0; k < 3; k++) {
-        int32_t base = c->e0[k] + t->di[k] * i + t->dj[k] * j;
-        __m256i e = _mm256_add_epi32(_mm256_set1_epi32(base),
-                                     _mm256_mullo_epi32(_mm256_set1_epi32(t->di[k]), lane));
-        neg = _mm256_or_si256(neg, e);
-    }
-    return ~(unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(neg)) & 0xFFu;
-}
 
 AVX2 static __m256i floor_avx2(__m256 v)
 {
@@ -675,65 +714,94 @@ AVX2 static __m256i byte_avx2(__m256 v)
                             _mm256_set1_epi32(255));
 }
 
-AVX2 static inline __attribute__((always_inline)) void
-shade8_avx2(const struct tt *c, const struct dst *d, const struct rows *rw, int i, int j,
-            unsigned mask)
+/* (E) of edge k at the pixels (i .. i + 7, j) of the tile. */
+AVX2 static inline __m256i edge8_avx2(const struct tt *c, int k, int i, int j)
+{
+    const struct tri *t = c->t;
+    return _mm256_add_epi32(_mm256_set1_epi32(c->e0[k] + t->di[k] * i + t->dj[k] * j),
+                            _mm256_mullo_epi32(_mm256_set1_epi32(t->di[k]),
+                                               _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+}
+
+/* AVX2: one register of eight lanes, the same steps as the SSE2 twin. */
+AVX2 static void strip_avx2(const struct tt *c, const struct dst *d, int i, int y0, int y1,
+                            unsigned mask, bool test)
 {
     if (i + LANES > d->wide) {
-        shade8_c(c, d, rw, i, j, mask);
+        strip_c(c, d, i, y0, y1, mask, test);
         return;
     }
-    count_lanes(d, i, j, mask);
     const struct tri *t = c->t;
-    const float *row = rw->p, *st_row = rw->st;
+    /* down the strip: the column terms of each plane and (E) at row y0,
+     * each edge stepping by J_k a row */
+    __m256 dx = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(c->tx + i - t->minx),
+                                                    _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    __m256 col_inv_z = _mm256_mul_ps(_mm256_set1_ps(t->px[PL_INV_Z]), dx);
+    __m256 col_r = _mm256_mul_ps(_mm256_set1_ps(t->px[PL_R]), dx);
+    __m256 col_g = _mm256_mul_ps(_mm256_set1_ps(t->px[PL_G]), dx);
+    __m256 col_b = _mm256_mul_ps(_mm256_set1_ps(t->px[PL_B]), dx);
+    __m256i e0 = edge8_avx2(c, 0, i, y0), e1 = edge8_avx2(c, 1, i, y0), e2 = edge8_avx2(c, 2, i, y0);
     __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    __m256 in = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+    __m256 want = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
         _mm256_and_si256(_mm256_set1_epi32((int)mask), bits), bits));
-    __m256 dxf = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(c->tx + i - t->minx),
-                                                     _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    __m256 inv_z = _mm256_add_ps(_mm256_set1_ps(row[PL_INV_Z]),
-                                 _mm256_mul_ps(_mm256_set1_ps(t->px[PL_INV_Z]), dxf));
-    __m256 z = _mm256_div_ps(_mm256_set1_ps(1.0f), inv_z);
-    size_t o = (size_t)j * (size_t)d->stride + (size_t)i;
-    __m256 old_z = _mm256_loadu_ps(d->depth + o);
-    __m256 pass = _mm256_and_ps(_mm256_cmp_ps(z, old_z, _CMP_LT_OQ), in);
-    if (!_mm256_movemask_ps(pass))
-        return;
-    __m256 r = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_R]),
-                                           _mm256_mul_ps(_mm256_set1_ps(t->px[PL_R]), dxf)), z);
-    __m256 g = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_G]),
-                                           _mm256_mul_ps(_mm256_set1_ps(t->px[PL_G]), dxf)), z);
-    __m256 b = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_B]),
-                                           _mm256_mul_ps(_mm256_set1_ps(t->px[PL_B]), dxf)), z);
-    if (c->st) {
-        __m256 s = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(st_row[ST_S]),
-                                               _mm256_mul_ps(_mm256_set1_ps(c->st[1]), dxf)), z);
-        __m256 tq = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(st_row[ST_T]),
-                                                _mm256_mul_ps(_mm256_set1_ps(c->st[4]), dxf)), z);
-        __m256i square = _mm256_add_epi32(floor_avx2(s), floor_avx2(tq));
-        __m256 dark = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-            _mm256_and_si256(square, _mm256_set1_epi32(1)), _mm256_set1_epi32(1)));
-        __m256 scale = _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps((float)CHECKER_DARK), dark);
-        r = _mm256_mul_ps(r, scale);
-        g = _mm256_mul_ps(g, scale);
-        b = _mm256_mul_ps(b, scale);
+    float *depth = d->depth + (size_t)y0 * (size_t)d->stride + (size_t)i;
+    uint32_t *color = d->color + (size_t)y0 * (size_t)d->stride + (size_t)i;
+    for (int j = y0; j <= y1; j++, depth += d->stride, color += d->stride) {
+        __m256 in = want;
+        if (test) {
+            /* a lane is outside when some edge's (E) is negative: its sign
+             * bit, spread over the lane */
+            __m256i out = _mm256_or_si256(_mm256_or_si256(e0, e1), e2);
+            in = _mm256_andnot_ps(_mm256_castsi256_ps(_mm256_srai_epi32(out, 31)), want);
+            e0 = _mm256_add_epi32(e0, _mm256_set1_epi32(t->dj[0]));
+            e1 = _mm256_add_epi32(e1, _mm256_set1_epi32(t->dj[1]));
+            e2 = _mm256_add_epi32(e2, _mm256_set1_epi32(t->dj[2]));
+        }
+        unsigned m = (unsigned)_mm256_movemask_ps(in);
+        if (!m)
+            continue;
+        count_lanes(d, i, j, m);
+        struct rows rw;
+        plane_rows(c, j, rw.p, rw.st);
+        const float *row = rw.p, *st_row = rw.st;
+        __m256 z = _mm256_div_ps(_mm256_set1_ps(1.0f),
+                                 _mm256_add_ps(_mm256_set1_ps(row[PL_INV_Z]), col_inv_z));
+        __m256 old_z = _mm256_loadu_ps(depth);
+        __m256 pass = _mm256_and_ps(_mm256_cmp_ps(z, old_z, _CMP_LT_OQ), in);
+        if (!_mm256_movemask_ps(pass))
+            continue;
+        __m256 r = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_R]), col_r), z);
+        __m256 g = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_G]), col_g), z);
+        __m256 b = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(row[PL_B]), col_b), z);
+        if (c->st) {
+            __m256 s = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(st_row[ST_S]),
+                                                   _mm256_mul_ps(_mm256_set1_ps(c->st[1]), dx)), z);
+            __m256 tq = _mm256_mul_ps(_mm256_add_ps(_mm256_set1_ps(st_row[ST_T]),
+                                                    _mm256_mul_ps(_mm256_set1_ps(c->st[4]), dx)), z);
+            __m256i square = _mm256_add_epi32(floor_avx2(s), floor_avx2(tq));
+            __m256 dark = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                _mm256_and_si256(square, _mm256_set1_epi32(1)), _mm256_set1_epi32(1)));
+            __m256 scale = _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps((float)CHECKER_DARK), dark);
+            r = _mm256_mul_ps(r, scale);
+            g = _mm256_mul_ps(g, scale);
+            b = _mm256_mul_ps(b, scale);
+        }
+        __m256i rgba = _mm256_or_si256(_mm256_set1_epi32((int)0xff000000u),
+                       _mm256_or_si256(_mm256_slli_epi32(byte_avx2(r), 16),
+                       _mm256_or_si256(_mm256_slli_epi32(byte_avx2(g), 8), byte_avx2(b))));
+        __m256i old_c = _mm256_loadu_si256((const __m256i *)color);
+        _mm256_storeu_ps(depth, _mm256_blendv_ps(old_z, z, pass));
+        _mm256_storeu_si256((__m256i *)color,
+                            _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_c),
+                                                                 _mm256_castsi256_ps(rgba), pass)));
     }
-    __m256i rgba = _mm256_or_si256(_mm256_set1_epi32((int)0xff000000u),
-                   _mm256_or_si256(_mm256_slli_epi32(byte_avx2(r), 16),
-                   _mm256_or_si256(_mm256_slli_epi32(byte_avx2(g), 8), byte_avx2(b))));
-    __m256i old_c = _mm256_loadu_si256((const __m256i *)(d->color + o));
-    _mm256_storeu_ps(d->depth + o, _mm256_blendv_ps(old_z, z, pass));
-    _mm256_storeu_si256((__m256i *)(d->color + o),
-                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_c),
-                                                             _mm256_castsi256_ps(rgba), pass)));
 }
 #endif
 
 /* --- the descent: tile -> blocks -> 8 pixels a register ------------------ */
 
-typedef unsigned (*cover_fn)(const struct tt *c, int i, int j);
-typedef void (*shade_fn)(const struct tt *c, const struct dst *d, const struct rows *rw, int i,
-                         int j, unsigned mask);
+typedef void (*strip_fn)(const struct tt *c, const struct dst *d, int i, int y0, int y1,
+                         unsigned mask, bool test);
 
 /* Which twin draws: chosen once per run. */
 enum twin { TWIN_BEST, TWIN_AVX2, TWIN_SSE2, TWIN_C };
@@ -794,33 +862,32 @@ static bool frozen(const struct trace *tr)
 }
 
 /* Rows y0 .. y1 (tile coordinates) of the columns x0 .. x1: test them when
- * `test`, else shade every pixel (a FULL block or tile). */
+ * `test`, else shade every pixel (a FULL block or tile); strip after strip
+ * of 8 columns, by the twin, or pixel by pixel when narrated. */
 static inline __attribute__((always_inline)) void
 draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int y0, int x1,
-          int y1, bool test, cover_fn cover, shade_fn shade)
+          int y1, bool test, strip_fn strip)
 {
-    for (int j = y0; j <= y1; j++) {
-        struct rows rw;
-        plane_rows(c, j, rw.p, rw.st);
-        for (int i = x0; i <= x1; i += LANES) {
-            unsigned m = lane_mask(i, x0, x1);
-            if (NARRATING && tr && test) {
-                narrate_pixels(c, d, &rw, tr, i, j, m);
-                continue;
-            }
-            if (frozen(tr))
-                return;
-            if (!test) {    /* a FULL block or tile: shaded without a test */
-                int n = __builtin_popcount(m);
-                COUNT(tr, (unsigned)n * QUAD_PLANES, PLANE_AT_COST);
-                COUNT(tr, n, RECIPROCAL_COST);
-                COUNT(tr, n, COLOUR_TIMES_Z_COST);
-            }
-            if (test)
-                m &= cover(c, i, j);
-            if (m)
-                shade(c, d, &rw, i, j, m);
+    if (NARRATING && tr && test) {
+        for (int j = y0; j <= y1; j++) {
+            struct rows rw;
+            plane_rows(c, j, rw.p, rw.st);
+            for (int i = x0; i <= x1; i += LANES)
+                narrate_pixels(c, d, &rw, tr, i, j, lane_mask(i, x0, x1));
         }
+        return;
+    }
+    for (int i = x0; i <= x1; i += LANES) {
+        unsigned m = lane_mask(i, x0, x1);
+        if (frozen(tr))
+            return;
+        if (!test) {    /* a FULL block or tile: shaded without a test */
+            int n = __builtin_popcount(m) * (y1 - y0 + 1);
+            COUNT(tr, (unsigned)n * QUAD_PLANES, PLANE_AT_COST);
+            COUNT(tr, n, RECIPROCAL_COST);
+            COUNT(tr, n, COLOUR_TIMES_Z_COST);
+        }
+        strip(c, d, i, y0, y1, m, test);
     }
 }
 
@@ -828,11 +895,11 @@ draw_rows(const struct tt *c, const struct dst *d, struct trace *tr, int x0, int
  * binning found the tile wholly inside. */
 static inline __attribute__((always_inline)) void
 draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d, struct trace *tr,
-             bool four, cover_fn cover, shade_fn shade)
+             bool four, strip_fn strip)
 {
     struct tt c = tt_make(t, r);
     if (full) {     /* narrated by the tile's own (FULL) step: the caller's */
-        draw_rows(&c, d, tr, 0, 0, r.w - 1, r.h - 1, false, cover, shade);
+        draw_rows(&c, d, tr, 0, 0, r.w - 1, r.h - 1, false, strip);
         return;
     }
     /* the box, in tile coordinates */
@@ -843,7 +910,7 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
     if (x1 - x0 < BLOCK && y1 - y0 < BLOCK) {    /* the small-triangle path */
         NARRATE(tr, .kind = TRACE_BLOCK, .line = L_SMALL, .x = r.x0 + x0, .y = r.y0 + y0,
                 .x1 = r.x0 + x1, .y1 = r.y0 + y1, .klass = BLOCK_PARTIAL, .aux = { BLOCK, 1 });
-        draw_rows(&c, d, tr, x0, y0, x1, y1, true, cover, shade);
+        draw_rows(&c, d, tr, x0, y0, x1, y1, true, strip);
         return;
     }
     /* 8 x 8 blocks, aligned in the tile: one reject and one accept corner
@@ -894,7 +961,7 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
                               corner_bits(t, 1, r.x0 + bx, r.y0 + by, r.x0 + bx1, r.y0 + by1),
                               corner_bits(t, 2, r.x0 + bx, r.y0 + by, r.x0 + bx1, r.y0 + by1) });
             if (klass != BLOCK_EMPTY)
-                draw_rows(&c, d, tr, bx, by, bx1, by1, klass == BLOCK_PARTIAL, cover, shade);
+                draw_rows(&c, d, tr, bx, by, bx1, by1, klass == BLOCK_PARTIAL, strip);
         }
     }
 }
@@ -902,20 +969,20 @@ draw_in_tile(const struct tri *t, struct rect r, bool full, const struct dst *d,
 static void draw_c(const struct tri *t, struct rect r, bool full, const struct dst *d,
                    struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, four, cover8_c, shade8_c);
+    draw_in_tile(t, r, full, d, tr, four, strip_c);
 }
 
 static void draw_sse2(const struct tri *t, struct rect r, bool full, const struct dst *d,
                    struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, four, cover8_sse2, shade8_sse2);
+    draw_in_tile(t, r, full, d, tr, four, strip_sse2);
 }
 
 #if TILES_AVX2
 AVX2 static void draw_avx2(const struct tri *t, struct rect r, bool full, const struct dst *d,
                            struct trace *tr, bool four)
 {
-    draw_in_tile(t, r, full, d, tr, four, cover8_avx2, shade8_avx2);
+    draw_in_tile(t, r, full, d, tr, four, strip_avx2);
 }
 #endif
 
@@ -1008,10 +1075,11 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
     for (int k = 0; k < r->nchunks; k++) {
         /* the exhibit starts with the worker's own shares: order depends on who took the tile */
         int c = r->o.unordered ? (k + worker * SHARES_PER_THREAD) % r->nchunks : k;
-        const struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
+        struct bin *b = &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
         for (const struct bin_block *blk = b->first; blk; blk = blk->next)
             for (uint32_t e = 0; e < blk->n; e++)
                 r->draw(&blk->rec[e], rc, blk->rec[e].full, &d, NULL, r->o.corners == CORNERS_FOUR);
+        bin_free(b);    /* here, on every worker, while its blocks are in cache */
     }
     if (r->o.tile_buffers)
         tile_store(buf, r->fb, rc);
@@ -1120,6 +1188,8 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
         pthread_mutex_destroy(&r->lock);
         ok = !atomic_load(&r->failed);
     }
+    /* the workers gave back the bins of the tiles they drew; what is left
+     * (a run that ran out of memory) goes back here */
     for (size_t b = 0; r->bins && b < (size_t)r->nchunks * (size_t)r->g.n; b++)
         bin_free(&r->bins[b]);
     free(r->bins);

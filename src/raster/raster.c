@@ -52,31 +52,32 @@ static int64_t max3(int64_t a, int64_t b, int64_t c)
 bool tri_setup_bits(struct tri_setup *t, const struct vertex v[3], int w, int h, int bits)
 {
     /* every field is set below (no memset: this runs once per triangle) */
-    t->swapped = false;
     t->target_w = w;
     t->target_h = h;
+    int32_t x[3], y[3];
     for (int i = 0; i < 3; i++) {
-        t->v[i] = v[i];
-        t->x[i] = snap_coord(v[i].x, bits);
-        t->y[i] = snap_coord(v[i].y, bits);
+        x[i] = snap_coord(v[i].x, bits);
+        y[i] = snap_coord(v[i].y, bits);
     }
 
     /* Orientation: twice the signed area is |AB x AC|. Negative means the
-     * vertices run the other way round; exchanging B and C makes every edge
-     * value positive inside, so one test serves both windings. */
-    int64_t area2 = (int64_t)(t->x[1] - t->x[0]) * (t->y[2] - t->y[0])
-                  - (int64_t)(t->y[1] - t->y[0]) * (t->x[2] - t->x[0]);
-    if (area2 < 0) {
-        struct vertex tv = t->v[1]; t->v[1] = t->v[2]; t->v[2] = tv;
-        int32_t tx = t->x[1]; t->x[1] = t->x[2]; t->x[2] = tx;
-        int32_t ty = t->y[1]; t->y[1] = t->y[2]; t->y[2] = ty;
-        area2 = -area2;
-        t->swapped = true;
+     * vertices run the other way round; taking B and C in the other order
+     * makes every edge value positive inside, so one test serves both
+     * windings. (An order to copy in, not a branch that swaps: the windings
+     * of a scene's triangles come in any order.) */
+    int64_t area2 = (int64_t)(x[1] - x[0]) * (y[2] - y[0])
+                  - (int64_t)(y[1] - y[0]) * (x[2] - x[0]);
+    t->swapped = area2 < 0;
+    t->area2 = t->swapped ? -area2 : area2;
+    int order[3] = { 0, t->swapped ? 2 : 1, t->swapped ? 1 : 2 };
+    for (int i = 0; i < 3; i++) {
+        t->v[i] = v[order[i]];
+        t->x[i] = x[order[i]];
+        t->y[i] = y[order[i]];
     }
-    t->area2 = area2;
 
     for (int k = 0; k < 3; k++) {
-        int a = k, b = (k + 1) % 3;
+        int a = k, b = k == 2 ? 0 : k + 1;
         t->I[k] = (int64_t)t->y[a] - t->y[b];
         t->J[k] = (int64_t)t->x[b] - t->x[a];
         t->K[k] = (int64_t)t->x[a] * t->y[b] - (int64_t)t->y[a] * t->x[b];
@@ -93,7 +94,7 @@ bool tri_setup_bits(struct tri_setup *t, const struct vertex v[3], int w, int h,
     t->maxx = (int)(maxx > w - 1 ? w - 1 : maxx);
     t->maxy = (int)(maxy > h - 1 ? h - 1 : maxy);
 
-    t->empty = area2 == 0 || t->minx > t->maxx || t->miny > t->maxy;
+    t->empty = t->area2 == 0 || t->minx > t->maxx || t->miny > t->maxy;
     return !t->empty;
 }
 

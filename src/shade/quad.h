@@ -51,7 +51,11 @@ struct planes {
     bool checker;
 };
 
-/* The planes of triangle t, relative to its box's corner (minX, minY). */
+/* The planes of triangle t, relative to its box's corner (minX, minY);
+ * those of s and t are 0 without a checker. planes_solve() fills x0, y0,
+ * checker and the planes in double only (for a lesson that keeps its own
+ * registers, lesson 07), planes_setup() the SSE registers too. */
+void planes_solve(struct planes *pl, const struct tri_setup *t, const struct raster_params *p);
 void planes_setup(struct planes *pl, const struct tri_setup *t, const struct raster_params *p);
 
 /* The planes at the four pixels of one quad: (xq .. xq + 3, y), xq a
