@@ -625,6 +625,14 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
     if (frame_ms > 0)
         fprintf(f, "- explorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n",
                 frame_ms);
+    if (front.t.runs > 0)
+        fprintf(f, "- 3-D front end (lesson 06: look-at, near and far clipping, projection, guard "
+                   "band, fan, cull), a %d-triangle torus seen from inside its tube: %.2f Mtri/s "
+                   "(median %.1f ms, spread %.0f%%; %d cut by near or far, %d wholly outside them, "
+                   "%d past the guard band; %d screen triangles out)\n", front.in,
+                front.in / front.t.median * 1e-6, front.t.median * 1e3,
+                100 * (front.t.hi - front.t.lo) / front.t.median, front.depth_clipped,
+                front.culled_whole, front.guard_clipped, front.out);
     if (figures_s > 0)
         fprintf(f, "- `make figures`: %.1f s\n", figures_s);
     if (nbig > 0) {
