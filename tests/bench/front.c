@@ -80,7 +80,7 @@ static void count_clipping(const struct scene *s, struct bench_front *bf)
             a.v[k] = view_vertex(&fr, s->world.tris[i].p[k], s->world.tris[i].rgb[k]);
         clip_polygon(&b, &a, &pn, NULL);
         clip_polygon(&c, &b, &pf, NULL);
-        bool cut = c.n != 3 || memcmp(&a, &c, sizeof a.v[0] * 3) != 0;
+        bool cut = c.n != 3 || memcmp(a.v, c.v, sizeof a.v[0] * 3) != 0;   /* the vertices, not the padding */
         bf->depth_clipped += cut && c.n > 0;
         bf->culled_whole += c.n == 0;
         project(&fr, &c);
