@@ -234,7 +234,8 @@ static void paint_triangle(struct painter *p)
         if (L->zoom >= 24) {
             /* cells large enough to carry numbers: a ring around the
              * vertex's cell number rather than a disc over it */
-            r = fmax(r, (ex->hover_vertex == k ? 0.36 : 0.3) * L->zoom);
+            r = fmax(r, fmin((ex->hover_vertex == k ? 0.36 : 0.3) * L->zoom,
+                             (ex->hover_vertex == k ? 19 : 16) * p->s));    /* a number's size */
             cairo_arc(cr, vx[k], vy[k], r, 0, 2 * G_PI);
             cairo_set_line_width(cr, 5 * p->s);
             set_rgb(cr, p->pal->handle_rim);
@@ -254,7 +255,7 @@ static void paint_triangle(struct painter *p)
         if (d > 0)
             dx /= d, dy /= d;
         /* out of the vertex's own cell when cells are large enough to carry numbers */
-        double out = 16 * p->s + (L->zoom >= 24 ? 0.75 * L->zoom : 0);
+        double out = 16 * p->s + (L->zoom >= 24 ? fmin(0.75 * L->zoom, 40 * p->s) : 0);
         double lx = vx[k] + dx * out - 5 * p->s, ly = vy[k] + dy * out - 10 * p->s;
         lx = fmin(fmax(lx, L->cx + 2 * p->s), L->cx + L->cw - 16 * p->s);     /* on the canvas */
         ly = fmin(fmax(ly, L->cy + 2 * p->s), L->cy + L->ch - 22 * p->s);
