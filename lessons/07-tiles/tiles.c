@@ -623,11 +623,7 @@ static void shade4_sse2(const struct tt *c, const struct dst *d, const struct ro
     if (c->st) {
         __m128 s = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_S]), _mm_mul_ps(_mm_set1_ps(c->st[1]), dxf)), z);
         __m128 tt = _mm_mul_ps(_mm_add_ps(_mm_set1_ps(st_row[ST_T]), _mm_mul_ps(_mm_set1_ps(c->st[4]), dxf)), z);
-        __m128i square = _mm_add_epi32(floor_epi32(s), floor_epi32(tt));
-        __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
-                                                       _mm_set1_epi32(1)));
-        __m128 scale = _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
-                                 _mm_andnot_ps(dark, _mm_set1_ps(1.0f)));
+        __m128 scale = checker_scale(s, tt);
         r = _mm_mul_ps(r, scale);
         g = _mm_mul_ps(g, scale);
         b = _mm_mul_ps(b, scale);

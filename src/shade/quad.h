@@ -124,6 +124,17 @@ static inline __m128 quad_depth(const struct quad *qd)
     return _mm_mul_ps(z, _mm_sub_ps(_mm_set1_ps(2.0f), _mm_mul_ps(qd->inv_z, z)));  /* about 22 */
 }
 
+/* The checker's factor for four pixels at texture coordinates (s, t):
+ * CHECKER_DARK where floor(s) + floor(t) is odd, 1 elsewhere. */
+static inline __m128 checker_scale(__m128 s, __m128 t)
+{
+    __m128i square = _mm_add_epi32(floor_epi32(s), floor_epi32(t));
+    __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
+                                                   _mm_set1_epi32(1)));
+    return _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
+                     _mm_andnot_ps(dark, _mm_set1_ps(1.0f)));
+}
+
 /* Colour of the four pixels of a quad at depth z: (255 a / z) * z, darkened
  * on the checker's dark squares, packed as four 0xAARRGGBB. */
 static inline __m128i quad_colour(const struct quad *qd, __m128 z, bool checker)
@@ -133,12 +144,7 @@ static inline __m128i quad_colour(const struct quad *qd, __m128 z, bool checker)
     __m128 b = _mm_mul_ps(qd->b, z);
 
     if (checker) {
-        __m128i square = _mm_add_epi32(floor_epi32(_mm_mul_ps(qd->s, z)),
-                                       floor_epi32(_mm_mul_ps(qd->t, z)));
-        __m128 dark = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(square, _mm_set1_epi32(1)),
-                                                       _mm_set1_epi32(1)));
-        __m128 scale = _mm_or_ps(_mm_and_ps(dark, _mm_set1_ps((float)CHECKER_DARK)),
-                                 _mm_andnot_ps(dark, _mm_set1_ps(1.0f)));
+        __m128 scale = checker_scale(_mm_mul_ps(qd->s, z), _mm_mul_ps(qd->t, z));
         r = _mm_mul_ps(r, scale);
         g = _mm_mul_ps(g, scale);
         b = _mm_mul_ps(b, scale);
