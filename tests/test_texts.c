@@ -538,6 +538,32 @@ static double l06_ndc24_wrong(void)
     return n;
 }
 
+/* Lesson 08's exercise 4: the pixels of builtin:samples where a triangle
+ * covers a sample at N = 4 but not the centre (where centroid shading
+ * moves the point the colour is taken at), per triangle; a pixel of a
+ * shared edge counts for each triangle. */
+static double l08_centroid_pixels(void)
+{
+    struct scene s = load("samples");
+    const struct sample_pattern *sp = sample_pattern(4);
+    cr_assert_not_null(sp);
+    long n = 0;
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        if (!tri_setup(&t, s.tris[i].v, s.w, s.h))
+            continue;
+        for (int y = 0; y < s.h; y++)
+            for (int x = 0; x < s.w; x++) {
+                bool any = false;
+                for (int k = 0; k < sp->n; k++)
+                    any |= reference_point_covered(&t, 256 * (int64_t)x + sp->x[k], 256 * (int64_t)y + sp->y[k]);
+                n += any && !reference_point_covered(&t, 256 * (int64_t)x + 128, 256 * (int64_t)y + 128);
+            }
+    }
+    scene_free(&s);
+    return (double)n;
+}
+
 struct key {
     const char *key;
     double (*compute)(void);    /* NULL: checked by the test file named in `where` */
@@ -648,6 +674,7 @@ static const struct key keys[] = {
     { "l08.fill.scene", NULL, "tests/test_lesson08.c" },
     { "l08.full1", NULL, "tests/test_lesson08.c" },
     { "l08.check.first", l08_check_first, NULL },
+    { "l08.centroid.pixels", l08_centroid_pixels, NULL },
     { "l08.check.second", l08_check_second, NULL },
     { "l06.room.world", l06_room_world, NULL },
     { "l06.room.screen", l06_room_screen, NULL },
