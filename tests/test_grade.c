@@ -15,6 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "testlib.h"
+
 static char dir[64];
 
 static void make_dir(void)
@@ -33,17 +35,11 @@ static void remove_dir(void)
     }
 }
 
+/* A file's text, copied (test_read_text's buffer is reused by the next read). */
 static char *slurp(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot read %s", path);
-    static char buf[1 << 16];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    char *copy = malloc(n + 1);
+    char *copy = strdup(test_read_text(path));
     cr_assert_not_null(copy);
-    memcpy(copy, buf, n + 1);
     return copy;
 }
 

@@ -444,19 +444,27 @@ static double l04_floor_row4(void) { return floor_lanes().row4_lanes; }
 static double l04_floor_covered(void) { return floor_lanes().covered; }
 
 /* The explorer's own count of an exhibit's pixels covered as the exact rule
- * says but with a colour or depth off (what its panel and figure show). */
-static double l01_float_colour(void)
+ * says but with a colour or depth off (what its panel and figure show), at
+ * the end of the scene s (its screen triangles). */
+static double explorer_wrong_colour(const struct lesson *l, struct scene *s, const char *name,
+                                    const struct lesson_variant *v)
 {
-    struct scene s = load("offgrid-strip");
     struct raster_params prm = default_params();
+    prm.scene = s;
     struct explorer ex;
     char err[256];
-    struct explorer_desc d = { .lesson = &lesson_01, .scene = &s, .scene_name = "offgrid-strip",
-                               .variant = lesson_variant(&lesson_01, "source-float"),
+    struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = name, .variant = v,
                                .params = &prm, .step_end = true };
     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
     double n = (double)ex.wrong_colour;
     explorer_free(&ex);
+    return n;
+}
+
+static double l01_float_colour(void)
+{
+    struct scene s = load("offgrid-strip");
+    double n = explorer_wrong_colour(&lesson_01, &s, "offgrid-strip", lesson_variant(&lesson_01, "source-float"));
     scene_free(&s);
     return n;
 }
@@ -519,21 +527,13 @@ static double l06_pair_pixels(void) { return l06_count("depth-pair", 2); }
 static double l06_project_first(void) { return l06_room_not_once("project-first", false); }
 static double l06_no_guard_missing(void) { return l06_room_not_once("no-guard-32", true); }
 
-/* The explorer's count of pixels of the wrong colour at the end of the
- * exhibit ndc24 on builtin:depth-pair (what its panel and figure show). */
+/* The explorer's count of wrong colours at the end of the exhibit ndc24 on
+ * builtin:depth-pair. */
 static double l06_ndc24_wrong(void)
 {
     const struct lesson_variant *v;
     struct scene s = load06("depth-pair", "ndc24", &v);
-    struct raster_params prm = default_params();
-    prm.scene = &s;
-    struct explorer ex;
-    char err[256];
-    struct explorer_desc d = { .lesson = &lesson_06, .scene = &s, .scene_name = "depth-pair",
-                               .variant = v, .params = &prm, .step_end = true };
-    cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
-    double n = (double)ex.wrong_colour;
-    explorer_free(&ex);
+    double n = explorer_wrong_colour(&lesson_06, &s, "depth-pair", v);
     scene_free(&s);
     return n;
 }
