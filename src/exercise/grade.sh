@@ -39,11 +39,18 @@ mkdir -p "$out" || exit 1
 field() { printf '"%s"' "$(printf '%s' "$1" | sed 's/"/""/g')"; }
 
 files=$(find "$dir" -maxdepth 1 -type f -name '*.c' | LC_ALL=C sort)
+# the file list splits at newlines only (a name may hold a space); the
+# commands of the Makefile split at spaces, as usual
+nl='
+'
+ws=" 	$nl"
 [ -n "$files" ] || { echo "DIR=$dir holds no .c file" >&2; exit 2; }
 
 # Run every file; keep per file: result, passed, total, first failure,
 # counterexample (in GRADE_OUT/S/row).
+IFS=$nl
 for f in $files; do
+    IFS=$ws
     stem=$(basename "$f" .c | tr -c 'A-Za-z0-9_.\n-' '_')
     d=$out/$stem
     rm -rf "$d" && mkdir -p "$d" || exit 1
@@ -89,7 +96,9 @@ done
 names=$(cat "$out"/*/check.txt 2>/dev/null |
         sed -n 's#^  \([0-9][0-9]*\)/[0-9][0-9]* \(.*[^ ]\)  *\(ok (.*\|FAILED\|CRASHED\|DID NOT FINISH\)$#\1 \2#p' | LC_ALL=C sort -n -u -k1,1)
 n=0
+IFS=$nl
 for f in $files; do
+    IFS=$ws
     t=$(sed -n 4p "$out/$(basename "$f" .c | tr -c 'A-Za-z0-9_.\n-' '_')/row")
     [ -n "$t" ] && [ "$t" -gt "$n" ] && n=$t
 done
@@ -104,7 +113,9 @@ tmp=$csv.tmp
         i=$((i + 1))
     done
     printf ',first failure,counterexample\n'
-    for f in $files; do
+    IFS=$nl
+for f in $files; do
+    IFS=$ws
         d=$out/$(basename "$f" .c | tr -c 'A-Za-z0-9_.\n-' '_')
         { read -r file; read -r result; read -r passed; read -r total; read -r first; read -r cx; } < "$d/row"
         printf '%s,%s,%s,%s' "$(field "$file")" "$(field "$result")" "${passed:-0}" "${total:-$n}"
