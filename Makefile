@@ -1,5 +1,6 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
@@ -47,7 +48,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -164,6 +165,21 @@ $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/studen
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
 check: $(B)/exercise-$(LESSON)
 	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
+
+# make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder]: make
+# check on every .c file of the folder, each built and run apart, under a
+# time limit; one CSV row per file, whatever the file does; what each run
+# printed and its counterexample in OUT/<file> (src/exercise/grade.sh).
+TIMEOUT  ?= 60
+OUT      ?= $(B)/grade/$(LESSON)
+CSV      ?= $(OUT).csv
+grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
+	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
+	@mkdir -p $(dir $(CSV)) && GRADE_LESSON=$(LESSON) GRADE_DIR='$(DIR)' GRADE_OUT='$(OUT)' \
+	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT)' GRADE_LD='$(LD_ALL)' \
+	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
+	  GRADE_LIBS='$(LIBS)' sh src/exercise/grade.sh
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak

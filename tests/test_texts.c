@@ -23,7 +23,7 @@
 #include "explore/explorer.h"
 #include "explore/replay.h"
 
-extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05, lesson_08;
+extern const struct lesson lesson_01, lesson_02, lesson_03, lesson_04, lesson_05, lesson_06, lesson_08;
 
 /* The texts whose numbers are checked: the top README, the course page, and
  * every lesson's text and answer key (built from the lessons that exist). */
@@ -444,19 +444,27 @@ static double l04_floor_row4(void) { return floor_lanes().row4_lanes; }
 static double l04_floor_covered(void) { return floor_lanes().covered; }
 
 /* The explorer's own count of an exhibit's pixels covered as the exact rule
- * says but with a colour or depth off (what its panel and figure show). */
-static double l01_float_colour(void)
+ * says but with a colour or depth off (what its panel and figure show), at
+ * the end of the scene s (its screen triangles). */
+static double explorer_wrong_colour(const struct lesson *l, struct scene *s, const char *name,
+                                    const struct lesson_variant *v)
 {
-    struct scene s = load("offgrid-strip");
     struct raster_params prm = default_params();
+    prm.scene = s;
     struct explorer ex;
     char err[256];
-    struct explorer_desc d = { .lesson = &lesson_01, .scene = &s, .scene_name = "offgrid-strip",
-                               .variant = lesson_variant(&lesson_01, "source-float"),
+    struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = name, .variant = v,
                                .params = &prm, .step_end = true };
     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
     double n = (double)ex.wrong_colour;
     explorer_free(&ex);
+    return n;
+}
+
+static double l01_float_colour(void)
+{
+    struct scene s = load("offgrid-strip");
+    double n = explorer_wrong_colour(&lesson_01, &s, "offgrid-strip", lesson_variant(&lesson_01, "source-float"));
     scene_free(&s);
     return n;
 }
@@ -470,6 +478,90 @@ static double l08_check_first(void)
 static double l08_check_second(void)
 {
     return lesson_08.exercise.samples && lesson_08.exercise.samples[0] ? lesson_08.exercise.samples[1] : NAN;
+}
+
+/* Lesson 06: a 3-D scene through the lesson's front end (variant `variant`),
+ * its screen triangles; the world triangles stay in s.world. */
+static struct scene load06(const char *name, const char *variant, const struct lesson_variant **out)
+{
+    struct scene s = load(name);
+    const struct lesson_variant *v = lesson_variant(&lesson_06, variant);
+    cr_assert_not_null(v, "lesson 06 has no variant %s", variant);
+    cr_assert(lesson_front(&lesson_06, v)(&s));
+    if (out)
+        *out = v;
+    return s;
+}
+
+/* Pixels of the closed room that a variant does not cover exactly once
+ * (missing_only: those it does not cover at all). */
+static double l06_room_not_once(const char *variant, bool missing_only)
+{
+    const struct lesson_variant *v;
+    struct scene s = load06("room", variant, &v);
+    struct raster_params p = default_params();
+    p.scene = &s;
+    struct target fb;
+    cr_assert(render_scene(&s, v, &p, &fb));
+    long n = 0;
+    for (size_t i = 0; i < (size_t)s.w * (size_t)s.h; i++)
+        n += missing_only ? fb.count[i] == 0 : fb.count[i] != 1;
+    target_free(&fb);
+    scene_free(&s);
+    return (double)n;
+}
+
+static double l06_count(const char *name, int what)
+{
+    struct scene s = load06(name, "clip", NULL);
+    double n = what == 0 ? s.world.ntris : what == 1 ? s.ntris : (double)s.w * s.h;
+    scene_free(&s);
+    return n;
+}
+static double l06_room_world(void) { return l06_count("room", 0); }
+static double l06_room_screen(void) { return l06_count("room", 1); }
+static double l06_room_pixels(void) { return l06_count("room", 2); }
+static double l06_model_world(void) { return l06_count("model", 0); }
+static double l06_model_screen(void) { return l06_count("model", 1); }
+static double l06_pair_pixels(void) { return l06_count("depth-pair", 2); }
+static double l06_project_first(void) { return l06_room_not_once("project-first", false); }
+static double l06_no_guard_missing(void) { return l06_room_not_once("no-guard-32", true); }
+
+/* The explorer's count of wrong colours at the end of the exhibit ndc24 on
+ * builtin:depth-pair. */
+static double l06_ndc24_wrong(void)
+{
+    const struct lesson_variant *v;
+    struct scene s = load06("depth-pair", "ndc24", &v);
+    double n = explorer_wrong_colour(&lesson_06, &s, "depth-pair", v);
+    scene_free(&s);
+    return n;
+}
+
+/* Lesson 08's exercise 4: the pixels of builtin:samples where a triangle
+ * covers a sample at N = 4 but not the centre (where centroid shading
+ * moves the point the colour is taken at), per triangle; a pixel of a
+ * shared edge counts for each triangle. */
+static double l08_centroid_pixels(void)
+{
+    struct scene s = load("samples");
+    const struct sample_pattern *sp = sample_pattern(4);
+    cr_assert_not_null(sp);
+    long n = 0;
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        if (!tri_setup(&t, s.tris[i].v, s.w, s.h))
+            continue;
+        for (int y = 0; y < s.h; y++)
+            for (int x = 0; x < s.w; x++) {
+                bool any = false;
+                for (int k = 0; k < sp->n; k++)
+                    any |= reference_point_covered(&t, 256 * (int64_t)x + sp->x[k], 256 * (int64_t)y + sp->y[k]);
+                n += any && !reference_point_covered(&t, 256 * (int64_t)x + 128, 256 * (int64_t)y + 128);
+            }
+    }
+    scene_free(&s);
+    return (double)n;
 }
 
 struct key {
@@ -582,7 +674,17 @@ static const struct key keys[] = {
     { "l08.fill.scene", NULL, "tests/test_lesson08.c" },
     { "l08.full1", NULL, "tests/test_lesson08.c" },
     { "l08.check.first", l08_check_first, NULL },
+    { "l08.centroid.pixels", l08_centroid_pixels, NULL },
     { "l08.check.second", l08_check_second, NULL },
+    { "l06.room.world", l06_room_world, NULL },
+    { "l06.room.screen", l06_room_screen, NULL },
+    { "l06.room.pixels", l06_room_pixels, NULL },
+    { "l06.model.world", l06_model_world, NULL },
+    { "l06.model.screen", l06_model_screen, NULL },
+    { "l06.depth-pair.pixels", l06_pair_pixels, NULL },
+    { "l06.project-first.wrong", l06_project_first, NULL },
+    { "l06.no-guard-32.missing", l06_no_guard_missing, NULL },
+    { "l06.ndc24.wrong", l06_ndc24_wrong, NULL },
     { "l06.cracks.found", NULL, "tests/test_lesson06.c" },
     { "l06.cracks.first-seed", NULL, "tests/test_lesson06.c" },
     { "l06.cracks.doubled", NULL, "tests/test_lesson06.c" },
@@ -819,4 +921,36 @@ Test(texts, every_speed_a_text_quotes_is_the_benchs)
     }
     free(bench);
     cr_log_info("%d speeds quoted, all from BENCH.md", quoted);
+}
+
+/* --- lengths ------------------------------------------------------------------------- */
+
+/* Words as `wc -w` counts them: runs of characters other than white space. */
+static long words_of(const char *text)
+{
+    long n = 0;
+    bool in = false;
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
+        bool space = *p == ' ' || *p == '\t' || *p == '\n' || *p == '\r' || *p == '\v' || *p == '\f';
+        n += !space && !in;
+        in = !space;
+    }
+    return n;
+}
+
+/* The later lessons stay lessons a class can read before the lecture. */
+Test(texts, lessons_06_to_08_keep_to_their_length)
+{
+    static const struct { const char *path; long most; } limits[] = {
+        { "lessons/06-clipping/README.md", 2800 },
+        { "lessons/07-tiles/README.md", 2800 },
+        { "lessons/08-multisampling/README.md", 2200 },
+    };
+    for (size_t i = 0; i < sizeof limits / sizeof limits[0]; i++) {
+        long n = words_of(test_read_text(limits[i].path));
+        cr_log_info("%s: %ld words", limits[i].path, n);
+        cr_expect_leq(n, limits[i].most, "%s has %ld words, more than %ld", limits[i].path, n,
+                      limits[i].most);
+        cr_expect_gt(n, 500, "%s: only %ld words read", limits[i].path, n);
+    }
 }
