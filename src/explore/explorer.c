@@ -506,17 +506,9 @@ bool explorer_set_variant(struct explorer *ex, int index)
     return rerun(ex, ex->step);
 }
 
-/* The scene's background for theme t: its own, or the page's. */
-static void set_background(struct explorer *ex, enum theme t)
-{
-    ex->theme = t;
-    for (int c = 0; c < 3; c++)
-        ex->scene.background[c] = t == THEME_LIGHT ? 1.0 : ex->own_background[c];
-}
-
 bool explorer_set_theme(struct explorer *ex, enum theme t)
 {
-    set_background(ex, t);
+    theme_background(ex, t);
     target_free(&ex->scratch);      /* made again, on the new background */
     return rerun(ex, ex->step);
 }
@@ -669,7 +661,7 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     if (!failed) {
         ex->params.checker = ex->scene.checker;
         memcpy(ex->own_background, ex->scene.background, sizeof ex->own_background);
-        set_background(ex, d->theme);
+        theme_background(ex, d->theme);
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
         uint64_t step = d->step_end ? UINT64_MAX : d->step;

@@ -193,6 +193,8 @@ bool explorer_set_params(struct explorer *ex, const struct raster_params *p);
  * as they would printed, not with a dark background that the page does not
  * show. The step is kept. Returns false when out of memory. */
 bool explorer_set_theme(struct explorer *ex, enum theme t);
+/* ... its first half: ex->theme = t and the scene's background for it (no run). */
+void theme_background(struct explorer *ex, enum theme t);
 /* X: the next exhibit (or back to variants[0]); T: the next faster twin. */
 bool explorer_cycle_exhibit(struct explorer *ex);
 bool explorer_cycle_twin(struct explorer *ex);
