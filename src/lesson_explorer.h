@@ -132,6 +132,13 @@ struct lesson_explorer {
      * NULL. Writes lines as `constants` does (an empty string: nothing). */
     void (*watch)(const struct tri_setup *t, const struct raster_params *p,
                   const struct trace_event *ev, char *buf, size_t n);
+
+    /* What the watch panel calls a pixel test's verdict, or NULL for
+     * "outside" and "inside" (the centre's): verdict[0] without
+     * TRACE_INSIDE, verdict[1] with it. For a lesson whose pixel test is
+     * not the centre's alone (lesson 08: any of its samples), so that the
+     * centre's edge values printed after it do not contradict it. */
+    const char *const *verdict;
 };
 
 /* Every lesson's explorer side, NULL-terminated (the generated lessons.c),

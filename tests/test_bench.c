@@ -125,6 +125,12 @@ Test(bench, quick_mode_is_exact_and_catches_the_exhibits, .timeout = 120)
         cr_assert(r);
         cr_expect_eq(r->diff_ref, 0, "llvmpipe differs from the reference on %s by %lld pixels",
                      scenes[s], r->diff_ref);
+        /* and its multisampled framebuffer, sample by sample, from the exact
+         * rule at the points where it says its samples are */
+        const struct csv_row *m = find(rows, n, scenes[s], "llvmpipe", "1 thread 4 samples");
+        if (m)
+            cr_expect_eq(m->diff_ref, 0, "llvmpipe at 4 samples differs from the reference at its "
+                         "samples on %s by %lld pixels", scenes[s], m->diff_ref);
     }
     /* the scenes put edges through pixel centres: a wrong fill rule shows */
     if (exhibits > 0)

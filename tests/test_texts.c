@@ -673,6 +673,8 @@ static const struct key keys[] = {
     { "l08.fill.doubled", NULL, "tests/test_lesson08.c" },
     { "l08.fill.scene", NULL, "tests/test_lesson08.c" },
     { "l08.full1", NULL, "tests/test_lesson08.c" },
+    { "l08.tent.changed", NULL, "tests/test_lesson08_resolve.c" },
+    { "l08.tent.pixels", NULL, "tests/test_lesson08_resolve.c" },
     { "l08.check.first", l08_check_first, NULL },
     { "l08.centroid.pixels", l08_centroid_pixels, NULL },
     { "l08.check.second", l08_check_second, NULL },

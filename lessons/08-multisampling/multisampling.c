@@ -32,32 +32,38 @@
  *        per sample, so intersecting triangles are still resolved per sample;
  *   SSAA (supersampling): a colour per covered sample, N times the shading.
  * Both count what they cost (COUNT, named costs), so the explorer's
- * counters and make bench show the difference.
+ * counters and make bench show the difference. Two ways of resolving: the
+ * mean of the pixel's own samples (a box filter), or (variant tent) a tent
+ * that also weighs its neighbours' nearer samples: smoother, softer.
  *
  * This file reads: the sample patterns, the edges at the samples, the box,
- * shading and resolving one pixel, the blocks, the variants.
+ * shading and resolving one pixel, the tent, the blocks, the variants.
  */
+#include <stdlib.h>           /* abs */
+
 #include "lesson.h"
 #include "shade/quad.h"      /* struct planes: lesson 04's planes of 1/z and a/z */
 
+/* Lines 6-8 (as the explorer numbers them) are the whole algorithm, as the
+ * exercise's skeleton writes it; lines 3-5, in [ ], lesson 05's shortcut that
+ * this file takes: whole blocks skipped or filled, no pixel of them tested. */
 static const char *const pseudocode[] = {
     "setup: F0k at pixel centres, O_sk = I0k dx_s + J0k dy_s per sample s",   /* 0 */
     "box = pixels with a sample that may be covered, clipped to the screen",  /* 1 */
-    "loop over the q x q blocks: corners of the blocks' SAMPLE extent",        /* 2 */
-    "  outside one edge at all four corners: skip          (empty)",         /* 3 */
-    "  inside every edge at all four: every sample covered (full)",          /* 4 */
-    "  else loop over the block's pixels:                  (partial)",       /* 5 */
-    "    mask = { s : F0k + O_sk >= 0 for k = 1, 2, 3 }",                     /* 6 */
-    "    if mask: shade (once, or per sample), depth test each sample, resolve", /* 7 */
+    "[blocks: the box in q x q blocks, corners of their SAMPLE extent]",      /* 2 */
+    "[  outside one edge at all four corners: skip the block  (empty)]",      /* 3 */
+    "[  inside every edge at all four: every sample covered   (full)]",       /* 4 */
+    "for each pixel of the box [of a partial block]:",                        /* 5 */
+    "  mask = { s : F0k + O_sk >= 0 for k = 1, 2, 3 }",                       /* 6 */
+    "  if mask: shade (once, or per sample), depth test each sample, resolve",  /* 7 */
     NULL,
 };
 
 enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
 
-/* trace_event.aux[] of this lesson: samples per pixel, how many of them the
- * pixel test found covered, the coverage mask (bit s = sample s; also in
- * mask[0]), and 1 when the samples lie on the exhibit's regular grid. */
-static const char *const aux_names[] = { "samples", "covered", "mask", "grid", NULL };
+/* trace_event.aux[]: samples per pixel, how many the test found covered, the
+ * mask (bit s = sample s; also mask[0]), 1 on the exhibit's regular grid;
+ * unnamed: the explorer's watch shows them in one notation, its own. */
 
 #define Q_DEFAULT 8
 
@@ -69,12 +75,15 @@ static const char *const aux_names[] = { "samples", "covered", "mask", "grid", N
  *   PLANE_AT_COST      a plane (1/z, a/z) at a pixel: P0 + Px dx + Py dy
  *   ATTRIBUTE_COST     one attribute a = (a/z) * z
  *   RESOLVE_COST       one sample's r, g, b added to the pixel's sums (the
- *                      division by N = 4 or 8 is a shift) */
+ *                      division by N = 4 or 8 is a shift)
+ *   TENT_TAP_COST      one sample in the tent resolve: r, g, b times its
+ *                      weight, added to the sums, and the weight to theirs */
 #define SAMPLE_EDGE_COST { .mul = 0, .add = 1 }
 #define EXTENT_CORNERS_COST { .mul = 4, .add = 9 }
 #define PLANE_AT_COST { .mul = 2, .add = 2 }
 #define ATTRIBUTE_COST { .mul = 1, .add = 0 }
 #define RESOLVE_COST { .mul = 0, .add = 3 }
+#define TENT_TAP_COST { .mul = 3, .add = 4 }
 
 /* --- the samples ------------------------------------------------------------ */
 
@@ -141,6 +150,12 @@ static int64_t edge_at(const struct edges *e, int k, int x, int y)
 
 /* --- one triangle's run ------------------------------------------------------- */
 
+/* The tent filter's n taps: neighbour (di, dj), sample s, weight w (tent_setup). */
+struct tent {
+    int n, di[9 * SAMPLES_MAX], dj[9 * SAMPLES_MAX], s[9 * SAMPLES_MAX];
+    int64_t w[9 * SAMPLES_MAX];
+};
+
 struct run {
     const struct tri_setup *t;
     const struct raster_params *p;
@@ -149,9 +164,11 @@ struct run {
     struct pattern pt;
     struct edges e;
     struct planes pl;
+    struct tent taps;                   /* the tent's (when tent) */
     int nplanes;                        /* 1/z, r, g, b (and s, t with a checker) */
     double plane_off[SAMPLES_MAX][PL_COUNT];    /* a plane's offset at sample s */
     bool per_sample;                    /* SSAA: shade every covered sample */
+    bool tent;                          /* resolve with the tent over neighbours' samples */
     float grid;                         /* 1: the exhibit's grid (narrated, for the explorer) */
     uint32_t *scolor;                   /* the samples: n per pixel, or the pixels */
     float *sdepth;                      /*   themselves when n = 1 */
@@ -235,6 +252,61 @@ static void shade(const struct run *r, int x, int y, unsigned mask, struct fragm
         f->z[s] = (float)z;
         f->color[s] = r->per_sample ? colour_of(r, vs, z) : centre;
     }
+}
+
+/* --- a wider resolve: the tent ---------------------------------------------- */
+
+/* resolve() is a BOX filter: each of the pixel's own N samples weighs 1/N,
+ * nothing beyond its square counts. The tent (Bartlett's) reaches a pixel
+ * out: a sample (dx, dy) pixels from the centre weighs (1 - |dx|)(1 - |dy|),
+ * neighbours' samples too. Its spectrum falls off faster (sinc^2 against
+ * sinc): less of what lies beyond the pixel rate aliases back, at the price
+ * of a softer picture. Weights in 1/256 pixel, the same for every pixel. */
+static void tent_setup(struct tent *tn, const struct pattern *pt)
+{
+    tn->n = 0;
+    for (int j = -1; j <= 1; j++)
+        for (int i = -1; i <= 1; i++)
+            for (int s = 0; s < pt->n; s++) {
+                int ax = abs(SUBPIXEL_ONE * i + pt->dx[s]), ay = abs(SUBPIXEL_ONE * j + pt->dy[s]);
+                if (ax >= SUBPIXEL_ONE || ay >= SUBPIXEL_ONE)
+                    continue;       /* a pixel or more away: weight 0 */
+                tn->di[tn->n] = i, tn->dj[tn->n] = j, tn->s[tn->n] = s;
+                tn->w[tn->n++] = (int64_t)(SUBPIXEL_ONE - ax) * (SUBPIXEL_ONE - ay);
+            }
+}
+
+/* Pixel (x, y) resolved by the tent: the weighted mean of the samples in
+ * reach (on the screen), rounded. */
+static uint32_t tent_pixel(const struct run *r, int x, int y)
+{
+    int n = r->pt.n, w = r->fb->w, h = r->fb->h;
+    int64_t sum[3] = { 0, 0, 0 }, total = 0;    /* at most 9 N x 65536 x 255: 64 bits */
+    for (int k = 0; k < r->taps.n; k++) {
+        int nx = x + r->taps.di[k], ny = y + r->taps.dj[k], s = r->taps.s[k];
+        if (nx < 0 || ny < 0 || nx >= w || ny >= h)
+            continue;
+        uint32_t c = r->scolor[((size_t)ny * (size_t)w + (size_t)nx) * (size_t)n + (size_t)s];
+        for (int ch = 0; ch < 3; ch++)
+            sum[ch] += r->taps.w[k] * (c >> (16 - 8 * ch) & 0xff);
+        total += r->taps.w[k];
+        COUNT(r->tr, 1, TENT_TAP_COST);
+    }
+    uint32_t rgba = 0xff000000u;
+    for (int ch = 0; ch < 3; ch++)
+        rgba |= (uint32_t)((sum[ch] + total / 2) / total) << (16 - 8 * ch);
+    return rgba;
+}
+
+/* A GPU resolves when the frame is done; the tent here when the triangle is
+ * (so that the explorer shows each one finished), on the pixels that reach
+ * its samples: the box and one more around it (the box filter's until then). */
+static void tent_resolve(const struct run *r, const int box[4])
+{
+    for (int y = box[1] - 1; y <= box[3] + 1; y++)
+        for (int x = box[0] - 1; x <= box[2] + 1; x++)
+            if (x >= 0 && y >= 0 && x < r->fb->w && y < r->fb->h)
+                r->fb->color[(size_t)y * (size_t)r->fb->w + (size_t)x] = tent_pixel(r, x, y);
 }
 
 /* A pixel after a fragment: its N samples depth-tested (nearer wins) and
@@ -400,6 +472,7 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
 
 struct ms_options {
     bool per_sample;        /* SSAA: shade every sample */
+    bool tent;              /* resolve with the tent filter, not the box */
     bool grid;              /* exhibit: a regular grid instead of the standard pattern */
     bool fill_rule;         /* false: exhibit, a sample on an edge is covered by both sides */
 };
@@ -431,11 +504,11 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
             .y1 = box[3], .e = { t->area2, 0, 0 }, .aux = { (float)n, 0, 0, o.grid && n > 1 });
     if (!any)
         return;
-    r.t = t;
-    r.p = p;
-    r.fb = fb;
-    r.tr = tr;
+    r.t = t, r.p = p, r.fb = fb, r.tr = tr;
     r.per_sample = o.per_sample;
+    r.tent = o.tent && n > 1;       /* one sample: the tent weighs only the pixel's own */
+    if (r.tent)
+        tent_setup(&r.taps, &r.pt);
     r.grid = o.grid && n > 1;
     edges_setup(&r.e, t, &r.pt, o.fill_rule);
     planes_setup(&r.pl, t, p);
@@ -453,6 +526,8 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
             block(&r, xa, ya, xb, yb);
         }
     }
+    if (r.tent && !frozen(tr))
+        tent_resolve(&r, box);
 }
 
 /* --- the variants ----------------------------------------------------------------- */
@@ -467,6 +542,12 @@ static void rasterize_ssaa(const struct tri_setup *t, const struct raster_params
                            struct target *fb, struct trace *tr)
 {
     rasterize_ms(t, p, fb, tr, (struct ms_options){ .per_sample = true, .fill_rule = true });
+}
+
+static void rasterize_tent(const struct tri_setup *t, const struct raster_params *p,
+                           struct target *fb, struct trace *tr)
+{
+    rasterize_ms(t, p, fb, tr, (struct ms_options){ .tent = true, .fill_rule = true });
 }
 
 static void rasterize_grid(const struct tri_setup *t, const struct raster_params *p,
@@ -485,6 +566,7 @@ static const struct lesson_variant variants[] = {
     { "msaa", "multisampling: coverage and depth per sample, colour once per pixel",
       rasterize_msaa, false },
     { "ssaa", "supersampling: colour shaded at every covered sample", rasterize_ssaa, false },
+    { "tent", "msaa resolved by a tent filter: the neighbours' samples count too", rasterize_tent, false },
     { "grid", "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern",
       rasterize_grid, true },
     { "no-fill-rule", "exhibit: a sample exactly on an edge is covered by both triangles",
@@ -502,7 +584,6 @@ const struct lesson lesson_08 = {
     .perspective = true,
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
-    .aux_names = aux_names,
     .params = LESSON_PARAM_BLOCK | LESSON_PARAM_SAMPLES,
     /* at one sample (what the recount runs): the edges at the sample and the
      * step to the next pixel; covered: four planes at the centre, the colour,

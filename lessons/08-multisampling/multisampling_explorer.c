@@ -17,7 +17,7 @@
 
 extern const struct lesson lesson_08;
 
-/* What the lesson narrates in trace_event.aux[] (its aux_names). */
+/* What the lesson narrates in trace_event.aux[] (multisampling.c). */
 enum { AUX_SAMPLES, AUX_COVERED, AUX_MASK, AUX_GRID };
 
 /* The pattern an event was decided with (the standard one unless the grid exhibit). */
@@ -111,15 +111,21 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
         draw_samples(c, t, sp, box);
     if (!last || (last->kind != TRACE_PIXEL_TEST && last->kind != TRACE_PIXEL_WRITE))
         return;
-    /* the pixel just tested: its samples numbered, its mask */
+    /* the pixel just tested: its samples ringed and numbered, each number
+     * level with its ring, on the side away from the pixel's centre (the
+     * samples of a pattern lie at different heights, so no number sits
+     * beside another sample's ring) */
     unsigned mask = (unsigned)last->aux[AUX_MASK];
+    const double ring = 4.5, size = 9;      /* screen pixels */
     for (int s = 0; s < sp->n; s++) {
         double x = last->x + sp->x[s] / (double)SUBPIXEL_ONE, y = last->y + sp->y[s] / (double)SUBPIXEL_ONE;
-        c->disc(c, x, y, 4.5, (mask >> s & 1) ? (struct pen){ .fill = INK_PROBE, .stroke = INK_OUTLINE }
-                                              : (struct pen){ .stroke = INK_PROBE, .width = 1.5 });
+        c->disc(c, x, y, ring, (mask >> s & 1) ? (struct pen){ .fill = INK_PROBE, .stroke = INK_OUTLINE }
+                                               : (struct pen){ .stroke = INK_PROBE, .width = 1.5 });
         char label[4];
         snprintf(label, sizeof label, "%d", s);
-        c->label(c, x + 5 * c->unit, y - 14 * c->unit, label, 9, INK_PROBE);
+        double w = 0.61 * size * (double)strlen(label);     /* DejaVu Sans Mono's advance */
+        double lx = sp->x[s] >= SUBPIXEL_HALF ? x + (ring + 3) * c->unit : x - (ring + 3 + w) * c->unit;
+        c->label(c, lx, y - 0.65 * size * c->unit, label, size, INK_PROBE);
     }
 }
 
@@ -136,8 +142,8 @@ static void watch(const struct tri_setup *t, const struct raster_params *p,
     for (int s = 0; s < sp->n; s++)
         bits[s] = (mask >> s & 1) ? '1' : '0';   /* sample 0 first */
     bits[sp->n] = '\0';
-    size_t at = (size_t)snprintf(buf, n, "mask = %s (%d of %d)%s\n", bits, (int)ev->aux[AUX_COVERED],
-                                 sp->n, ev->aux[AUX_GRID] > 0 ? ", grid" : "");
+    size_t at = (size_t)snprintf(buf, n, "mask = %s (sample 0 first): %d of %d covered%s\n", bits,
+                                 (int)ev->aux[AUX_COVERED], sp->n, ev->aux[AUX_GRID] > 0 ? ", grid" : "");
     if (ev->kind != TRACE_PIXEL_TEST)
         return;
     for (int s = 0; s < sp->n && at < n; s++) {
@@ -173,6 +179,12 @@ static const struct lesson_view views[] = {
       area_error_cell },
 };
 
+/* The pixel test covers a pixel when ANY of its samples is inside; the edge
+ * values the panel prints after the verdict are the centre's (the samples'
+ * follow in the watch, from the mask line on). */
+static const char *const verdict[] = { "no sample inside; at the centre:",
+                                       "a sample inside; at the centre:" };
+
 const struct lesson_explorer lesson_08_explorer = {
     .lesson = &lesson_08,
     .views = views,
@@ -180,4 +192,5 @@ const struct lesson_explorer lesson_08_explorer = {
     .overlay = overlay,
     .constants = constants,
     .watch = watch,
+    .verdict = verdict,
 };

@@ -196,7 +196,9 @@ static bool scene_writer(FILE *out, void *ctx)
     const struct explorer *ex = ctx;
     fprintf(out, "# saved from the %s explorer at step %llu (%s)\n", ex->lesson->id,
             (unsigned long long)ex->step, ex->scene_name);
-    return scene_write(&ex->scene, out);
+    struct scene s = ex->scene;     /* with its own background, not the page's */
+    memcpy(s.background, ex->own_background, sizeof s.background);
+    return scene_write(&s, out);
 }
 
 /* S: the scene as it is now, dragged vertices included, to a new file
@@ -297,8 +299,10 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         break;
     case SDLK_e: export_view(a); break;
     case SDLK_l:    /* figures for print: the light theme, also in the window */
-        ex->theme = ex->theme == THEME_LIGHT ? THEME_DARK : THEME_LIGHT;
-        say(a, "%s theme", theme_name(ex->theme));
+        if (!explorer_set_theme(ex, ex->theme == THEME_LIGHT ? THEME_DARK : THEME_LIGHT))
+            out_of_memory(a);
+        else
+            say(a, "%s theme", theme_name(ex->theme));
         break;
     case SDLK_c:    /* the pixel grid alone, as --figure-part canvas */
         ex->part = ex->part == PART_CANVAS ? PART_ALL : PART_CANVAS;

@@ -49,8 +49,6 @@ struct palette {
     uint32_t probe;                                 /* a point a lesson computes */
     uint32_t upper, lower;                          /* two parts of one triangle */
     uint32_t brighter, deeper;                      /* gradients of luminance, of depth */
-    bool paper;             /* for print: pixels nothing was drawn on show as `empty_px`,
-                               not as the scene's (dark) background */
 };
 
 extern const struct palette palette_dark, palette_light;

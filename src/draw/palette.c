@@ -47,7 +47,6 @@ const struct palette palette_light = {
     .wrong_colour = 0x5f9e00,
     .mark = 0x111318, .probe = 0xd6246e, .upper = 0x7a4fe0, .lower = 0xe07000,
     .brighter = 0x8a6d00, .deeper = 0x0f8a5f,
-    .paper = true,
 };
 
 const struct palette *palette_of(enum theme t)

@@ -128,7 +128,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
         break;
     case TRACE_PIXEL_TEST:
         at = cat(buf, n, at, "pixel (%d, %d): %s\n", ev->x, ev->y,
-                 (ev->flags & TRACE_INSIDE) ? "inside" : "outside");
+                 ex->side && ex->side->verdict ? ex->side->verdict[(ev->flags & TRACE_INSIDE) != 0]
+                 : (ev->flags & TRACE_INSIDE) ? "inside" : "outside");
         for (int k = 0; k < 3; k++) {
             char v[24];
             format_edge(v, sizeof v, ev->e[k]);

@@ -29,14 +29,11 @@ static size_t pixel(const struct explorer *ex, int x, int y)
     return (size_t)y * (size_t)ex->scene.w + (size_t)x;
 }
 
-/* The colour buffer at a pixel; on paper, a pixel nothing was drawn on is
- * the page, not the scene's background. */
+/* The colour buffer at a pixel (on paper the scene is drawn on the page's
+ * white: explorer_set_theme). */
 static uint32_t buffer_colour(const struct view_ctx *v, int x, int y)
 {
-    size_t i = pixel(v->ex, x, y);
-    if (v->pal->paper && v->ex->fb.count[i] == 0)
-        return v->pal->empty_px;
-    return v->ex->fb.color[i] & 0xffffff;
+    return v->ex->fb.color[pixel(v->ex, x, y)] & 0xffffff;
 }
 
 /* A pixel the view says nothing about: the colour buffer, faded. */
@@ -78,8 +75,7 @@ static int color_numbers(const struct view_ctx *v, int x, int y, char out[3][16]
 static int color_legend(const struct view_ctx *v, struct swatch *out, const char **note)
 {
     (void)note;
-    out[0] = (struct swatch){ v->pal->paper ? v->pal->empty_px : v->ex->fb.background & 0xffffff,
-                              "background (nothing drawn)" };
+    out[0] = (struct swatch){ v->ex->fb.background & 0xffffff, "background (nothing drawn)" };
     return 1;
 }
 

@@ -506,6 +506,13 @@ bool explorer_set_variant(struct explorer *ex, int index)
     return rerun(ex, ex->step);
 }
 
+bool explorer_set_theme(struct explorer *ex, enum theme t)
+{
+    theme_background(ex, t);
+    target_free(&ex->scratch);      /* made again, on the new background */
+    return rerun(ex, ex->step);
+}
+
 bool explorer_set_params(struct explorer *ex, const struct raster_params *p)
 {
     ex->params = *p;
@@ -653,6 +660,8 @@ bool explorer_init(struct explorer *ex, const struct explorer_desc *d, char *err
     }
     if (!failed) {
         ex->params.checker = ex->scene.checker;
+        memcpy(ex->own_background, ex->scene.background, sizeof ex->own_background);
+        theme_background(ex, d->theme);
         ex->centre_x = ex->scene.w / 2.0;
         ex->centre_y = ex->scene.h / 2.0;
         uint64_t step = d->step_end ? UINT64_MAX : d->step;

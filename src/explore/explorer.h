@@ -149,7 +149,8 @@ struct explorer {
     double zoom;                    /* 0: fit */
     double centre_x, centre_y;      /* scene point at the canvas centre (zoom != 0) */
     double scale;
-    enum theme theme;
+    enum theme theme;               /* change it with explorer_set_theme */
+    double own_background[3];       /* the scene's background (scene.background is the page's on paper) */
     enum figure_part part;          /* PART_CANVAS: the grid fills the frame, no panel, no bar */
     bool pinned;
     int pin_x, pin_y;
@@ -186,6 +187,14 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir);
  * (clamped). Returns false when out of memory. */
 bool explorer_set_variant(struct explorer *ex, int index);
 bool explorer_set_params(struct explorer *ex, const struct raster_params *p);
+/* Dark for the screen, light for paper. On paper the scene is drawn on the
+ * page: every run uses white as the scene's background, so that pixels a
+ * triangle covers in part (lesson 08's resolved edges) blend with the page,
+ * as they would printed, not with a dark background that the page does not
+ * show. The step is kept. Returns false when out of memory. */
+bool explorer_set_theme(struct explorer *ex, enum theme t);
+/* ... its first half: ex->theme = t and the scene's background for it (no run). */
+void theme_background(struct explorer *ex, enum theme t);
 /* X: the next exhibit (or back to variants[0]); T: the next faster twin. */
 bool explorer_cycle_exhibit(struct explorer *ex);
 bool explorer_cycle_twin(struct explorer *ex);

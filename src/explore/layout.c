@@ -1,6 +1,6 @@
 /* layout.c - where the explorer's parts go in a frame of a given size, the
  * zoom and pan that move the pixel grid in it, the vertex under the mouse,
- * and the names of the themes and figure parts. */
+ * the names of the themes and figure parts, and a theme's background. */
 #include "explorer.h"
 
 #include <math.h>
@@ -29,6 +29,13 @@ bool theme_from_name(const char *name, enum theme *out)
     if (i >= 0)
         *out = (enum theme)i;
     return i >= 0;
+}
+
+void theme_background(struct explorer *ex, enum theme t)
+{
+    ex->theme = t;
+    for (int c = 0; c < 3; c++)
+        ex->scene.background[c] = t == THEME_LIGHT ? 1.0 : ex->own_background[c];
 }
 
 const char *figure_part_name(enum figure_part f)

@@ -9,7 +9,9 @@
  *
  * What is checked, untimed, on every scene it times: the coverage count of
  * every pixel equals the exact reference's, and llvmpipe's (0 differing
- * pixels, or the exit status is 1).
+ * pixels, or the exit status is 1). llvmpipe also draws at 4 samples (a
+ * multisampled framebuffer resolved by a blit, beside lesson 08's rows),
+ * checked against the exact rule at the samples where it says they are.
  *
  * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png, and
  * the same table as markdown (BUILD/bench.md, or --markdown FILE): `make
@@ -36,6 +38,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 
 #define NSCENES 3
 #define MAX_ROWS 64
+#define PEER_SAMPLES 4          /* llvmpipe's multisampled rows, beside lesson 08's */
 #define SCENE_LARGE 0
 #define SCENE_SMALL 1
 #define SCENE_MIXED 2
@@ -158,8 +161,9 @@ static void draw_scene(const struct row *row, const struct scene *s,
 /* Lesson 08's exact answer at n samples: for every pixel, the samples the
  * scene's triangles cover (saturating at 255), each sample decided by the
  * reference (raster.h: reference_point_covered) over a generous box. Made
- * once per scene and sample count, untimed. */
-static uint8_t *sample_reference(const struct scene *s, int n)
+ * once per scene and sample count, untimed. The samples at pos[] (1/256
+ * pixel from the pixel's corner; llvmpipe's), or NULL: sample_pattern(n). */
+static uint8_t *sample_reference(const struct scene *s, int n, const int (*pos)[2])
 {
     const struct sample_pattern *sp = sample_pattern(n);
     uint8_t *cov = calloc((size_t)s->w * (size_t)s->h, 1);
@@ -182,7 +186,8 @@ static uint8_t *sample_reference(const struct scene *s, int n)
         for (int64_t y = y0; y <= y1; y++)
             for (int64_t x = x0; x <= x1; x++)
                 for (int k = 0; k < n; k++)
-                    if (reference_point_covered(&t, x * SUBPIXEL_ONE + sp->x[k], y * SUBPIXEL_ONE + sp->y[k])) {
+                    if (reference_point_covered(&t, x * SUBPIXEL_ONE + (pos ? pos[k][0] : sp->x[k]),
+                                                y * SUBPIXEL_ONE + (pos ? pos[k][1] : sp->y[k]))) {
                         uint8_t *c = &cov[y * s->w + x];
                         *c += *c < 255;
                     }
@@ -211,22 +216,40 @@ static struct target *row_target(struct target fbs[], const struct row *row)
     return &fbs[row->samples > 1 ? row->samples : 0];
 }
 
+/* sample_reference() at the standard pattern, once per scene and count. */
+static const uint8_t *sample_reference_of(int i, const struct scene *s, int n)
+{
+    static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
+    if (!ref[i][n])
+        ref[i][n] = sample_reference(s, n, NULL);
+    return ref[i][n];
+}
+
+/* Does llvmpipe's multisampled framebuffer sample where lesson 08 does? */
+static bool peer_samples_standard(void)
+{
+    const struct sample_pattern *sp = sample_pattern(PEER_SAMPLES);
+    for (int k = 0; k < PEER_SAMPLES; k++)
+        if (peer_sample_pos[k][0] != sp->x[k] || peer_sample_pos[k][1] != sp->y[k])
+            return false;
+    return true;
+}
+
 /* Untimed: the same code once more, counting coverage, against the
  * reference and llvmpipe; a row of samples > 1 against sample_reference()
- * alone (llvmpipe is not asked for samples). */
+ * and, at 4 samples, llvmpipe's multisampled framebuffer (peer_cov4) if it
+ * samples at the same points (else there is nothing to compare). */
 static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
-                           uint8_t *const peer_cov[], struct target *fb)
+                           uint8_t *const peer_cov[], uint8_t *const peer_cov4[], struct target *fb)
 {
     const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
     target_clear(fb);
     draw_scene(row, &sc->s, &p, fb);
     size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
     if (row->samples > 1) {
-        static uint8_t *ref[NSCENES][SAMPLES_MAX + 1];
-        if (!ref[i][row->samples])
-            ref[i][row->samples] = sample_reference(&sc->s, row->samples);
-        row->t[i].diff_ref = count_diff(fb->count, ref[i][row->samples], n);
-        row->t[i].diff_peer = -1;
+        row->t[i].diff_ref = count_diff(fb->count, sample_reference_of(i, &sc->s, row->samples), n);
+        row->t[i].diff_peer = row->samples == PEER_SAMPLES && peer_cov4 && peer_samples_standard()
+                            ? count_diff(fb->count, peer_cov4[i], n) : -1;
         return;
     }
     row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
@@ -587,6 +610,15 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
                "(slowest - fastest) / median; on a shared machine, differences smaller than "
                "the spread are noise\n", o->runs, (unsigned long long)o->seed);
     fprintf(f, "- peer: %s\n", find_row("llvmpipe", NULL) ? peer_renderer : "llvmpipe not measured");
+    if (find_row("llvmpipe", "1 thread 4 samples")) {
+        fprintf(f, "- llvmpipe at 4 samples: a multisampled framebuffer resolved by a blit, both timed; "
+                "its samples (GL_SAMPLE_POSITION) in the scene, 1/256 pixel:");
+        for (int k = 0; k < PEER_SAMPLES; k++)
+            fprintf(f, " (%d, %d)", peer_sample_pos[k][0], peer_sample_pos[k][1]);
+        fprintf(f, peer_samples_standard() ? ", lesson 08's\n"
+                   : ", not lesson 08's: its diff ref is against the exact rule at its own samples, "
+                     "and lesson 08's rows are not compared with it (-)\n");
+    }
     for (int i = 0; i < NSCENES; i++) {
         const struct scene *s = &sc[i].s;
         fprintf(f, "\n## %s: %d x %d, %d triangles, %llu covered pixels (%.1f x the screen)\n\n",
@@ -903,15 +935,20 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    /* The rows: llvmpipe on one thread and on its default threads, then
-     * every lesson variant. */
-    static const struct { int threads; const char *name; } cfg[] = {
-        { 0, "1 thread" }, { -1, "default threads" },
+    /* The rows: llvmpipe on one thread and on its default threads, each at
+     * one sample and at 4 (a multisampled framebuffer resolved by a blit,
+     * beside lesson 08's 4 samples; only when lesson 08 runs), then every
+     * lesson variant. */
+    static const struct { int threads, samples; const char *name; } cfg[] = {
+        { 0, 1, "1 thread" }, { -1, 1, "default threads" },
+        { 0, PEER_SAMPLES, "1 thread 4 samples" }, { -1, PEER_SAMPLES, "default 4 samples" },
     };
     int npeers = 0;
+    bool with_samples = !o.only || strncmp("08", o.only, strlen(o.only)) == 0;
     if (o.peer)
-        for (int c = 0; c < 2; c++)
-            rows[nrows++] = (struct row){ .program = "llvmpipe", .variant = cfg[c].name, .peer = true };
+        for (int c = 0; c < (with_samples ? 4 : 2); c++)
+            rows[nrows++] = (struct row){ .program = "llvmpipe", .variant = cfg[c].name, .peer = true,
+                                          .samples = cfg[c].samples };
     else
         printf("llvmpipe: not run (--no-llvmpipe)\n");
     npeers = nrows;
@@ -941,7 +978,7 @@ int main(int argc, char **argv)
      * round, so that a slow phase of the shared machine hits every program
      * alike (FACTS.md). llvmpipe runs in a child process per round (it reads
      * its thread count once per process), with its own warm-up. */
-    uint8_t *peer_cov[NSCENES] = { NULL };
+    uint8_t *peer_cov[NSCENES] = { NULL }, *peer_cov4[NSCENES] = { NULL };
     bool have_peer = false;
     /* one target per scene and sample count that a row uses: fbs[i][0]
      * for one sample, fbs[i][n] for lesson 08's n samples */
@@ -949,8 +986,10 @@ int main(int argc, char **argv)
     struct target *fb[NSCENES];
     for (int i = 0; i < NSCENES; i++) {
         peer_cov[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
+        peer_cov4[i] = malloc((size_t)sc[i].s.w * (size_t)sc[i].s.h);
         fb[i] = &fbs[i][0];
-        if (!peer_cov[i] || !target_init(fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
+        if (!peer_cov[i] || !peer_cov4[i]
+            || !target_init(fb[i], sc[i].s.w, sc[i].s.h, scene_background(&sc[i].s))) {
             fprintf(stderr, "tristep-bench: out of memory\n");
             return 1;
         }
@@ -969,7 +1008,7 @@ int main(int argc, char **argv)
         for (int i = 0; i < NSCENES; i++)
             time_once(&rows[k], i, &sc[i].s, row_target(fbs[i], &rows[k]), -1);
     }
-    bool peer_ok[2] = { npeers > 0, npeers > 1 };
+    bool peer_ok[4] = { npeers > 0, npeers > 1, npeers > 2, npeers > 3 };
     for (int r = 0; r < o.runs; r++) {
         fprintf(stderr, "round %d of %d...\n", r + 1, o.runs);
         for (int c = 0; c < npeers; c++) {
@@ -978,9 +1017,9 @@ int main(int argc, char **argv)
             char why[256];
             struct bench_timing one[NSCENES];
             uint8_t *cov[NSCENES];
-            for (int i = 0; i < NSCENES; i++)
-                cov[i] = c == 0 && r == 0 ? peer_cov[i] : fb[i]->count;   /* scratch after the first */
-            if (!peer_run(sc, NSCENES, cfg[c].threads, 1, 1, one, cov, why, sizeof why)) {
+            for (int i = 0; i < NSCENES; i++)       /* fb's count: scratch after the first */
+                cov[i] = r == 0 && c == 0 ? peer_cov[i] : r == 0 && c == 2 ? peer_cov4[i] : fb[i]->count;
+            if (!peer_run(sc, NSCENES, cfg[c].threads, cfg[c].samples, 1, 1, one, cov, why, sizeof why)) {
                 printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
                 peer_ok[c] = false;
                 continue;
@@ -988,7 +1027,15 @@ int main(int argc, char **argv)
             for (int i = 0; i < NSCENES; i++) {
                 rows[c].t[i].t[r] = one[i].t[0];
                 rows[c].t[i].runs = r + 1;
-                if (r == 0) {
+                if (r == 0 && cfg[c].samples > 1) {    /* against the exact rule at its own samples */
+                    size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
+                    const int (*at)[2] = (const int (*)[2])peer_sample_pos;
+                    uint8_t *ref = sample_reference(&sc[i].s, cfg[c].samples, at);
+                    rows[c].t[i].diff_ref = count_diff(cov[i], ref, n);
+                    rows[c].t[i].diff_peer = c == 2 ? 0
+                                           : peer_ok[2] ? count_diff(cov[i], peer_cov4[i], n) : -1;
+                    free(ref);
+                } else if (r == 0) {
                     size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
                     rows[c].t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
                     rows[c].t[i].diff_peer = c == 0 ? 0 : count_diff(cov[i], peer_cov[i], n);
@@ -1008,12 +1055,20 @@ int main(int argc, char **argv)
     nrows = kept;
     if (have_peer)
         printf("peer: %s\n", peer_renderer);
+    if (npeers > 2 && peer_ok[2]) {
+        printf("llvmpipe's %d samples (GL_SAMPLE_POSITION, in the scene's y-down 1/256 pixel):",
+               PEER_SAMPLES);
+        for (int k = 0; k < PEER_SAMPLES; k++)
+            printf(" (%d, %d)", peer_sample_pos[k][0], peer_sample_pos[k][1]);
+        printf(peer_samples_standard() ? ": lesson 08's, compared pixel by pixel\n"
+               : ": not lesson 08's, so each is checked against the exact rule at its own samples\n");
+    }
     for (int k = 0; k < nrows; k++) {
         for (int i = 0; i < NSCENES; i++) {
             bench_timing_stats(&rows[k].t[i]);
             if (!rows[k].peer)
                 check_coverage(&rows[k], i, &sc[i], have_peer ? peer_cov : NULL,
-                               row_target(fbs[i], &rows[k]));
+                               npeers > 2 && peer_ok[2] ? peer_cov4 : NULL, row_target(fbs[i], &rows[k]));
         }
     }
     for (int i = 0; i < NSCENES; i++)
@@ -1122,8 +1177,10 @@ int main(int argc, char **argv)
     else
         printf("not every output was written (see above); %.0f s in all\n", now() - start);
 
-    for (int i = 0; i < NSCENES; i++)
+    for (int i = 0; i < NSCENES; i++) {
         free(peer_cov[i]);
+        free(peer_cov4[i]);
+    }
     bench_scenes_free(sc);
     return bad || !ok ? 1 : 0;
 }

@@ -36,14 +36,20 @@ void bench_timing_stats(struct bench_timing *bt);
 
 /* Mesa's llvmpipe through OSMesa, drawing the same scenes with the same
  * state. threads = 0 is LP_NUM_THREADS=0 (single-threaded), -1 llvmpipe's
- * default. Runs in a child process because llvmpipe reads its thread count
- * once per process. On success fills out[i] (times) and coverage[i] (w * h
- * counts, from an untimed stencil pass) for every scene. On failure returns
- * false and says why (OSMesa missing, no GL_ARB_clip_control, ...). */
-bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
-              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen);
-/* "Mesa 22.3.6 llvmpipe (LLVM 15, 256 bits)" after a successful peer_run. */
+ * default; samples > 1: into a multisampled framebuffer object resolved by a
+ * blit (timed with the drawing). Runs in a child process because llvmpipe
+ * reads its thread count once per process. On success fills out[i] (times)
+ * and coverage[i] (w * h counts, from an untimed stencil pass; with samples,
+ * covered samples summed over the triangles, as lesson 08 counts them) for
+ * every scene. On failure returns false and says why (OSMesa missing, no
+ * GL_ARB_clip_control, too few samples, ...). */
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int samples, int warmup,
+              int runs, struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen);
+/* "Mesa 22.3.6 llvmpipe (LLVM 15, 256 bits)" after a successful peer_run;
+ * after one with samples, where they are in the scene (1/256 pixel from the
+ * pixel's top-left corner, as sample_pattern() gives lesson 08's). */
 extern char peer_renderer[160];
+extern int peer_sample_pos[SAMPLES_MAX][2];
 
 /* The 3-D front end (front.c): a 100,000-triangle torus seen from inside
  * its tube, through look-at, clipping, projection, guard band, fan and cull. */

@@ -27,12 +27,26 @@
  * centres go the other way (the bottom-left rule): the bench's scenes put a
  * quarter of their vertices on the half-pixel grid to catch exactly that.
  *
+ * With samples = 4 (lesson 08's rows), llvmpipe draws into a framebuffer
+ * object of 4 samples (colour RGBA8, depth 24 and stencil 8), resolved into
+ * OSMesa's buffer by a blit, draw and blit timed together, as an application
+ * does MSAA. Its samples are the standard 4x pattern in GL's window space,
+ * y up (GL_SAMPLE_POSITION says so); through the flip above they sit in the
+ * scene at (x, 256 - y), the pattern of CONVENTIONS.md upside down, and
+ * they are reported (peer_sample_pos) for the bench to check them against
+ * the exact rule at those points. Coverage: each sample alone
+ * (glSampleMaski), every triangle adding 4 levels of red there without a
+ * depth test; the blit's mean of the one sample written and three left at 0
+ * is that sample's count (up to 63); the per-pixel sum over the samples is
+ * what lesson 08's --dump-coverage counts.
+ *
  * llvmpipe reads LP_NUM_THREADS once, when OSMesa makes its screen, so each
  * thread setting runs in a child process; results come back through shared
  * memory.
  */
 #define _DEFAULT_SOURCE  /* MAP_ANONYMOUS */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,13 +58,15 @@
 #include "bench.h"
 
 char peer_renderer[160];
+int peer_sample_pos[SAMPLES_MAX][2];
 
 #ifndef TRISTEP_OSMESA
 
-bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
-              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int samples, int warmup,
+              int runs, struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
 {
-    (void)sc, (void)nscenes, (void)threads, (void)warmup, (void)runs, (void)out, (void)coverage;
+    (void)sc, (void)nscenes, (void)threads, (void)samples, (void)warmup, (void)runs, (void)out;
+    (void)coverage;
     snprintf(why, whylen, "OSMesa was not found when the bench was built "
              "(Debian: apt-get install libosmesa6-dev, then make bench)");
     return false;
@@ -106,11 +122,93 @@ struct shared {
     char why[256];
     char renderer[160];
     int ok;
+    int pos[SAMPLES_MAX][2];    /* with samples: where they are, 1/256 pixel, y down */
     struct bench_timing t[8];
 };
 
 /* Everything the child does; returns false with shared->why on failure. */
-static bool child(const struct bench_scene *sc, int nscenes, int warmup, int runs,
+/* The multisampled framebuffer object of the scene's size, bound for drawing
+ * (0 when samples <= 1: OSMesa's own buffer); false with sh->why on failure. */
+static bool msaa_target(int samples, int w, int h, GLuint fbo_rb[3], struct shared *sh)
+{
+    fbo_rb[0] = 0;
+    if (samples <= 1)
+        return true;
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max);
+    if (max < samples) {
+        snprintf(sh->why, sizeof sh->why, "%s offers %d samples, not %d", sh->renderer, max, samples);
+        return false;
+    }
+    glGenFramebuffers(1, &fbo_rb[0]);
+    glGenRenderbuffers(2, &fbo_rb[1]);
+    glBindRenderbuffer(GL_RENDERBUFFER, fbo_rb[1]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, w, h);
+    glBindRenderbuffer(GL_RENDERBUFFER, fbo_rb[2]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_rb[0]);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fbo_rb[1]);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, fbo_rb[2]);
+    GLint got = 0;
+    glGetIntegerv(GL_SAMPLES, &got);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE || got != samples) {
+        snprintf(sh->why, sizeof sh->why, "%s: no complete %d-sample framebuffer (%d samples)",
+                 sh->renderer, samples, got);
+        return false;
+    }
+    /* where its samples are: GL gives them from the pixel's lower-left
+     * corner, y up; the scene's y runs down (y_w = H - y) */
+    for (int i = 0; i < samples && i < SAMPLES_MAX; i++) {
+        GLfloat v[2];
+        glGetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, v);
+        sh->pos[i][0] = (int)lround(v[0] * SUBPIXEL_ONE);
+        sh->pos[i][1] = (int)lround((1 - v[1]) * SUBPIXEL_ONE);
+    }
+    return true;
+}
+
+/* The multisampled target resolved into OSMesa's buffer (a blit), or nothing. */
+static void resolve(GLuint fbo, int w, int h)
+{
+    if (!fbo)
+        return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+}
+
+/* Untimed, at n samples: how many triangles cover each sample (up to 255 / n),
+ * summed per pixel (window rows as they come), by one pass per sample. */
+static void sample_counts(int n, GLuint fbo, int w, int h, GLsizei nv, uint8_t *rgba, uint8_t *sum)
+{
+    memset(sum, 0, (size_t)w * (size_t)h);
+    glDisable(GL_DEPTH_TEST);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glColor4ub((GLubyte)n, 0, 0, 0);        /* n levels a triangle: the mean of n samples, 1 */
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glEnable(GL_SAMPLE_MASK);
+    glClearColor(0, 0, 0, 0);
+    for (int s = 0; s < n; s++) {
+        glSampleMaski(0, 1u << s);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glDrawArrays(GL_TRIANGLES, 0, nv);
+        resolve(fbo, w, h);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+            unsigned c = sum[i] + (unsigned)rgba[4 * i];
+            sum[i] = (uint8_t)(c > 255 ? 255 : c);
+        }
+    }
+    glDisable(GL_SAMPLE_MASK);
+    glDisable(GL_BLEND);
+    glEnableClientState(GL_COLOR_ARRAY);
+}
+
+static bool child(const struct bench_scene *sc, int nscenes, int samples, int warmup, int runs,
                   struct shared *sh, uint8_t *cov)
 {
     const int attribs[] = {
@@ -129,7 +227,8 @@ static bool child(const struct bench_scene *sc, int nscenes, int warmup, int run
     }
     uint8_t *pixels = malloc((size_t)maxw * (size_t)maxh * 4);
     uint8_t *stencil = malloc((size_t)maxw * (size_t)maxh);
-    if (!pixels || !stencil || !OSMesaMakeCurrent(ctx, pixels, GL_UNSIGNED_BYTE, maxw, maxh)) {
+    uint8_t *readback = malloc((size_t)maxw * (size_t)maxh * 4);   /* not OSMesa's own buffer */
+    if (!pixels || !stencil || !readback || !OSMesaMakeCurrent(ctx, pixels, GL_UNSIGNED_BYTE, maxw, maxh)) {
         snprintf(sh->why, sizeof sh->why, "OSMesaMakeCurrent failed");
         return false;
     }
@@ -156,6 +255,9 @@ static bool child(const struct bench_scene *sc, int nscenes, int warmup, int run
             snprintf(sh->why, sizeof sh->why, "OSMesaMakeCurrent %dx%d failed", s->w, s->h);
             return false;
         }
+        GLuint fbo_rb[3];
+        if (!msaa_target(samples, s->w, s->h, fbo_rb, sh))
+            return false;
         glViewport(VIEW_ORIGIN, VIEW_ORIGIN, VIEW_SIZE, VIEW_SIZE);
         size_t nv = (size_t)s->ntris * 3;
         struct gl_vertex *gv = malloc(nv * sizeof *gv);
@@ -187,28 +289,39 @@ static bool child(const struct bench_scene *sc, int nscenes, int warmup, int run
             glFinish();
             double t0 = now();
             glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
+            resolve(fbo_rb[0], s->w, s->h);
             glFinish();
             if (r >= 0)
                 bt->t[r] = now() - t0;
         }
 
-        /* untimed: coverage counted by a saturating stencil increment */
-        glDisable(GL_DEPTH_TEST);
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        glEnable(GL_STENCIL_TEST);
-        glStencilFunc(GL_ALWAYS, 0, 0xff);
-        glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
-        glClearStencil(0);
-        glClear(GL_STENCIL_BUFFER_BIT);
-        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
-        glReadPixels(0, 0, s->w, s->h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+        /* untimed: coverage counted by a saturating stencil increment, or
+         * with samples sample by sample */
+        if (fbo_rb[0]) {
+            sample_counts(samples, fbo_rb[0], s->w, s->h, (GLsizei)nv, readback, stencil);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            glEnable(GL_STENCIL_TEST);
+            glStencilFunc(GL_ALWAYS, 0, 0xff);
+            glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
+            glClearStencil(0);
+            glClear(GL_STENCIL_BUFFER_BIT);
+            glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
+            glReadPixels(0, 0, s->w, s->h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+            glDisable(GL_STENCIL_TEST);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
         for (int y = 0; y < s->h; y++)     /* window row H - 1 - y is scene row y */
             memcpy(cov + (size_t)y * (size_t)s->w,
                    stencil + (size_t)(s->h - 1 - y) * (size_t)s->w, (size_t)s->w);
         cov += (size_t)s->w * (size_t)s->h;
-        glDisable(GL_STENCIL_TEST);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glDeleteBuffers(1, &vbo);
+        if (fbo_rb[0]) {
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glDeleteFramebuffers(1, &fbo_rb[0]);
+            glDeleteRenderbuffers(2, &fbo_rb[1]);
+        }
         GLenum err = glGetError();
         if (err != GL_NO_ERROR) {
             snprintf(sh->why, sizeof sh->why, "GL error 0x%x on scene %s", err, sc[i].name);
@@ -218,11 +331,12 @@ static bool child(const struct bench_scene *sc, int nscenes, int warmup, int run
     OSMesaDestroyContext(ctx);
     free(pixels);
     free(stencil);
+    free(readback);
     return true;
 }
 
-bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup, int runs,
-              struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int samples, int warmup,
+              int runs, struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
 {
     size_t covsize = 0;
     for (int i = 0; i < nscenes; i++)
@@ -257,13 +371,15 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int warmup
         } else {
             unsetenv("LP_NUM_THREADS");
         }
-        sh->ok = child(sc, nscenes, warmup, runs, sh, cov);
+        sh->ok = child(sc, nscenes, samples, warmup, runs, sh, cov);
         _exit(0);
     }
     int status = 0;
     bool ok = waitpid(pid, &status, 0) == pid && WIFEXITED(status) && sh->ok;
     if (ok) {
         snprintf(peer_renderer, sizeof peer_renderer, "%s", sh->renderer);
+        if (samples > 1)
+            memcpy(peer_sample_pos, sh->pos, sizeof peer_sample_pos);
         for (int i = 0; i < nscenes; i++) {
             out[i] = sh->t[i];
             bench_timing_stats(&out[i]);
