@@ -379,3 +379,92 @@ Test(texture, the_front_end_clips_s_and_t_as_it_clips_colour, .init = make_dir, 
     }
     scene_free(&s);
 }
+
+/* --- lesson 09's built-in scenes ------------------------------------------------------ */
+
+bool builtin_model(const char *name, char **text, size_t *len);   /* src/scene/models.c */
+
+Test(texture, the_shipped_sheet_is_what_the_code_makes)
+{
+    char *text;
+    size_t len;
+    cr_assert(builtin_model("sheet.obj", &text, &len));
+    FILE *f = fopen("models/sheet.obj", "rb");
+    cr_assert_not_null(f, "models/sheet.obj is missing (run the tests from the repository)");
+    char *file = malloc(len + 2);
+    size_t got = fread(file, 1, len + 1, f);
+    fclose(f);
+    cr_expect(got == len && memcmp(file, text, len) == 0,
+              "models/sheet.obj differs from what src/scene/models.c makes");
+    free(file);
+    free(text);
+}
+
+/* A built-in scene drawn by the reference with trilinear filtering, keeping
+ * each pixel's lambda and elongation. */
+static void draw_builtin(const char *name, struct scene *s, struct texref_target *fb)
+{
+    char err[256];
+    cr_assert(scene_builtin(s, name, err, sizeof err), "%s", err);
+    cr_assert_gt(s->world.camera_line, 0, "builtin:%s is a 3-D scene", name);
+    cr_assert(front_scene(s));
+    cr_assert(texref_target_init(fb, s->w, s->h, scene_background(s)));
+    fb->lambda = malloc((size_t)s->w * s->h * sizeof *fb->lambda);
+    fb->elongation = malloc((size_t)s->w * s->h * sizeof *fb->elongation);
+    cr_assert(fb->lambda && fb->elongation);
+    for (int i = 0; i < s->w * s->h; i++)
+        fb->lambda[i] = fb->elongation[i] = NAN;
+    cr_assert(texref_draw_scene(fb, s, TEXREF_TRILINEAR, 16));
+}
+
+Test(texture, lesson_09_scenes_show_what_they_say)
+{
+    struct scene s;
+    struct texref_target fb;
+
+    /* the floor: magnified under the eye, minified by 8 or more texels a
+     * pixel below the horizon, and the sky above it */
+    draw_builtin("texture-floor", &s, &fb);
+    cr_expect(fb.lambda[(s.h - 1) * s.w + s.w / 2] < 0, "magnified at the bottom: lambda %g",
+              fb.lambda[(s.h - 1) * s.w + s.w / 2]);
+    float far = -INFINITY;
+    int sky = 0;
+    for (int i = 0; i < s.w * s.h; i++) {
+        if (isfinite(fb.lambda[i]) && fb.lambda[i] > far)
+            far = fb.lambda[i];
+        sky += fb.covered[i] == 0;
+    }
+    cr_expect_geq(far, 3, "minified towards the horizon: lambda up to %g", far);
+    cr_expect(sky > s.w * s.h / 3 && sky < s.w * s.h * 2 / 3, "sky above the horizon: %d pixels", sky);
+    texref_target_free(&fb);
+    scene_free(&s);
+
+    /* the wall: footprints ten times longer than wide, far along it */
+    draw_builtin("texture-wall", &s, &fb);
+    int long_thin = 0, textured = 0;
+    for (int i = 0; i < s.w * s.h; i++) {
+        textured += !isnan(fb.lambda[i]);
+        long_thin += fb.elongation[i] >= 10 && fb.lambda[i] > 2;
+    }
+    cr_expect_gt(textured, s.w * s.h / 4, "the wall fills a good part of the view");
+    cr_expect_gt(long_thin, 100, "%d pixels of the wall see a footprint 10 x longer than wide", long_thin);
+    texref_target_free(&fb);
+    scene_free(&s);
+
+    /* the torus: every visible triangle textured, hundreds of pixels */
+    draw_builtin("texture-model", &s, &fb);
+    for (int i = 0; i < s.ntris; i++)
+        cr_assert_eq(s.tris[i].texture, 1);
+    cr_expect_gt(fb.shaded, 1000, "the torus is seen");
+    texref_target_free(&fb);
+    scene_free(&s);
+
+    /* tiny triangles: 8 pixels each, and a helper for every two pixels shaded */
+    draw_builtin("texture-tiny", &s, &fb);
+    cr_expect_eq(s.ntris, 32 * 24 * 2);
+    cr_expect_eq(fb.shaded, (long)s.w * s.h, "the sheet covers the view once");
+    cr_expect_leq(fb.shaded / s.ntris, 8, "%ld pixels a triangle", fb.shaded / s.ntris);
+    cr_expect_geq(2 * fb.helpers, fb.shaded, "%ld helpers for %ld pixels", fb.helpers, fb.shaded);
+    texref_target_free(&fb);
+    scene_free(&s);
+}

@@ -217,6 +217,8 @@ void texref_target_free(struct texref_target *fb)
 {
     free(fb->color);
     free(fb->z);
+    free(fb->lambda);
+    free(fb->elongation);
     free(fb->covered);
     memset(fb, 0, sizeof *fb);
 }
@@ -299,6 +301,15 @@ static struct at_pixel interpolate(const struct snapped *t, int x, int y)
     return a;
 }
 
+/* P_max / P_min of the derivatives */
+static double elongation(const struct texref_deriv *d)
+{
+    double px = sqrt(d->dudx * d->dudx + d->dvdx * d->dvdx);
+    double py = sqrt(d->dudy * d->dudy + d->dvdy * d->dvdy);
+    double lo = px < py ? px : py, hi = px < py ? py : px;
+    return lo > 0 ? hi / lo : INFINITY;
+}
+
 /* round(c * 255), halves away from zero, after clamping to [0, 1] */
 static uint32_t channel(double c)
 {
@@ -364,6 +375,10 @@ void texref_draw_tri(struct texref_target *fb, const struct vertex v[3], const s
                     if (tex)
                         texref_sample(tex, f, max_aniso, p->s, p->t, &d, texel);
                     fb->z[idx] = p->z;
+                    if (tex && fb->lambda)
+                        fb->lambda[idx] = beyond ? INFINITY : (float)texref_lambda(&d);
+                    if (tex && fb->elongation)
+                        fb->elongation[idx] = (float)elongation(&d);
                     fb->color[idx] = 0xff000000u | channel(texel[0] / 255 * p->rgb[0]) << 16
                                    | channel(texel[1] / 255 * p->rgb[1]) << 8
                                    | channel(texel[2] / 255 * p->rgb[2]);

@@ -73,6 +73,11 @@ struct texref_target {
     uint8_t *covered;                  /* how many triangles covered the pixel */
     long helpers;                      /* helper pixels evaluated (in covered quads, not covered) */
     long shaded;                       /* covered pixels shaded */
+    /* optional (NULL: not kept), for each textured pixel written: lambda =
+     * log2(rho) of its quad (INFINITY beyond the horizon), and P_max / P_min
+     * (the footprint's elongation, INFINITY when P_min = 0); malloc'ed by
+     * the caller (w x h floats), freed with the target */
+    float *lambda, *elongation;
 };
 
 bool texref_target_init(struct texref_target *fb, int w, int h, uint32_t background);

@@ -187,7 +187,7 @@ static bool read_model(struct parser *p, struct scene *s, const char *file, cons
         char *text;
         size_t len;
         if (!builtin_model(file + 8, &text, &len))
-            return scene_fail(p, "no built-in model '%s' (there is builtin:torus.obj)", file);
+            return scene_fail(p, "no built-in model '%s' (there are builtin:torus.obj and builtin:sheet.obj)", file);
         FILE *f = fmemopen(text, len, "rb");
         bool ok = f ? obj_read(s, f, file, rgb, p->err, p->errlen)
                     : scene_fail(p, "out of memory");

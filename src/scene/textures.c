@@ -35,7 +35,7 @@ static bool digit_pixel(int d, int x, int y)       /* x in 0..2, y in 0..4 */
 }
 
 /* 8 x 8 cells of 32 x 32 texels, light and dark in turn, the hue changing
- * across the rows and columns; cell n = 8 row + column shows n in digits of
+ * across the rows and columns (red with the column, green and blue with the row); cell n = 8 row + column shows n in digits of
  * 3 x 5 blocks of 3 x 3 texels, in the opposite tone. */
 static void checker_numbers(uint32_t *im, int w, int h)
 {
@@ -43,7 +43,7 @@ static void checker_numbers(uint32_t *im, int w, int h)
         for (int x = 0; x < w; x++) {
             int cx = x / 32, cy = y / 32, n = 8 * cy + cx;
             bool dark = (cx + cy) & 1;
-            unsigned r = 90 + 20 * (unsigned)cx, g = 90 + 10 * (unsigned)(cx + cy), b = 230 - 20 * (unsigned)cy;
+            unsigned r = 60 + 25 * (unsigned)cx, g = 200 - 15 * (unsigned)cy, b = 120 + 15 * (unsigned)cy;
             /* two digits, each 9 x 15 texels, with 3 texels between them,
              * centred in the cell: from (5, 8) to (26, 22) */
             int lx = x % 32 - 5, ly = y % 32 - 8;
@@ -53,7 +53,7 @@ static void checker_numbers(uint32_t *im, int w, int h)
                 ink = digit_pixel(d, (lx % 12) / 3, ly / 3);
             }
             bool bright = dark == ink;
-            im[(size_t)y * (size_t)w + (size_t)x] = bright ? rgb(r + 25, g + 120, b + 25) : rgb(r / 3, g / 3, b / 3);
+            im[(size_t)y * (size_t)w + (size_t)x] = bright ? rgb(r, g, b) : rgb(r / 3, g / 3, b / 3);
         }
 }
 
