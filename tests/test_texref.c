@@ -25,51 +25,40 @@ static void expect_rgb(const double got[3], double r, double g, double b, const 
 
 static const struct texref_deriv magnified = { 0.25, 0, 0, 0.25, false };
 
-Test(texref, nearest_on_a_2x2_texture_both_wraps)
-{
-    struct texref r;
-    cr_assert(texref_init(&r, 2, 2, rgby, TEXREF_REPEAT));
-    double c[3];
-    texref_sample(&r, TEXREF_NEAREST, 16, 0.25, 0.25, &magnified, c);
-    expect_rgb(c, 255, 0, 0, "(0.25, 0.25): texel (0, 0)");
-    texref_sample(&r, TEXREF_NEAREST, 16, 0.75, 0.25, &magnified, c);
-    expect_rgb(c, 0, 255, 0, "(0.75, 0.25): texel (1, 0)");
-    texref_sample(&r, TEXREF_NEAREST, 16, 0.5, 0.5, &magnified, c);
-    expect_rgb(c, 255, 255, 0, "(0.5, 0.5): u = v = 1, texel (1, 1)");
-    /* u = 2.5, v = -0.5: texel (2 mod 2, -1 mod 2) = (0, 1), blue */
-    texref_sample(&r, TEXREF_NEAREST, 16, 1.25, -0.25, &magnified, c);
-    expect_rgb(c, 0, 0, 255, "repeat: (1.25, -0.25) is texel (0, 1)");
-    texref_free(&r);
-    cr_assert(texref_init(&r, 2, 2, rgby, TEXREF_CLAMP));
-    texref_sample(&r, TEXREF_NEAREST, 16, 1.25, -0.25, &magnified, c);
-    expect_rgb(c, 0, 255, 0, "clamp: (1.25, -0.25) is texel (1, 0)");
-    texref_free(&r);
-}
-
-Test(texref, bilinear_on_a_2x2_texture_both_wraps)
-{
-    struct texref r;
-    cr_assert(texref_init(&r, 2, 2, rgby, TEXREF_REPEAT));
-    double c[3];
+/* Taps on the 2 x 2 texture, worked out by hand. */
+static const struct {
+    enum texref_filter f;
+    enum texref_wrap wrap;
+    double s, t, rgb[3];
+    const char *what;
+} taps[] = {
+    { TEXREF_NEAREST, TEXREF_REPEAT, 0.25, 0.25, { 255, 0, 0 }, "(0.25, 0.25): texel (0, 0)" },
+    { TEXREF_NEAREST, TEXREF_REPEAT, 0.75, 0.25, { 0, 255, 0 }, "(0.75, 0.25): texel (1, 0)" },
+    { TEXREF_NEAREST, TEXREF_REPEAT, 0.5, 0.5, { 255, 255, 0 }, "(0.5, 0.5): u = v = 1, texel (1, 1)" },
+    /* u = 2.5, v = -0.5: texel (2 mod 2, -1 mod 2) = (0, 1) */
+    { TEXREF_NEAREST, TEXREF_REPEAT, 1.25, -0.25, { 0, 0, 255 }, "repeat: (1.25, -0.25) is texel (0, 1)" },
+    { TEXREF_NEAREST, TEXREF_CLAMP, 1.25, -0.25, { 0, 255, 0 }, "clamp: (1.25, -0.25) is texel (1, 0)" },
     /* the centre: u - 1/2 = 0.5, a = b = 1/2, each texel 1/4 */
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0.5, 0.5, &magnified, c);
-    expect_rgb(c, 127.5, 127.5, 63.75, "centre");
-    /* a texel centre: that texel alone */
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0.75, 0.25, &magnified, c);
-    expect_rgb(c, 0, 255, 0, "centre of texel (1, 0)");
+    { TEXREF_BILINEAR, TEXREF_REPEAT, 0.5, 0.5, { 127.5, 127.5, 63.75 }, "bilinear at the centre" },
+    { TEXREF_BILINEAR, TEXREF_REPEAT, 0.75, 0.25, { 0, 255, 0 }, "bilinear at the centre of texel (1, 0)" },
     /* (0, 0) with repeat: i0 = -1 -> 1, a = 1/2: the four texels again */
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0, 0, &magnified, c);
-    expect_rgb(c, 127.5, 127.5, 63.75, "repeat at the corner");
-    /* u = 0.75 (s = 0.375), v = 0.5: a = 1/4 between columns 0 and 1, row 0 alone */
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0.375, 0.25, &magnified, c);
-    expect_rgb(c, 191.25, 63.75, 0, "a quarter of the way");
-    texref_free(&r);
-    cr_assert(texref_init(&r, 2, 2, rgby, TEXREF_CLAMP));
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0, 0, &magnified, c);
-    expect_rgb(c, 255, 0, 0, "clamp at the corner: texel (0, 0) four times");
-    texref_sample(&r, TEXREF_BILINEAR, 16, 0.5, 0, &magnified, c);
-    expect_rgb(c, 127.5, 127.5, 0, "clamp on the top edge: red and green");
-    texref_free(&r);
+    { TEXREF_BILINEAR, TEXREF_REPEAT, 0, 0, { 127.5, 127.5, 63.75 }, "bilinear, repeat at the corner" },
+    /* u = 0.75, v = 0.5: a = 1/4 between columns 0 and 1, row 0 alone */
+    { TEXREF_BILINEAR, TEXREF_REPEAT, 0.375, 0.25, { 191.25, 63.75, 0 }, "bilinear a quarter of the way" },
+    { TEXREF_BILINEAR, TEXREF_CLAMP, 0, 0, { 255, 0, 0 }, "bilinear, clamp at the corner: texel (0, 0) four times" },
+    { TEXREF_BILINEAR, TEXREF_CLAMP, 0.5, 0, { 127.5, 127.5, 0 }, "bilinear, clamp on the top edge: red and green" },
+};
+
+Test(texref, nearest_and_bilinear_on_a_2x2_texture_both_wraps)
+{
+    for (size_t i = 0; i < sizeof taps / sizeof taps[0]; i++) {
+        struct texref r;
+        cr_assert(texref_init(&r, 2, 2, rgby, taps[i].wrap));
+        double c[3];
+        texref_sample(&r, taps[i].f, 16, taps[i].s, taps[i].t, &magnified, c);
+        expect_rgb(c, taps[i].rgb[0], taps[i].rgb[1], taps[i].rgb[2], taps[i].what);
+        texref_free(&r);
+    }
 }
 
 Test(texref, a_constant_texture_is_its_colour_under_every_filter)

@@ -4,7 +4,7 @@
  * OBJ texture coordinates, (s, t) through the front end's clipping, and
  * every input error with its FILE:LINE message. The programs reading
  * textured scenes: test_texture_cli.c. */
-#define _POSIX_C_SOURCE 200809L   /* mkdtemp, open_memstream */
+#define _POSIX_C_SOURCE 200809L   /* open_memstream */
 
 #include <cairo.h>
 #include <criterion/criterion.h>
@@ -16,39 +16,6 @@
 #include "front/front.h"
 #include "texref.h"
 #include "testlib.h"
-
-static char dir[64];
-
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/tristep-texture-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    if (dir[0] && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", dir);
-}
-
-static const char *path_of(const char *name)
-{
-    static char paths[4][256];
-    static int slot;
-    char *p = paths[slot++ % 4];
-    snprintf(p, 256, "%s/%s", dir, name);
-    return p;
-}
-
-static void put(const char *name, const char *text)
-{
-    FILE *f = fopen(path_of(name), "wb");
-    cr_assert_not_null(f);
-    cr_assert_eq(fwrite(text, 1, strlen(text), f), strlen(text));
-    cr_assert_eq(fclose(f), 0);
-}
 
 /* A w x h PNG of `format` (CAIRO_FORMAT_RGB24 or ARGB32), texel (x, y)
  * coloured by x and y, one texel translucent when alpha_below < 255. */
@@ -66,16 +33,16 @@ static void put_png(const char *name, int w, int h, cairo_format_t format, int a
             ((uint32_t *)(void *)(data + (size_t)y * stride))[x] = c;
         }
     cairo_surface_mark_dirty(s);
-    cr_assert_eq(cairo_surface_write_to_png(s, path_of(name)), CAIRO_STATUS_SUCCESS);
+    cr_assert_eq(cairo_surface_write_to_png(s, test_scratch_path(name)), CAIRO_STATUS_SUCCESS);
     cairo_surface_destroy(s);
 }
 
 static struct scene load_ok(const char *text)
 {
-    put("ok.scene", text);
+    test_scratch_text("ok.scene", text);
     struct scene s;
     char err[512] = "";
-    cr_assert(scene_load(&s, path_of("ok.scene"), err, sizeof err), "rejected: %s\n%s", err, text);
+    cr_assert(scene_load(&s, test_scratch_path("ok.scene"), err, sizeof err), "rejected: %s\n%s", err, text);
     return s;
 }
 
@@ -245,7 +212,7 @@ Test(texture, builtin_textures_are_opaque_powers_of_two)
 #define TRI24 "tri 1 1 1 1 1 1 0 0  30 2 1 1 1 1 1 0  3 20 1 1 1 1 0 1\n"
 #define TRI18 "tri 1 1 1 1 1 1  30 2 1 1 1 1  3 20 1 1 1 1\n"
 
-Test(texture, a_texture_line_applies_to_the_textured_tris_that_follow, .init = make_dir, .fini = remove_dir)
+Test(texture, a_texture_line_applies_to_the_textured_tris_that_follow, .init = test_scratch_make, .fini = test_scratch_remove)
 {
     put_png("wall.png", 8, 4, CAIRO_FORMAT_RGB24, 255);
     struct scene s = load_ok("size 32 24\n" TRI24
@@ -290,7 +257,7 @@ static void write_read(const struct scene *s, struct scene *back)
     free(text);
 }
 
-Test(texture, written_and_read_back_with_the_same_textures, .init = make_dir, .fini = remove_dir)
+Test(texture, written_and_read_back_with_the_same_textures, .init = test_scratch_make, .fini = test_scratch_remove)
 {
     put_png("a.png", 4, 4, CAIRO_FORMAT_ARGB32, 255);
     struct scene s = load_ok("size 32 24\ntexture builtin:grid clamp\ntexture a.png\n" TRI24
@@ -311,9 +278,9 @@ Test(texture, written_and_read_back_with_the_same_textures, .init = make_dir, .f
 
 #define CAM "camera 0 1 5  0 0 0  0 1 0  60 0.5 100\n"
 
-Test(texture, obj_vt_flips_t_and_faces_carry_it, .init = make_dir, .fini = remove_dir)
+Test(texture, obj_vt_flips_t_and_faces_carry_it, .init = test_scratch_make, .fini = test_scratch_remove)
 {
-    put("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+    test_scratch_text("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                     "vt 0 0\nvt 1 0\nvt 1 1 0.5\nvt 0.25\n"
                     "f 1/1 2/2 3/3 4/4\nf 1/-4/1 3/-2/1 4//1\n");
     struct scene s = load_ok("size 32 24\n" CAM "obj quad.obj 1 1 1\ntexture builtin:bricks\n"
@@ -353,7 +320,7 @@ Test(texture, obj_vt_flips_t_and_faces_carry_it, .init = make_dir, .fini = remov
 /* (s, t) go through the front end as the colour does: with s = r and t = g
  * at every world vertex, every screen vertex keeps s == r and t == g, after
  * near and far clipping and the guard band alike. */
-Test(texture, the_front_end_clips_s_and_t_as_it_clips_colour, .init = make_dir, .fini = remove_dir)
+Test(texture, the_front_end_clips_s_and_t_as_it_clips_colour, .init = test_scratch_make, .fini = test_scratch_remove)
 {
     struct rng r = rng_for(0xc11f);
     struct scene s = load_ok("size 64 48\n" CAM "texture builtin:grid\n");
@@ -381,24 +348,6 @@ Test(texture, the_front_end_clips_s_and_t_as_it_clips_colour, .init = make_dir, 
 }
 
 /* --- lesson 09's built-in scenes ------------------------------------------------------ */
-
-bool builtin_model(const char *name, char **text, size_t *len);   /* src/scene/models.c */
-
-Test(texture, the_shipped_sheet_is_what_the_code_makes)
-{
-    char *text;
-    size_t len;
-    cr_assert(builtin_model("sheet.obj", &text, &len));
-    FILE *f = fopen("models/sheet.obj", "rb");
-    cr_assert_not_null(f, "models/sheet.obj is missing (run the tests from the repository)");
-    char *file = malloc(len + 2);
-    size_t got = fread(file, 1, len + 1, f);
-    fclose(f);
-    cr_expect(got == len && memcmp(file, text, len) == 0,
-              "models/sheet.obj differs from what src/scene/models.c makes");
-    free(file);
-    free(text);
-}
 
 /* A built-in scene drawn by the reference with trilinear filtering, keeping
  * each pixel's lambda and elongation. */

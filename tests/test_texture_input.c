@@ -4,7 +4,7 @@
  * written); every lesson program reads textured 2-D and 3-D scenes and,
  * before lesson 09, draws them by its own rule (an image-textured triangle
  * in its vertex colour), which --help says. */
-#define _POSIX_C_SOURCE 200809L   /* mkdtemp */
+#define _POSIX_C_SOURCE 200809L   /* access */
 
 #include <cairo.h>
 #include <criterion/criterion.h>
@@ -17,44 +17,6 @@
 #include <unistd.h>
 
 #include "testlib.h"
-
-static char dir[64];
-
-static void make_dir(void)
-{
-    snprintf(dir, sizeof dir, "/tmp/tristep-texin-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    if (dir[0] && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", dir);
-}
-
-static const char *path_of(const char *name)
-{
-    static char paths[4][256];
-    static int slot;
-    char *p = paths[slot++ % 4];
-    snprintf(p, 256, "%s/%s", dir, name);
-    return p;
-}
-
-static void put_bytes(const char *name, const void *data, size_t n)
-{
-    FILE *f = fopen(path_of(name), "wb");
-    cr_assert_not_null(f);
-    cr_assert_eq(fwrite(data, 1, n, f), n);
-    cr_assert_eq(fclose(f), 0);
-}
-
-static void put(const char *name, const char *text)
-{
-    put_bytes(name, text, strlen(text));
-}
 
 /* A w x h PNG, opaque grey, or with one texel of alpha `alpha` (< 255). */
 static void put_png(const char *name, int w, int h, int alpha)
@@ -70,7 +32,7 @@ static void put_png(const char *name, int w, int h, int alpha)
         cairo_fill(cr);
     }
     cairo_destroy(cr);
-    cr_assert_eq(cairo_surface_write_to_png(s, path_of(name)), CAIRO_STATUS_SUCCESS);
+    cr_assert_eq(cairo_surface_write_to_png(s, test_scratch_path(name)), CAIRO_STATUS_SUCCESS);
     cairo_surface_destroy(s);
 }
 
@@ -126,33 +88,33 @@ static const struct bad bad[] = {
 
 static void make_files(void)
 {
-    make_dir();
-    put("text.png", "size 8 8\n");
+    test_scratch_make();
+    test_scratch_text("text.png", "size 8 8\n");
     static const unsigned char cut[] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13,
                                          'I', 'H', 'D', 'R', 0, 0, 0, 4, 0, 0, 0, 4, 8, 2, 0, 0, 0 };
-    put_bytes("cut.png", cut, sizeof cut);
+    test_scratch_put("cut.png", cut, sizeof cut);
     static const unsigned char nohdr[] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13,
                                            'I', 'D', 'A', 'T', 0, 0, 0, 4, 0, 0, 0, 4, 8, 2 };
-    put_bytes("nohdr.png", nohdr, sizeof nohdr);
+    test_scratch_put("nohdr.png", nohdr, sizeof nohdr);
     put_png("odd.png", 3, 4, 255);
     put_png("wide.png", 8192, 1, 255);
     put_png("glass.png", 4, 4, 254);
     put_png("hole.png", 2, 2, 0);
 }
 
-Test(texture_input, every_error_names_the_file_and_line, .init = make_files, .fini = remove_dir)
+Test(texture_input, every_error_names_the_file_and_line, .init = make_files, .fini = test_scratch_remove)
 {
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         const struct bad *b = &bad[i];
-        put("s.scene", b->scene);
+        test_scratch_text("s.scene", b->scene);
         if (b->obj)
-            put("m.obj", b->obj);
+            test_scratch_text("m.obj", b->obj);
         struct scene s;
         char err[512] = "", want[300];
-        cr_expect(!scene_load(&s, path_of("s.scene"), err, sizeof err), "%s: accepted", b->what);
+        cr_expect(!scene_load(&s, test_scratch_path("s.scene"), err, sizeof err), "%s: accepted", b->what);
         cr_expect(s.ntris == 0 && s.tris == NULL && scene_texture_count(&s) == 0,
                   "%s: the rejected scene keeps nothing", b->what);
-        snprintf(want, sizeof want, "%s:%d: ", path_of(b->file), b->line);
+        snprintf(want, sizeof want, "%s:%d: ", test_scratch_path(b->file), b->line);
         cr_expect(strncmp(err, want, strlen(want)) == 0, "%s: '%s' does not start with '%s'", b->what, err, want);
         cr_expect(strstr(err, b->says) != NULL, "%s: '%s' does not say '%s'", b->what, err, b->says);
         cr_expect(strchr(err, '\n') == NULL, "%s: one line", b->what);
@@ -196,20 +158,20 @@ static bool same_file(const char *a, const char *b)
     return run("cmp -s '%s' '%s'", a, b) == 0;
 }
 
-Test(texture_input, a_program_refuses_a_bad_texture_and_writes_nothing, .init = make_files, .fini = remove_dir)
+Test(texture_input, a_program_refuses_a_bad_texture_and_writes_nothing, .init = make_files, .fini = test_scratch_remove)
 {
     char prog[16][300];
     int n = programs(prog, 16);
     const char *cases[] = { "size 8 8\ntexture odd.png\n" TRI24, "size 8 8\ntexture glass.png\n" TRI24,
                             "size 8 8\n" CAM "obj m.obj 1 1 1\n" };
-    put("m.obj", QUAD "f 1/1 2/2 3/3\n");
+    test_scratch_text("m.obj", QUAD "f 1/1 2/2 3/3\n");
     for (int i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) {
-            put("s.scene", cases[c]);
-            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s' 2>'%s'", prog[i], path_of("s.scene"),
-                             path_of("out.png"), path_of("err.txt")), 2, "%s, case %d: exit 2", prog[i], c);
-            cr_expect(access(path_of("out.png"), F_OK) != 0, "%s, case %d: nothing written", prog[i], c);
-            FILE *f = fopen(path_of("err.txt"), "r");
+            test_scratch_text("s.scene", cases[c]);
+            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s' 2>'%s'", prog[i], test_scratch_path("s.scene"),
+                             test_scratch_path("out.png"), test_scratch_path("err.txt")), 2, "%s, case %d: exit 2", prog[i], c);
+            cr_expect(access(test_scratch_path("out.png"), F_OK) != 0, "%s, case %d: nothing written", prog[i], c);
+            FILE *f = fopen(test_scratch_path("err.txt"), "r");
             char line[512] = "";
             cr_assert_not_null(f);
             cr_expect(fgets(line, sizeof line, f) && strstr(line, c == 2 ? "m.obj:6: " : "s.scene:2: "),
@@ -222,12 +184,12 @@ Test(texture_input, a_program_refuses_a_bad_texture_and_writes_nothing, .init = 
  * colour: the picture of a textured scene is that of the same scene without
  * its texture lines, byte for byte, in 2-D and in 3-D. */
 Test(texture_input, every_program_reads_textured_scenes_and_draws_them_by_its_rule,
-     .init = make_files, .fini = remove_dir)
+     .init = make_files, .fini = test_scratch_remove)
 {
     char prog[16][300];
     int n = programs(prog, 16);
     put_png("wall.png", 16, 8, 255);
-    put("torus.obj", "");
+    test_scratch_text("torus.obj", "");
     const char *scenes[2][2] = {
         { "size 40 30\ntexture wall.png clamp\n"
           "tri 2 2 1 1 0.5 0.2 0 0  38 4 2 0.2 1 0.5 4 0  6 28 1.5 0.3 0.4 1 0 4\n"
@@ -244,14 +206,14 @@ Test(texture_input, every_program_reads_textured_scenes_and_draws_them_by_its_ru
           "tri3 -3 -1 -3 1 1 1 0 0  3 -1 -3 1 1 1 8 0  0 -1 3 1 1 1 0 8\n" },
     };
     for (int d = 0; d < 2; d++) {
-        put("tex.scene", scenes[d][0]);
-        put("plain.scene", scenes[d][1]);
+        test_scratch_text("tex.scene", scenes[d][0]);
+        test_scratch_text("plain.scene", scenes[d][1]);
         for (int i = 0; i < n; i++) {
-            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s'", prog[i], path_of("tex.scene"),
-                             path_of("tex.png")), 0, "%s reads the textured %d-D scene", prog[i], d + 2);
-            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s'", prog[i], path_of("plain.scene"),
-                             path_of("plain.png")), 0);
-            cr_expect(same_file(path_of("tex.png"), path_of("plain.png")),
+            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s'", prog[i], test_scratch_path("tex.scene"),
+                             test_scratch_path("tex.png")), 0, "%s reads the textured %d-D scene", prog[i], d + 2);
+            cr_expect_eq(run("'%s' --scene '%s' --dump-image '%s'", prog[i], test_scratch_path("plain.scene"),
+                             test_scratch_path("plain.png")), 0);
+            cr_expect(same_file(test_scratch_path("tex.png"), test_scratch_path("plain.png")),
                       "%s: the textured %d-D scene drawn by its rule (the vertex colour)", prog[i], d + 2);
         }
     }

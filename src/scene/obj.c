@@ -40,19 +40,28 @@ static int next_cap(int cap)
     return cap > INT_MAX / 4 ? 0 : cap ? cap * 2 : 256;
 }
 
+/* The numbers left on the line: the first `max` of them into out, all of
+ * them checked; *n says how many there were. */
+static bool read_numbers(struct obj *o, double *out, int max, int *n)
+{
+    *n = 0;
+    for (char *t; (t = strtok(NULL, SPACE)); ++*n) {
+        double d;
+        if (!scene_number(&o->p, t, &d))
+            return false;
+        if (*n < max)
+            out[*n] = d;
+    }
+    return true;
+}
+
 /* v x y z [more numbers] */
 static bool read_vertex(struct obj *o)
 {
     double xyz[3];
-    int n = 0;
-    for (char *t; (t = strtok(NULL, SPACE));) {
-        double d;
-        if (!scene_number(&o->p, t, &d))
-            return false;
-        if (n < 3)
-            xyz[n] = d;
-        n++;
-    }
+    int n;
+    if (!read_numbers(o, xyz, 3, &n))
+        return false;
     if (n < 3)
         return scene_fail(&o->p, "'v' needs 3 numbers (x y z), got %d", n);
     for (int c = 0; c < 3; c++)
@@ -75,15 +84,9 @@ static bool read_vertex(struct obj *o)
 static bool read_texcoord(struct obj *o)
 {
     double uv[2] = { 0, 0 };
-    int n = 0;
-    for (char *t; (t = strtok(NULL, SPACE));) {
-        double d;
-        if (!scene_number(&o->p, t, &d))
-            return false;
-        if (n < 2)
-            uv[n] = d;
-        n++;
-    }
+    int n;
+    if (!read_numbers(o, uv, 2, &n))
+        return false;
     if (n < 1)
         return scene_fail(&o->p, "'vt' needs 1 to 3 numbers (u [v [w]]), got none");
     const double st[2] = { uv[0], 1 - uv[1] };
