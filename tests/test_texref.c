@@ -275,3 +275,42 @@ Test(texref, a_scene_with_two_textures)
     texref_target_free(&fb);
     scene_free(&s);
 }
+
+/* The comparison lesson 09 is checked with: a lesson's picture of an
+ * untextured scene (vertex colours, perspective-correct) is the
+ * reference's within 2 levels, coverage exact; a picture off by 3 levels
+ * in one pixel is caught there. */
+Test(texref, a_lesson_picture_compares_within_two_levels)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "blocks", err, sizeof err), "%s", err);
+    const struct lesson *l = NULL;
+    for (int i = 0; all_lessons[i]; i++)
+        if (strncmp(all_lessons[i]->id, "04-", 3) == 0)
+            l = all_lessons[i];
+    cr_assert(l && l->perspective, "lesson 04 interpolates perspective-correctly");
+    struct target fb;
+    cr_assert(target_init(&fb, s.w, s.h, scene_background(&s)));
+    struct raster_params p = default_params();
+    for (int i = 0; i < s.ntris; i++) {
+        struct tri_setup t;
+        if (tri_setup(&t, s.tris[i].v, s.w, s.h))
+            rasterize_one(&l->variants[0], &p, &t, &fb, NULL);
+    }
+    struct texref_target ref;
+    cr_assert(texref_target_init(&ref, s.w, s.h, scene_background(&s)));
+    cr_assert(texref_draw_scene(&ref, &s, TEXREF_TRILINEAR, 16));
+    struct texref_diff d = texref_compare(&ref, &fb, 2);
+    cr_expect(d.coverage == 0 && d.colour == 0, "%ld pixels covered otherwise, %ld coloured (first at %d, %d)",
+              d.coverage, d.colour, d.x, d.y);
+    cr_expect_gt(ref.shaded, 500);
+    int k = 30 * s.w + 30;
+    cr_assert(ref.covered[k]);
+    fb.color[k] += 3;                                           /* blue three levels up */
+    d = texref_compare(&ref, &fb, 2);
+    cr_expect(d.colour == 1 && d.x == 30 && d.y == 30);
+    texref_target_free(&ref);
+    target_free(&fb);
+    scene_free(&s);
+}

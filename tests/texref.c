@@ -406,3 +406,24 @@ bool texref_draw_scene(struct texref_target *fb, const struct scene *s, enum tex
     free(refs);
     return ok;
 }
+
+struct texref_diff texref_compare(const struct texref_target *ref, const struct target *fb, int levels)
+{
+    struct texref_diff d = { 0, 0, -1, -1 };
+    for (int y = 0; y < ref->h && y < fb->h; y++)
+        for (int x = 0; x < ref->w && x < fb->w; x++) {
+            size_t i = (size_t)y * ref->w + x, j = (size_t)y * fb->w + x;
+            if (fb->count && fb->count[j] != ref->covered[i])
+                d.coverage++;
+            if (!ref->covered[i])
+                continue;
+            bool near = true;
+            for (int shift = 0; shift < 24; shift += 8) {
+                int c = (int)(ref->color[i] >> shift & 255) - (int)(fb->color[j] >> shift & 255);
+                near &= c <= levels && c >= -levels;
+            }
+            if (!near && d.colour++ == 0)
+                d.x = x, d.y = y;
+        }
+    return d;
+}

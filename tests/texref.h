@@ -94,4 +94,14 @@ void texref_draw_tri(struct texref_target *fb, const struct vertex v[3], const s
 bool texref_draw_scene(struct texref_target *fb, const struct scene *s, enum texref_filter f,
                        int max_aniso);
 
+/* How a lesson's picture compares with the reference's: the pixels whose
+ * coverage count differs, and the covered pixels whose colour differs by
+ * more than `levels` in a channel (the first of them in *x, *y, -1 when
+ * none). CONVENTIONS allows 2 levels. */
+struct texref_diff {
+    long coverage, colour;
+    int x, y;
+};
+struct texref_diff texref_compare(const struct texref_target *ref, const struct target *fb, int levels);
+
 #endif
