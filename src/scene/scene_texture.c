@@ -153,8 +153,10 @@ void scene_write_textures(const struct scene *s, FILE *out, int *current)
  * checker, the triangle is written without s and t, which nothing reads. */
 int scene_write_texture(const struct scene *s, FILE *out, int *current, int texture)
 {
+    const struct texture *t = scene_texture(s, texture);
+    if (!t)
+        texture = 0;            /* none (or a number no texture has: none either) */
     if (texture != *current && texture > 0) {
-        const struct texture *t = &s->textures->t[texture - 1];
         fprintf(out, "texture %s %s\n", t->name, wrap_names[t->wrap]);
         *current = texture;
     } else if (texture != *current && s->checker) {
