@@ -99,7 +99,8 @@ $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) 
 
 # Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
 # does not run under TSan), run by tests/test_lesson07.c.
-TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
+NO_CAIRO := $(filter-out src/scene/png.c,$(wildcard src/scene/*.c)) tests/portable/png_none.c   # PNG textures need cairo
+TSAN_SRC := tests/tsan/tsan_tiles.c lessons/07-tiles/tiles.c src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c
 $(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
@@ -126,7 +127,7 @@ fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 # exactness driver tests/portable/exact.c, no SDL, cairo or Criterion:
 # `make aarch64` cross-compiles them statically and runs them under qemu,
 # `make simde-test` runs them natively through SIMDe's portable code.
-CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster scene front trace shade,src/$(d)/*.c)))
+CORE_SRC := $(filter-out %_explorer.c,$(wildcard src/*.c $(foreach d,util raster front trace shade,src/$(d)/*.c))) $(NO_CAIRO)
 ALG_SRC  := $(filter-out $(EXP_SRC),$(LES_SRC))
 $(B)/exact: $(patsubst %.c,$(B)/obj/%.o,tests/portable/exact.c tests/testlib.c $(CORE_SRC)) \
             $(B)/obj/lessons.o $(ALG_SRC:%.c=$(B)/obj/%.o) $(ALG_SRC:%.c=$(B)/fast/%.o)

@@ -167,6 +167,10 @@ struct lesson {
      * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
      * NULL: none. An exhibit among them is compared by its colours alone. */
     const bool *other_depth;
+    /* How it draws a triangle under an image texture (`texture FILE.png`),
+     * one sentence for --help, or NULL: in its vertex colour, the image
+     * unread (every lesson before texture mapping) */
+    const char *texturing;
 
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };

@@ -660,7 +660,7 @@ static void write_scenes(const char *dir, char names[][300], int *count)
     char obj[300];
     snprintf(obj, sizeof obj, "%s/model.obj", dir);
     const char *model = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
-                        "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2/1 3/1 7/1 6/1\n"
+                        "v 1 1 1\nv -1 1 1\nvt 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2/1 3/1 7/1 6/1\n"
                         "f 3//2 4//2 8//2 7//2\nf -8 -3 -1 -4\n";
     write_file(obj, model, strlen(model));
     snprintf(names[n], 300, "%s/model.scene", dir);

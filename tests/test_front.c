@@ -126,7 +126,7 @@ static struct scene scene3_new(int w, int h, const struct camera *c)
 static void add_world_tri(struct scene *s, const double a[3], const double b[3], const double c[3],
                           const double rgb[3])
 {
-    struct world_tri t;
+    struct world_tri t = { .texture = 0 };
     const double *p[3] = { a, b, c };
     for (int i = 0; i < 3; i++) {
         memcpy(t.p[i], p[i], sizeof t.p[i]);

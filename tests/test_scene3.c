@@ -312,21 +312,27 @@ Test(scene3, written_as_a_3d_scene_and_read_back_the_same)
 
 bool builtin_model(const char *name, char **text, size_t *len);   /* src/scene/models.c */
 
-Test(scene3, the_shipped_model_is_what_the_code_makes)
+Test(scene3, the_shipped_models_are_what_the_code_makes)
 {
+    static const char *const names[] = { "torus.obj", "sheet.obj" };
+    for (int i = 0; i < 2; i++) {
+        char *text, path[64];
+        size_t len;
+        cr_assert(builtin_model(names[i], &text, &len));
+        snprintf(path, sizeof path, "models/%s", names[i]);
+        FILE *f = fopen(path, "rb");
+        cr_assert_not_null(f, "%s is missing (run the tests from the repository)", path);
+        char *file = malloc(len + 2);
+        size_t got = fread(file, 1, len + 1, f);
+        fclose(f);
+        cr_expect_eq(got, len, "%s has %zu bytes, the generator makes %zu", path, got, len);
+        cr_expect(got == len && memcmp(file, text, len) == 0,
+                  "%s differs from what src/scene/models.c makes", path);
+        free(file);
+        free(text);
+    }
     char *text;
     size_t len;
-    cr_assert(builtin_model("torus.obj", &text, &len));
-    FILE *f = fopen("models/torus.obj", "rb");
-    cr_assert_not_null(f, "models/torus.obj is missing (run the tests from the repository)");
-    char *file = malloc(len + 2);
-    size_t got = fread(file, 1, len + 1, f);
-    fclose(f);
-    cr_expect_eq(got, len, "models/torus.obj has %zu bytes, the generator makes %zu", got, len);
-    cr_expect(got == len && memcmp(file, text, len) == 0,
-              "models/torus.obj differs from what src/scene/models.c makes");
-    free(file);
-    free(text);
     cr_expect(!builtin_model("no-such.obj", &text, &len));
     cr_expect_null(text);
 }

@@ -1,4 +1,6 @@
 /* testlib.c - shared helpers of the test suite (see testlib.h). */
+#define _POSIX_C_SOURCE 200809L   /* mkdtemp */
+
 #include "testlib.h"
 
 #include <math.h>
@@ -391,6 +393,52 @@ const char *test_build_dir(void)
 {
     const char *b = getenv("TRISTEP_BUILD");
     return b && *b ? b : "build";
+}
+
+/* --- a scratch folder ------------------------------------------------------------ */
+
+static char scratch[64];
+
+void test_scratch_make(void)
+{
+    snprintf(scratch, sizeof scratch, "/tmp/tristep-test-XXXXXX");
+    if (!mkdtemp(scratch)) {
+        fprintf(stderr, "cannot make a scratch folder %s\n", scratch);
+        abort();
+    }
+}
+
+void test_scratch_remove(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", scratch);
+    if (scratch[0] && system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", scratch);
+    scratch[0] = '\0';
+}
+
+const char *test_scratch_path(const char *name)
+{
+    static char paths[4][256];
+    static int slot;
+    char *p = paths[slot++ % 4];
+    snprintf(p, sizeof paths[0], "%s/%s", scratch, name);
+    return p;
+}
+
+void test_scratch_put(const char *name, const void *data, size_t n)
+{
+    const char *path = test_scratch_path(name);
+    FILE *f = fopen(path, "wb");
+    if (!f || fwrite(data, 1, n, f) != n || fclose(f) != 0) {
+        fprintf(stderr, "cannot write %s\n", path);
+        abort();
+    }
+}
+
+void test_scratch_text(const char *name, const char *text)
+{
+    test_scratch_put(name, text, strlen(text));
 }
 
 /* --- numbers the texts quote ------------------------------------------------- */

@@ -159,4 +159,17 @@ double number_before(const char *text, const char *m, double *tol);
 /* The build directory ($TRISTEP_BUILD, "build" when unset). */
 const char *test_build_dir(void);
 
+/* --- a scratch folder ---------------------------------------------------------
+ *
+ * A fresh folder /tmp/tristep-test-XXXXXX for one test, made and removed
+ * around it: Test(suite, name, .init = test_scratch_make, .fini = test_scratch_remove).
+ * Failures abort the test. */
+void test_scratch_make(void);
+void test_scratch_remove(void);
+/* folder/name (static storage, four buffers used in turn) */
+const char *test_scratch_path(const char *name);
+/* Write n bytes (or a text, test_scratch_text) to folder/name. */
+void test_scratch_put(const char *name, const void *data, size_t n);
+void test_scratch_text(const char *name, const char *text);
+
 #endif

@@ -38,7 +38,7 @@ static void usage(const struct lesson *l, FILE *out)
         "  --scene FILE            use this scene (or builtin:NAME) instead of builtin:%s\n"
         "  --variant NAME          run a variant of the algorithm (see below)\n"
         "  --dump-coverage FILE    headless: write coverage counts as a binary PGM\n"
-        "  --dump-image FILE       headless: write the final colour buffer as PNG\n"
+        "  --dump-image FILE       headless: write the final colour buffer as PNG (textures: below)\n"
         "  --figure FILE           headless: export the explorer's view (.png, .svg, .pdf)\n"
         "  --step N|end            the step to show (figure and explorer; default 0)\n"
         "  --view NAME             the view to show (figure and explorer)\n"
@@ -62,6 +62,11 @@ static void usage(const struct lesson *l, FILE *out)
     for (int i = 0; i < l->nvariants; i++)
         fprintf(out, "  %-22s  %s%s\n", l->variants[i].name, l->variants[i].what,
                 i == 0 ? " (default)" : "");
+    fprintf(out,
+        "\nTextures: a scene line 'texture FILE.png [repeat|clamp]' (or builtin:NAME) applies\n"
+        "to the textured triangles after it. This program draws such a triangle %s;\n"
+        "'texture checker N' darkens the checker's dark squares, as every program does.\n",
+        l->texturing ? l->texturing : "in its vertex colour (the image is read, and checked, but not drawn)");
     fprintf(out,
         "\nExit status: 0 success, 1 failure while running, 2 bad command line or input.\n");
 }

@@ -119,6 +119,8 @@ static bool student_clip(struct poly *out, const struct poly *in, const struct p
         }
         for (int c = 0; c < 3; c++)
             v->rgb[c] = fmin(fmax(v->rgb[c], 0), 1);
+        for (int c = 0; c < 2; c++)     /* s and t, which the exercise's clipper need not carry */
+            v->st[c] = isfinite(v->st[c]) ? fmin(fmax(v->st[c], -SCENE_ST_MAX), SCENE_ST_MAX) : 0;
     }
     if (both_ways && fault.what == CLIP_OK && !same_both_ways(&r, in, pl, &f)) {
         f.what = CLIP_ORDER;

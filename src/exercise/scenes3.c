@@ -19,7 +19,7 @@ static void world_start(struct scene *s, int w, int h, struct camera cam, enum c
 
 static void tri3(struct scene *s, struct rng *r, const double a[3], const double b[3], const double c[3])
 {
-    struct world_tri t;
+    struct world_tri t = { .texture = 0 };   /* no texture, s = t = 0 */
     const double *p[3] = { a, b, c };
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 3; i++) {

@@ -112,6 +112,8 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
             n.pos[i] = p0->pos[i] + t * (p1->pos[i] - p0->pos[i]);
             n.rgb[i] = p0->rgb[i] + t * (p1->rgb[i] - p0->rgb[i]);
         }
+        for (int i = 0; i < 2; i++)
+            n.st[i] = p0->st[i] + t * (p1->st[i] - p0->st[i]);
     } else {
         for (int i = 0; i < 2; i++)
             n.pos[i] = p0->pos[i] + t * (p1->pos[i] - p0->pos[i]);
@@ -120,11 +122,15 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
         n.pos[2] = 1.0 / w;
         for (int i = 0; i < 3; i++)
             n.rgb[i] = (p0->rgb[i] * w0 + t * (p1->rgb[i] * w1 - p0->rgb[i] * w0)) / w;
+        for (int i = 0; i < 2; i++)
+            n.st[i] = (p0->st[i] * w0 + t * (p1->st[i] * w1 - p0->st[i] * w0)) / w;
     }
     for (int i = 0; i < 3; i++) {
         n.pos[i] = between(n.pos[i], p0->pos[i], p1->pos[i]);
         n.rgb[i] = between(n.rgb[i], p0->rgb[i], p1->rgb[i]);
     }
+    for (int i = 0; i < 2; i++)
+        n.st[i] = between(n.st[i], p0->st[i], p1->st[i]);
     n.pos[a] = pl->at;          /* on the plane exactly */
     *t_out = t;
     return n;
@@ -217,7 +223,8 @@ bool culled(enum cull cull, const struct vertex v[3])
 static struct vertex screen_vertex(const struct pvert *p)
 {
     return (struct vertex){ .x = p->pos[0], .y = p->pos[1], .z = p->pos[2],
-                            .r = p->rgb[0], .g = p->rgb[1], .b = p->rgb[2] };
+                            .r = p->rgb[0], .g = p->rgb[1], .b = p->rgb[2],
+                            .s = p->st[0], .t = p->st[1] };
 }
 
 int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
@@ -238,8 +245,10 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
                    struct vertex out[][3])
 {
     struct poly world = { .n = 3 }, near_clipped, clipped;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 3; i++) {
         world.v[i] = view_vertex(v, t->p[i], t->rgb[i]);        /* world -> view */
+        memcpy(world.v[i].st, t->st[i], sizeof world.v[i].st);
+    }
     struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
     clip_polygon(&near_clipped, &world, &near, NULL);           /* d >= near */
     if (near_clipped.n == 0)
@@ -269,7 +278,7 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
         struct vertex tris[POLY_MAX - 2][3];
         int n = pipeline(&v, w->cull, &w->tris[i], tris);
         for (int k = 0; k < n; k++) {
-            if (!scene_add(s, tris[k]))
+            if (!scene_add_textured(s, tris[k], w->tris[i].texture))
                 return false;
             if (s->ntris > from_cap) {
                 int cap = s->cap;

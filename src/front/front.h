@@ -21,6 +21,7 @@
 struct pvert {
     double pos[3];
     double rgb[3];
+    double st[2];       /* texture coordinates, clipped as the colour is */
 };
 
 /* A triangle grows by at most one vertex per plane it is clipped against:

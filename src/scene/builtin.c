@@ -301,6 +301,52 @@ const struct builtin_scene builtin_scenes[] = {
         "tri3  -300 -150 -400.5  0.2 0.4 0.95   300 -150 -399.5  0.2 0.4 0.95   300 150 -399.5  0.2 0.4 0.95\n"
         "tri3  -300 -150 -400.5  0.2 0.4 0.95   300 150 -399.5  0.2 0.4 0.95   -300 150 -400.5  0.2 0.4 0.95\n"
     },
+    { "texture-floor", "3-D: a floor under numbered cells, receding to the horizon (lesson 09)",
+        "# a floor 1,000 units wide and 505 long under builtin:checker-numbers, the\n"
+        "# image repeated every 16 units, its top away from the eye (s = (x + 500) / 16,\n"
+        "# t = (z + 500) / 16): under the eye a texel spans pixels, towards\n"
+        "# the horizon many cells share one pixel, and point sampling aliases\n"
+        "size 128 96\n"
+        "background 0.55 0.7 0.9\n"
+        "camera  0 1.5 4   0 1 -10   0 1 0   60  0.1 1000\n"
+        "texture builtin:checker-numbers\n"
+        "tri3 -500 0 5 1 1 1 0 31.5625   500 0 5 1 1 1 62.5 31.5625   500 0 -500 1 1 1 62.5 0\n"
+        "tri3 -500 0 5 1 1 1 0 31.5625   500 0 -500 1 1 1 62.5 0   -500 0 -500 1 1 1 0 0\n"
+    },
+    { "texture-model", "3-D: the torus of models/torus.obj under bricks, its own vt (lesson 09)",
+        "# the built-in torus (models/torus.obj) with the texture coordinates of its\n"
+        "# vt lines: the bricks once around the ring and once around the tube\n"
+        "size 96 72\n"
+        "background 0.08 0.08 0.1\n"
+        "camera  2.2 1.8 2.6   0 -0.1 0   0 1 0   45  0.5 20\n"
+        "cull back\n"
+        "texture builtin:bricks\n"
+        "obj builtin:torus.obj  1 1 1\n"
+    },
+    { "texture-wall", "3-D: a brick wall seen at a grazing angle, 200 units long (lesson 09)",
+        "# the wall x = 1, 4 units high, from z = 1 to z = -200, seen from 1 unit\n"
+        "# beside it: s = (1 - z) / 2 along it, t = (4 - y) / 2 down it. Far along the\n"
+        "# wall a pixel spans many texels along it and few across: a long, thin\n"
+        "# footprint, which isotropic filtering blurs. The floor is plain.\n"
+        "size 128 96\n"
+        "background 0.08 0.08 0.1\n"
+        "camera  0 1.5 0   0.25 1.5 -10   0 1 0   60  0.1 300\n"
+        "texture builtin:bricks\n"
+        "tri3 1 0 1 1 1 1 0 2   1 0 -200 1 1 1 100.5 2   1 4 -200 1 1 1 100.5 0\n"
+        "tri3 1 0 1 1 1 1 0 2   1 4 -200 1 1 1 100.5 0   1 4 1 1 1 1 0 0\n"
+        "tri3 1 0 1 0.35 0.33 0.3   -20 0 1 0.35 0.33 0.3   -20 0 -200 0.3 0.3 0.3\n"
+        "tri3 1 0 1 0.35 0.33 0.3   -20 0 -200 0.3 0.3 0.3   1 0 -200 0.3 0.3 0.3\n"
+    },
+    { "texture-tiny", "3-D: 1,536 triangles of 8 pixels under a grid texture (lesson 09)",
+        "# the built-in sheet (models/sheet.obj): 32 x 24 squares, two triangles\n"
+        "# each, seen head on so that a square is 4 x 4 pixels. Every 2 x 2 quad\n"
+        "# that a triangle touches is shaded whole: helper pixels abound\n"
+        "size 128 96\n"
+        "background 0.08 0.08 0.1\n"
+        "camera  0 0 2.0785   0 0 0   0 1 0   60  0.1 10\n"
+        "texture builtin:grid\n"
+        "obj builtin:sheet.obj  1 1 1\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);

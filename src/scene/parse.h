@@ -17,6 +17,7 @@ struct parser {
     int line;
     char *err;
     size_t errlen;
+    int texture;        /* the image texture the next tri, tri3 or obj takes (0: none) */
 };
 
 /* Write "name:LINE: message" (printf's format) into p->err; returns false. */
@@ -32,9 +33,22 @@ bool scene3_line(struct parser *p, struct scene *s, char **tok, int n);
 bool scene3_finish(struct parser *p, struct scene *s);
 
 /* obj.c: append the triangles of the Wavefront OBJ file open as f, each in
- * colour rgb, to w. Errors name the OBJ file (`name`) and its line. */
-bool obj_read(struct world *w, FILE *f, const char *name, const double rgb[3], char *err,
+ * colour rgb, with no texture (texture 0), to s->world (s->has_st set when
+ * a face gives texture coordinates). Errors name the OBJ file (`name`) and
+ * its line. */
+bool obj_read(struct scene *s, FILE *f, const char *name, const double rgb[3], char *err,
               size_t errlen);
+
+/* scene_texture.c: a texture line (tok[0] is the keyword); a file named
+ * in a scene, relative to the scene's folder (malloc'ed; NULL when out of
+ * memory); before a triangle of a written scene, the texture line it needs
+ * (if any), returning how many numbers per vertex to write (6 or 8). */
+bool scene_texture_line(struct parser *p, struct scene *s, char **tok, int n);
+char *scene_relative_path(const struct parser *p, const char *file);
+void scene_texture_share(struct scene *dst, const struct scene *src);
+void scene_textures_release(struct scene *s);
+void scene_write_textures(const struct scene *s, FILE *out, int *current);
+int scene_write_texture(const struct scene *s, FILE *out, int *current, int texture);
 
 /* models.c: the text of the built-in OBJ model `name` ("torus.obj"), made
  * afresh into *text (the caller frees it). False for no such model (*text

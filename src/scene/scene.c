@@ -159,12 +159,17 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
     }
     if (per == 8)
         s->has_st = true;
-    if (!scene_add(s, v))
+    if (!scene_add_textured(s, v, per == 8 ? p->texture : 0))
         return fail(p, "out of memory after %d triangles", s->ntris);
     return true;
 }
 
 bool scene_add(struct scene *s, const struct vertex v[3])
+{
+    return scene_add_textured(s, v, 0);
+}
+
+bool scene_add_textured(struct scene *s, const struct vertex v[3], int texture)
 {
     if (s->ntris == s->cap) {
         if (s->cap > INT_MAX / 2)
@@ -176,7 +181,10 @@ bool scene_add(struct scene *s, const struct vertex v[3])
         s->tris = t;
         s->cap = cap;
     }
-    memcpy(s->tris[s->ntris++].v, v, 3 * sizeof *v);
+    struct scene_tri *t = &s->tris[s->ntris++];
+    memset(t, 0, sizeof *t);    /* the padding too: scenes compare with memcmp */
+    memcpy(t->v, v, 3 * sizeof *v);
+    t->texture = texture;
     return true;
 }
 
@@ -211,8 +219,11 @@ static bool parse_line(struct parser *p, struct scene *s, char **tok, int n,
         return true;
     }
     if (strcmp(kw, "texture") == 0) {
-        if (n != 3 || strcmp(tok[1], "checker") != 0)
+        if (n < 2 || strcmp(tok[1], "checker") != 0)
+            return scene_texture_line(p, s, tok, n);    /* an image texture */
+        if (n != 3)
             return fail(p, "expected 'texture checker N'");
+        p->texture = 0;         /* no image texture applies after it */
         return parse_int(p, tok[2], "checker squares", 1, 4096, &s->checker);
     }
     if (strcmp(kw, "tri") == 0) {
@@ -425,8 +436,9 @@ static void put_numbers(FILE *out, const double *v, int n)
 
 /* A 3-D scene as its camera, culling and world triangles (an `obj` line's
  * triangles written out as tri3 lines: the file stands alone). */
-static bool write_world(const struct world *w, FILE *out)
+static bool write_world(const struct scene *s, FILE *out, int current)
 {
+    const struct world *w = &s->world;
     static const char *const culls[] = { "none", "back", "front" };
     const struct camera *c = &w->cam;
     fputs("camera", out);
@@ -438,11 +450,14 @@ static bool write_world(const struct world *w, FILE *out)
     if (w->cull != CULL_NONE)
         fprintf(out, "cull %s\n", culls[w->cull]);
     for (int i = 0; i < w->ntris; i++) {
+        int per = scene_write_texture(s, out, &current, w->tris[i].texture);
         fputs("tri3", out);
         for (int k = 0; k < 3; k++) {
             fputs(" ", out);
             put_numbers(out, w->tris[i].p[k], 3);
             put_numbers(out, w->tris[i].rgb[k], 3);
+            if (per == 8)
+                put_numbers(out, w->tris[i].st[k], 2);
         }
         fputc('\n', out);
     }
@@ -456,17 +471,18 @@ bool scene_write(const struct scene *s, FILE *out)
     for (int i = 0; i < 3; i++)
         put_number(out, s->background[i]);
     fputc('\n', out);
-    if (s->checker)
-        fprintf(out, "texture checker %d\n", s->checker);
+    int current;
+    scene_write_textures(s, out, &current);
     if (s->world.camera_line)
-        return write_world(&s->world, out);
+        return write_world(s, out, current);
     for (int i = 0; i < s->ntris; i++) {
+        int per = scene_write_texture(s, out, &current, s->tris[i].texture);
         fputs("tri", out);
         for (int k = 0; k < 3; k++) {
             const struct vertex *v = &s->tris[i].v[k];
             double d[8] = { v->x, v->y, v->z, v->r, v->g, v->b, v->s, v->t };
             fputs(" ", out);
-            for (int c = 0; c < (s->has_st ? 8 : 6); c++)
+            for (int c = 0; c < per; c++)
                 put_number(out, d[c]);
         }
         fputc('\n', out);
@@ -476,6 +492,7 @@ bool scene_write(const struct scene *s, FILE *out)
 
 void scene_free(struct scene *s)
 {
+    scene_textures_release(s);
     free(s->tris);
     free(s->world.tris);
     free(s->world.from);
@@ -490,8 +507,9 @@ bool scene_copy(struct scene *dst, const struct scene *src)
     dst->world.tris = NULL;
     dst->world.from = NULL;
     dst->world.ntris = dst->world.cap = 0;
+    scene_texture_share(dst, src);
     for (int i = 0; i < src->ntris; i++)
-        if (!scene_add(dst, src->tris[i].v))
+        if (!scene_add_textured(dst, src->tris[i].v, src->tris[i].texture))
             goto oom;
     for (int i = 0; i < src->world.ntris; i++)
         if (!world_add(&dst->world, &src->world.tris[i]))

@@ -8,11 +8,17 @@
  * Extensions every lesson program accepts (lesson 04 uses them):
  *     texture checker N        a procedural checkerboard of N x N squares
  *     tri with 24 numbers      x y z r g b s t, three times
+ * and image textures (texture.h; lesson 09 draws them, every other lesson
+ * draws such a triangle in its vertex colour):
+ *     texture FILE.png [repeat|clamp]     or texture builtin:NAME [repeat|clamp]
+ * which applies to the tri lines with 24 numbers (tri3 lines with 24, obj
+ * lines) that follow it, until the next texture line.
  *
  * 3-D scenes (lesson 06 onward, read by scene3.c and obj.c): instead of `tri`,
  *     camera  0 1 5   0 0 0   0 1 0   60  0.1 100   eye, target, up, fovy, near, far
  *     cull none                                      none (default), back or front
  *     tri3  x y z r g b  (three times, world space)
+ *     tri3  x y z r g b s t  (three times: textured, as tri with 24 numbers)
  *     obj   model.obj  0.8 0.8 0.8                   Wavefront OBJ beside the scene, colour
  * The 3-D front end (src/front/) turns them into the screen-space triangles
  * below, which is all a lesson ever rasterizes.
@@ -24,6 +30,7 @@
 #include <stdio.h>
 
 #include "raster/raster.h"
+#include "texture.h"
 
 /* Ranges every value of a scene is checked against where it is read (beyond
  * CONVENTIONS.md's coordinates and colours): they keep every quantity a
@@ -35,6 +42,8 @@
 
 struct scene_tri {
     struct vertex v[3];
+    int texture;                       /* 0: no image (the checker if the scene has one);
+                                        * k > 0: scene_texture(s, k) */
 };
 
 /* --- 3-D scenes (CONVENTIONS.md, "3-D scenes") ----------------------------- */
@@ -54,6 +63,8 @@ enum cull { CULL_NONE, CULL_BACK, CULL_FRONT };
 struct world_tri {
     double p[3][3];                    /* world-space positions */
     double rgb[3][3];                  /* colours in [0, 1] */
+    double st[3][2];                   /* texture coordinates (0 where none were given) */
+    int texture;                       /* as in struct scene_tri */
 };
 
 struct world {
@@ -75,6 +86,7 @@ struct scene {
     int ntris, cap;
     struct scene_tri *tris;   /* screen space; in a 3-D scene, what the front end made */
     struct world world;       /* a 3-D scene's camera and triangles (world.camera_line > 0) */
+    struct scene_textures *textures;  /* its image textures, shared by its copies; NULL: none */
 };
 
 /* Parse a whole scene text. `name` is used in messages ("FILE:LINE: ...").
@@ -94,7 +106,14 @@ void scene_free(struct scene *s);
  * when out of memory. */
 bool scene_copy(struct scene *dst, const struct scene *src);
 bool scene_add(struct scene *s, const struct vertex v[3]);
+/* The same for a triangle under image texture k (0: none). */
+bool scene_add_textured(struct scene *s, const struct vertex v[3], int texture);
 bool world_add(struct world *w, const struct world_tri *t);
+
+/* The scene's image textures, numbered from 1 as triangles name them:
+ * scene_texture(s, k) for k in 1..scene_texture_count(s), NULL otherwise. */
+int scene_texture_count(const struct scene *s);
+const struct texture *scene_texture(const struct scene *s, int k);
 uint32_t scene_background(const struct scene *s);
 
 /* Built-in scenes, by name ("builtin:NAME" is accepted wherever a scene file is). */

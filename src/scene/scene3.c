@@ -3,6 +3,7 @@
  *     camera  0 1 5   0 0 0   0 1 0   60  0.1 100   eye, target, up, fovy, near, far
  *     cull none                                      none (default), back or front
  *     tri3  -1 0 -1  1 0 0   1 0 -1  0 1 0   0 0 1  0 0 1     x y z r g b, three times
+ *     tri3  ... with 24 numbers                      x y z r g b s t: under an image texture
  *     obj   model.obj  0.8 0.8 0.8                   path relative to the scene, colour
  *
  * scene.c reads every line and hands these four keywords over. Nothing here
@@ -29,7 +30,12 @@ bool world_add(struct world *w, const struct world_tri *t)
         w->tris = nt;
         w->cap = cap;
     }
-    w->tris[w->ntris++] = *t;
+    struct world_tri *n = &w->tris[w->ntris++];
+    memset(n, 0, sizeof *n);            /* the padding too: worlds compare with memcmp */
+    memcpy(n->p, t->p, sizeof n->p);
+    memcpy(n->rgb, t->rgb, sizeof n->rgb);
+    memcpy(n->st, t->st, sizeof n->st);
+    n->texture = t->texture;
     return true;
 }
 
@@ -144,28 +150,67 @@ static bool placed(struct parser *p, const struct scene *s, const char *kw)
 
 static bool parse_tri3(struct parser *p, struct scene *s, char **tok, int n)
 {
-    if (n != 18)
-        return scene_fail(p, "'tri3' needs 18 numbers (x y z r g b for each vertex), got %d", n);
-    double v[18];
-    if (!numbers(p, tok, 18, v))
+    if (n != 18 && n != 24)
+        return scene_fail(p, "'tri3' needs 18 numbers (x y z r g b for each vertex) "
+                             "or 24 (x y z r g b s t), got %d", n);
+    double v[24];
+    if (!numbers(p, tok, n, v))
         return false;
-    struct world_tri t;
+    int per = n / 3;
+    struct world_tri t = { .texture = per == 8 ? p->texture : 0 };
     for (int i = 0; i < 3; i++) {
         char what[16];
         snprintf(what, sizeof what, "vertex %d", i + 1);
-        if (!world_point(p, what, v + 6 * i) || !colour(p, what, v + 6 * i + 3))
+        const double *d = v + per * i;
+        if (!world_point(p, what, d) || !colour(p, what, d + 3))
             return false;
-        memcpy(t.p[i], v + 6 * i, sizeof t.p[i]);
-        memcpy(t.rgb[i], v + 6 * i + 3, sizeof t.rgb[i]);
+        memcpy(t.p[i], d, sizeof t.p[i]);
+        memcpy(t.rgb[i], d + 3, sizeof t.rgb[i]);
+        for (int c = 6; c < per; c++) {
+            if (!(fabs(d[c]) <= SCENE_ST_MAX))
+                return scene_fail(p, "vertex %d: %c = %g is outside [-%g, %g]", i + 1, "st"[c - 6],
+                                  d[c], SCENE_ST_MAX, SCENE_ST_MAX);
+            t.st[i][c - 6] = d[c];
+        }
     }
+    if (per == 8)
+        s->has_st = true;
     if (!world_add(&s->world, &t))
         return scene_fail(p, "out of memory after %d triangles", s->world.ntris);
     return true;
 }
 
+/* The model of an obj line: a file, or builtin:NAME of models.c. */
+static bool read_model(struct parser *p, struct scene *s, const char *file, const double rgb[3])
+{
+    if (strncmp(file, "builtin:", 8) == 0) {
+        char *text;
+        size_t len;
+        if (!builtin_model(file + 8, &text, &len))
+            return scene_fail(p, "no built-in model '%s' (there are builtin:torus.obj and builtin:sheet.obj)", file);
+        FILE *f = fmemopen(text, len, "rb");
+        bool ok = f ? obj_read(s, f, file, rgb, p->err, p->errlen)
+                    : scene_fail(p, "out of memory");
+        if (f)
+            fclose(f);
+        free(text);
+        return ok;
+    }
+    char *path = scene_relative_path(p, file);
+    if (!path)
+        return scene_fail(p, "out of memory");
+    FILE *f = fopen(path, "rb");
+    bool ok = f ? obj_read(s, f, path, rgb, p->err, p->errlen)
+                : scene_fail(p, "cannot open '%s': %s", path, strerror(errno));
+    if (f)
+        fclose(f);
+    free(path);
+    return ok;
+}
+
 /* obj PATH r g b: PATH relative to the scene file's folder (as given: to the
  * current folder for standard input and built-in scenes); builtin:NAME is a
- * model of models.c. */
+ * model of models.c. Its triangles take the image texture in force. */
 static bool parse_obj(struct parser *p, struct scene *s, char **tok, int n)
 {
     if (n != 4)
@@ -173,32 +218,10 @@ static bool parse_obj(struct parser *p, struct scene *s, char **tok, int n)
     double rgb[3];
     if (!numbers(p, tok + 1, 3, rgb) || !colour(p, "obj colour", rgb))
         return false;
-    if (strncmp(tok[0], "builtin:", 8) == 0) {
-        char *text;
-        size_t len;
-        if (!builtin_model(tok[0] + 8, &text, &len))
-            return scene_fail(p, "no built-in model '%s' (there is builtin:torus.obj)", tok[0]);
-        FILE *f = fmemopen(text, len, "rb");
-        bool ok = f ? obj_read(&s->world, f, tok[0], rgb, p->err, p->errlen)
-                    : scene_fail(p, "out of memory");
-        if (f)
-            fclose(f);
-        free(text);
-        return ok;
-    }
-    const char *slash = strrchr(p->name, '/');
-    size_t dir = tok[0][0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
-    size_t len = dir + strlen(tok[0]) + 1;
-    char *path = malloc(len);
-    if (!path)
-        return scene_fail(p, "out of memory");
-    snprintf(path, len, "%.*s%s", (int)dir, p->name, tok[0]);
-    FILE *f = fopen(path, "rb");
-    bool ok = f ? obj_read(&s->world, f, path, rgb, p->err, p->errlen)
-                : scene_fail(p, "cannot open '%s': %s", path, strerror(errno));
-    if (f)
-        fclose(f);
-    free(path);
+    int first = s->world.ntris;
+    bool ok = read_model(p, s, tok[0], rgb);
+    for (int i = first; ok && i < s->world.ntris; i++)
+        s->world.tris[i].texture = p->texture;      /* the image texture in force, if any */
     return ok;
 }
 

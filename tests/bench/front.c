@@ -53,7 +53,7 @@ static bool make_torus(struct scene *s)
             torus_point(i, (j + 1) % TORUS_RINGS, q[3]);
             static const int split[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
             for (int k = 0; k < 2; k++) {
-                struct world_tri t;
+                struct world_tri t = { .texture = 0 };
                 for (int c = 0; c < 3; c++) {
                     memcpy(t.p[c], q[split[k][c]], sizeof t.p[c]);
                     t.rgb[c][0] = (double)i / TORUS_SEG;

@@ -38,11 +38,53 @@ static void check_ranges(const struct scene *s)
             if (!(fabs(v->s) <= SCENE_ST_MAX && fabs(v->t) <= SCENE_ST_MAX))
                 fuzz_fail("triangle %d: accepted texture coordinates %g %g", i, v->s, v->t);
         }
+    for (int i = 0; i < s->ntris; i++)
+        if (s->tris[i].texture < 0 || s->tris[i].texture > scene_texture_count(s))
+            fuzz_fail("triangle %d: texture %d of %d", i, s->tris[i].texture, scene_texture_count(s));
+    for (int k = 1; k <= scene_texture_count(s); k++) {
+        const struct texture *t = scene_texture(s, k);
+        if (!texture_size_ok(t->level[0].w) || !texture_size_ok(t->level[0].h)
+            || t->level[t->nlevels - 1].w != 1 || t->level[t->nlevels - 1].h != 1)
+            fuzz_fail("texture %d: accepted %d x %d with %d levels", k, t->level[0].w,
+                      t->level[0].h, t->nlevels);
+    }
+}
+
+/* Are a triangle's s and t read by anything? Not where no texture applies:
+ * no image texture and no checker (scene_write may leave them out there). */
+static bool st_ignored(const struct scene *s, int texture)
+{
+    return !s->has_st || (texture == 0 && !s->checker && scene_texture_count(s) > 0);
+}
+
+static bool same_vertex(struct vertex a, struct vertex b, bool st)
+{
+    if (!st)
+        a.s = a.t = b.s = b.t = 0;
+    return a.x == b.x && a.y == b.y && a.z == b.z && a.r == b.r && a.g == b.g && a.b == b.b
+        && a.s == b.s && a.t == b.t;
+}
+
+static bool same_world_tri(const struct scene *s, const struct world_tri *a, const struct world_tri *b)
+{
+    bool st = !st_ignored(s, a->texture);
+    return memcmp(a->p, b->p, sizeof a->p) == 0 && memcmp(a->rgb, b->rgb, sizeof a->rgb) == 0
+        && (!st || memcmp(a->st, b->st, sizeof a->st) == 0) && a->texture == b->texture;
+}
+
+/* Screen triangles i of s and of back: the same vertices and texture. */
+static bool same_screen_tri(const struct scene *s, const struct scene *back, int i)
+{
+    const struct scene_tri *a = &s->tris[i], *b = &back->tris[i];
+    for (int k = 0; k < 3; k++)
+        if (!same_vertex(a->v[k], b->v[k], !st_ignored(s, a->texture)))
+            return false;
+    return a->texture == b->texture;
 }
 
 /* scene_write then scene_parse gives back the very same values (a 3-D scene
  * as its camera, culling and world triangles, which the front end makes the
- * same screen triangles of). */
+ * same screen triangles of; the same image textures, in the same order). */
 static void check_round_trip(const struct scene *s)
 {
     char *text = NULL;
@@ -62,25 +104,32 @@ static void check_round_trip(const struct scene *s)
         || (!s->world.camera_line && back.ntris != s->ntris)
         || memcmp(back.background, s->background, sizeof s->background) != 0)
         fuzz_fail("the written scene reads back different");
+    if (scene_texture_count(&back) != scene_texture_count(s))
+        fuzz_fail("the written scene reads back %d textures, not %d", scene_texture_count(&back),
+                  scene_texture_count(s));
+    for (int k = 1; k <= scene_texture_count(s); k++) {
+        const struct texture *a = scene_texture(s, k), *b = scene_texture(&back, k);
+        if (strcmp(a->name, b->name) != 0 || a->wrap != b->wrap)
+            fuzz_fail("texture %d reads back as %s, not %s", k, b->name, a->name);
+    }
     const struct world *w = &s->world, *bw = &back.world;
     if (w->camera_line
         && (!bw->camera_line || bw->cull != w->cull || bw->ntris != w->ntris
-            || memcmp(&bw->cam, &w->cam, sizeof w->cam) != 0
-            || (w->ntris && memcmp(bw->tris, w->tris, (size_t)w->ntris * sizeof *w->tris) != 0)))
+            || memcmp(&bw->cam, &w->cam, sizeof w->cam) != 0))
         fuzz_fail("the written 3-D scene reads back a different world");
-    if (w->camera_line && front_scene(&back)
-        && (back.ntris != s->ntris
-            || (s->ntris && memcmp(back.tris, s->tris, (size_t)s->ntris * sizeof *s->tris) != 0)))
-        fuzz_fail("the written 3-D scene projects to other screen triangles");
+    for (int i = 0; w->camera_line && i < w->ntris; i++)
+        if (!same_world_tri(s, &w->tris[i], &bw->tris[i]))
+            fuzz_fail("world triangle %d reads back different", i);
+    if (w->camera_line && front_scene(&back)) {
+        if (back.ntris != s->ntris)
+            fuzz_fail("the written 3-D scene projects to %d screen triangles, not %d", back.ntris, s->ntris);
+        for (int i = 0; i < s->ntris; i++)
+            if (!same_screen_tri(s, &back, i))
+                fuzz_fail("the written 3-D scene projects to another screen triangle %d", i);
+    }
     for (int i = 0; i < s->ntris && !w->camera_line; i++)
-        for (int k = 0; k < 3; k++) {
-            struct vertex a = s->tris[i].v[k], b = back.tris[i].v[k];
-            if (!s->has_st)
-                a.s = a.t = 0;
-            if (a.x != b.x || a.y != b.y || a.z != b.z || a.r != b.r || a.g != b.g
-                || a.b != b.b || a.s != b.s || a.t != b.t)
-                fuzz_fail("triangle %d vertex %d reads back different", i, k);
-        }
+        if (!same_screen_tri(s, &back, i))
+            fuzz_fail("triangle %d reads back different", i);
     scene_free(&back);
     free(text);
 }

@@ -66,7 +66,7 @@ static bool crack_floor(struct scene *s, uint64_t seed)
                 double u = extent * (2.0 * (a + corner[i][0]) / k - 1), v = extent * (2.0 * (b + corner[i][1]) / k - 1);
                 q[i][0] = c * u - sn * v, q[i][1] = 0, q[i][2] = sn * u + c * v;
             }
-            struct world_tri t[2];
+            struct world_tri t[2] = { { .texture = 0 }, { .texture = 0 } };
             static const int tris[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
             for (int j = 0; j < 2; j++)
                 for (int i = 0; i < 3; i++) {
