@@ -12,7 +12,7 @@
 #include "testlib.h"
 #include "util/file.h"
 
-#define MAX_CSV_ROWS 256
+#define MAX_CSV_ROWS 512
 
 struct csv_row {
     char scene[16], program[64], variant[64];

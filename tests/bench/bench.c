@@ -37,7 +37,7 @@ extern const struct lesson *const all_lessons_fast[];
 extern const struct lesson *const all_lessons[];   /* narrated: for the explorer frame */
 
 #define NSCENES 3
-#define MAX_ROWS 64
+#define MAX_ROWS 128   /* programs x variants x sample counts; more is a usage error */
 #define PEER_SAMPLES 4          /* llvmpipe's multisampled rows, beside lesson 08's */
 #define SCENE_LARGE 0
 #define SCENE_SMALL 1
@@ -972,6 +972,12 @@ int main(int argc, char **argv)
                 nrows++;
             }
         }
+    }
+
+    if (nrows == MAX_ROWS) {
+        fprintf(stderr, "tristep-bench: more than %d rows (programs, variants, sample counts): "
+                "raise MAX_ROWS in tests/bench/bench.c\n", MAX_ROWS);
+        return 2;
     }
 
     /* Interleaved, round after round: every row runs once per scene in each
