@@ -10,7 +10,9 @@ LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o)
+MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.patch))
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
+            $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
@@ -154,6 +156,29 @@ $(B)/exercises.c: Makefile $(wildcard lessons/*/) $(EX_SRC) | $(FIRST)
 	  printf '    { "%s", exercise_%s_exercise, exercise_%s_answer, %s },\n' $$n $$n $$n "$$c"; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+# The mutation suite (tests/mutations/NN-name.patch): each a classic mistake
+# made in lesson NN's worked answer, compiled like a student's file under
+# its own name and listed in build/mutations.c with the check it must fail.
+mut_answer = $(wildcard lessons/$(firstword $(subst -, ,$1))-*/answer.c)
+mut_fn     = mutation_$(subst -,_,$1)
+# a mistake leaves a part of the answer unused: not worth a warning
+MUT_WARN   = -Wno-unused-parameter -Wno-unused-variable -Wno-unused-but-set-variable -Wno-unused-function
+$(B)/mutations/%.c: tests/mutations/%.patch $$(call mut_answer,$$*) | $(FIRST)
+	@mkdir -p $(@D) && patch --batch --quiet --no-backup-if-mismatch -r - -o $@ $(call mut_answer,$*) < $< >/dev/null \
+	  || { rm -f $@; echo "$<: does not apply to $(call mut_answer,$*)"; exit 1; }
+$(B)/mutations/%.o: $(B)/mutations/%.c | $(FIRST)
+	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
+$(B)/mutations.c: Makefile $(MUTATIONS:%=tests/mutations/%.patch) $(MUTATIONS:%=$(B)/mutations/%.c) | $(FIRST)
+	@printf '#include "exercise/exercise.h"\nstruct poly;\nstruct plane;\n' > $@
+	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); printf 'void %s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$f; \
+	  if grep -q '^void exercise_clip(' $(B)/mutations/$$m.c; then printf 'void %s_clip(struct poly *, const struct poly *, const struct plane *);\n' $$f; fi; done >> $@
+	@printf 'const struct exercise_mutation all_mutations[] = {\n' >> $@
+	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); c=NULL; \
+	  if grep -q '^void exercise_clip(' $(B)/mutations/$$m.c; then c=$${f}_clip; fi; \
+	  k=$$(sed -n 's/^check: *//p' tests/mutations/$$m.patch | head -n 1); \
+	  printf '    { "%s", "%s", "%s", %s, %s },\n' "$$(echo $$m | cut -c1-2)" "$$m" "$$k" $$f $$c; done >> $@
+	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
+$(B)/obj/mutations.o: $(B)/mutations.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }

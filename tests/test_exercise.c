@@ -79,10 +79,18 @@ static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
     fclose(out);
 }
 
+/* The counterexample, the folder of the checked file that holds it, and
+ * the check's folder. */
 static void run_free(struct run *run)
 {
-    if (run->r.counterexample[0])
+    if (run->r.counterexample[0]) {
         remove(run->r.counterexample);
+        char *slash = strrchr(run->r.counterexample, '/');
+        if (slash) {
+            *slash = '\0';
+            rmdir(run->r.counterexample);
+        }
+    }
     rmdir(run->dir);
     free(run->report);
 }
@@ -214,14 +222,15 @@ static const struct {
     { "01", "source-float", false, "single triangle" },
     { "02", "inclusive", false, "fill-rule ties" },
     { "02", "strict", false, "fill-rule ties" },
-    { "03", "float", false, "random triangles" },
+    /* the ties far out and a 1/65536 px^2 from a centre (float rounds them) */
+    { "03", "float", false, "fill-rule ties" },
     { "04", NULL, true, "colour and depth (perspective)" },
     { "05", "corners-outside", false, "single triangle" },
     { "05", "or-inside", false, "single triangle" },
     { "06", "inverse", false, "colour and depth (perspective)" },
     { "06", "reversed", false, "colour and depth (perspective)" },
     { "06", "ndc24", false, "colour and depth (perspective)" },
-    { "06", "no-guard-32", false, "random triangles" },
+    { "06", "no-guard-32", false, "fill-rule ties" },
     /* lesson 06's slips of the front end, checked with their own front ends */
     { "06", "project-first", false, "one vertex behind near" },
     /* a new vertex on the screen's border, snapped, moves the edge it cuts */
@@ -295,9 +304,26 @@ Test(exercise, lesson03_property_finds_multiplications_per_pixel)
 }
 
 /* Lesson 05's: block rasterizers that draw the right picture, every pixel
- * tested, but call their blocks wrong: all partial (full blocks never
- * found), or every non-empty block full (not really full). */
-static bool claim_full;
+ * tested, but call their blocks wrong: all partial (the corner test rejects
+ * some, and finds some full), or every block full (not really full); and
+ * one that calls each block what its four corners say, which passes. */
+enum claim { CLAIM_PARTIAL, CLAIM_FULL, CLAIM_CORNERS };
+static enum claim claim;
+
+static uint8_t corner_claim(const struct tri_setup *t, int x0, int y0, int x1, int y1)
+{
+    if (claim != CLAIM_CORNERS)
+        return claim == CLAIM_FULL ? BLOCK_FULL : BLOCK_PARTIAL;
+    bool full = true;
+    for (int k = 0; k < 3; k++) {
+        int in = edge_inside(t, k, edge_value(t, k, x0, y0)) + edge_inside(t, k, edge_value(t, k, x1, y0))
+               + edge_inside(t, k, edge_value(t, k, x0, y1)) + edge_inside(t, k, edge_value(t, k, x1, y1));
+        if (in == 0)
+            return BLOCK_EMPTY;
+        full = full && in == 4;
+    }
+    return full ? BLOCK_FULL : BLOCK_PARTIAL;
+}
 
 static void blocks_tested(const struct tri_setup *t, const struct raster_params *p,
                           struct target *fb, struct trace *tr)
@@ -308,7 +334,7 @@ static void blocks_tested(const struct tri_setup *t, const struct raster_params 
         for (int bx = t->minx; bx <= t->maxx; bx += 8) {
             int x1 = bx + 7 < t->maxx ? bx + 7 : t->maxx, y1 = by + 7 < t->maxy ? by + 7 : t->maxy;
             NARRATE(tr, .kind = TRACE_BLOCK, .x = bx, .y = by, .x1 = x1, .y1 = y1,
-                    .klass = claim_full ? BLOCK_FULL : BLOCK_PARTIAL);
+                    .klass = corner_claim(t, bx, by, x1, y1));
             for (int y = by; y <= y1; y++)
                 for (int x = bx; x <= x1; x++) {
                     bool in = true;
@@ -327,19 +353,57 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
 {
     const struct lesson *l05 = lesson_nn("05");
     struct run run;
-    claim_full = false;
+    claim = CLAIM_PARTIAL;
     check(&run, l05, blocks_tested, NULL);
-    cr_expect_str_eq(run.r.failed, "full blocks really full", "%s", run.report);
-    cr_expect_not_null(strstr(run.report, "is covered in full, but was not narrated FULL"), "%s", run.report);
+    cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "narrated PARTIAL; its corner pixel centres make it EMPTY"), "%s",
+                       run.report);
     run_free(&run);
-    claim_full = true;
+    claim = CLAIM_FULL;
     check(&run, l05, blocks_tested, NULL);
-    cr_expect_str_eq(run.r.failed, "full blocks really full", "%s", run.report);
+    cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
     cr_expect_not_null(strstr(run.report, "narrated FULL, but pixel"), "%s", run.report);
+    run_free(&run);
+    claim = CLAIM_CORNERS;
+    check(&run, l05, blocks_tested, NULL);
+    cr_expect(run.ok, "%s", run.report);
     run_free(&run);
     /* lesson 04 narrates no blocks: it claims nothing, and passes */
     check(&run, l05, lesson_nn("04")->variants[0].rasterize, NULL);
     cr_expect(run.ok, "%s", run.report);
+    run_free(&run);
+}
+
+/* The first misclassified block is where the printed command opens the
+ * explorer: its step narrates that very block (the blocks view outlines
+ * it), and the report names it. */
+Test(exercise, a_misclassified_block_opens_at_its_own_step)
+{
+    const struct lesson *l05 = lesson_nn("05");
+    struct run run;
+    claim = CLAIM_PARTIAL;
+    check(&run, l05, blocks_tested, NULL);
+    cr_assert_str_eq(run.r.failed, "corner classes", "%s", run.report);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l05, "test.c");
+    exercise_use(l05, blocks_tested);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step = run.r.step }, err, sizeof err), "%s", err);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_BLOCK);
+    cr_expect_eq(ex.last.klass, BLOCK_PARTIAL);
+    char want[96];
+    snprintf(want, sizeof want, "block (%d, %d)-(%d, %d) narrated PARTIAL", ex.last.x, ex.last.y, ex.last.x1,
+             ex.last.y1);
+    cr_expect_not_null(strstr(run.report, want), "the step shows another block than the report's:\n%s\n%s",
+                       want, run.report);
+    explorer_free(&ex);
+    scene_free(&s);
     run_free(&run);
 }
 
@@ -637,62 +701,6 @@ static int shell(const char *cmd, char **log)
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
 }
 
-/* Mistakes the "Write it yourself" sections of the lesson texts name, each
- * made in the lesson's worked answer (find -> replace), the check that must
- * fail first and a phrase of its report. */
-struct mutant {
-    const char *lesson, *what, *find, *replace, *check, *says;
-};
-static const struct mutant mutants[] = {
-    { "01-scanline", "span to X_right", "int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
-      "int64_t x1 = right->x < t->maxx ? right->x : t->maxx;", "single triangle", "an extra pixel" },
-    { "01-scanline", "no prestep across", "c[i] = left->c[i] + g->dc[i] * across;",
-      "c[i] = left->c[i] + 0 * across;", "colour and depth (linear)", "expected colour" },
-    { "01-scanline", "no clipping", "int64_t x0 = left->x > t->minx ? left->x : t->minx;\n"
-      "    int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
-      "int64_t x0 = left->x;\n    int64_t x1 = right->x - 1;", "watertight meshes", "outside the" },
-    { "03-edge-stepping", "step by I", "F[k] += e->I[k] * SUBPIXEL_ONE;", "F[k] += e->I[k];",
-      "single triangle", "the exact edge values at its centre" },
-    { "03-edge-stepping", "no step down", "F[k] += e->J[k] * SUBPIXEL_ONE;", "(void)F;",
-      "single triangle", "an extra pixel" },
-    { "04-simd-perspective", "affine", "C[LANE_W] * QC) * depth;", "C[LANE_W] * QC) * 1.0f;",
-      "colour and depth (perspective)", "expected colour" },
-    { "04-simd-perspective", "depth not a reciprocal", "return 1.0f / C[LANE_INV_Z];",
-      "return C[LANE_INV_Z];", "colour and depth (perspective)", "expected colour" },
-    { "05-block-classification", "corner of the next block", "edge_at(e, k, x1, y0) >= 0",
-      "edge_at(e, k, x1 + 1, y0) >= 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
-    { "05-block-classification", "corners tested with > 0", "edge_at(e, k, x0, y0) >= 0",
-      "edge_at(e, k, x0, y0) > 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
-    { "05-block-classification", "|| for full", "mask[0] == 0xF && mask[1] == 0xF && mask[2] == 0xF",
-      "(mask[0] == 0xF || mask[1] == 0xF || mask[2] == 0xF)", "single triangle", "classified FULL" },
-    { "06-clipping", "t from the other end", "double t = (pl->at - p0->pos[2]) / (p1->pos[2] - p0->pos[2]);",
-      "double t = (pl->at - p1->pos[2]) / (p0->pos[2] - p1->pos[2]);", "one vertex behind near", "expected depth" },
-    { "06-clipping", "d not set to the plane", "    n.pos[2] = pl->at;\n", "", "one vertex behind near",
-      "behind the plane" },
-    { "06-clipping", "own walking order", "const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;",
-      "const struct pvert *p0 = a, *p1 = b;", "shared edges, clipped", "the new vertex depends on the walk" },
-    { "06-clipping", "a new vertex only leaving", "if (ina != inb && in_end->pos[2] != pl->at)",
-      "if (ina && !inb && in_end->pos[2] != pl->at)", "one vertex behind near", "a missing pixel" },
-    { "07-tiles", "the wrong corner", "if (reject_corner(e, k, r) < 0)", "if (accept_corner(e, k, r) < 0)",
-      "single triangle", "classified EMPTY" },
-    { "07-tiles", "accepted at the reject corner", "full = full && accept_corner(e, k, r) >= 0;",
-      "full = full && reject_corner(e, k, r) >= 0;", "single triangle", "classified FULL" },
-    { "07-tiles", "the corner picked by dx alone", "e->dx[k] > 0 ? r.x1 : r.x0, e->dy[k] > 0 ? r.y1 : r.y0",
-      "e->dx[k] > 0 ? r.x1 : r.x0, r.y1", "single triangle", "a missing pixel" },
-    { "07-tiles", "corner of the next tile", "e->dx[k] < 0 ? r.x1 : r.x0, e->dy[k] < 0 ? r.y1 : r.y0",
-      "e->dx[k] < 0 ? r.x1 + 1 : r.x0, e->dy[k] < 0 ? r.y1 + 1 : r.y0", "tiles and blocks",
-      "is covered in full, but was not narrated FULL" },
-    { "07-tiles", "accept corner tested with > 0", "full = full && accept_corner(e, k, r) >= 0;",
-      "full = full && accept_corner(e, k, r) > 0;", "tiles and blocks",
-      "is covered in full, but was not narrated FULL" },
-    { "07-tiles", "reject corner tested with <= 0", "if (reject_corner(e, k, r) < 0)",
-      "if (reject_corner(e, k, r) <= 0)", "watertight meshes", "classified EMPTY" },
-    { "08-multisampling", "no bias", "+ t->K[k] + t->bias[k];", "+ t->K[k];", "fill-rule ties",
-      "a sample too many" },
-    { "08-multisampling", "offsets from the corner", "pt.dx[s] = sp->x[s] - SUBPIXEL_HALF;",
-      "pt.dx[s] = sp->x[s];", "single triangle", "covered samples in all" },
-};
-
 /* What a student does after cloning: make check on the answer (passes,
  * short report), on the untouched skeleton (fails within 30 s, with a
  * counterexample and the command to open it), and the program that command
@@ -729,34 +737,7 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
              dir, scene, step);
     cr_expect_eq(shell(cmd, &log), 0, "%s", log);
 
-    /* the mistakes the lesson texts name, made in the worked answers */
-    for (size_t i = 0; i < sizeof mutants / sizeof mutants[0]; i++) {
-        const struct mutant *m = &mutants[i];
-        char path[512], *src;
-        snprintf(path, sizeof path, "%s/t/lessons/%s/answer.c", dir, m->lesson);
-        FILE *f = fopen(path, "rb");
-        cr_assert_not_null(f, "%s", path);
-        static char text[1 << 16];
-        size_t n = fread(text, 1, sizeof text - 1, f);
-        text[n] = '\0';
-        fclose(f);
-        cr_assert_not_null(src = strstr(text, m->find), "%s: no \"%s\" in answer.c", m->lesson, m->find);
-        snprintf(path, sizeof path, "%s/t/mistake.c", dir);
-        f = fopen(path, "wb");
-        cr_assert_not_null(f);
-        fwrite(text, 1, (size_t)(src - text), f);
-        fputs(m->replace, f);
-        fputs(src + strlen(m->find), f);
-        fclose(f);
-        snprintf(cmd, sizeof cmd, "cd %s/t && make -s check LESSON=%.2s FILE=mistake.c", dir, m->lesson);
-        st = shell(cmd, &log);
-        char want[96];
-        snprintf(want, sizeof want, " %s ", m->check);
-        const char *at = strstr(log, want);
-        cr_expect(st != 0 && at && (strstr(at, "FAILED") == at + strlen(want) + strspn(at + strlen(want), " ")),
-                  "%s, %s: expected the check \"%s\" to fail first:\n%s", m->lesson, m->what, m->check, log);
-        cr_expect_not_null(strstr(log, m->says), "%s, %s: no \"%s\" in\n%s", m->lesson, m->what, m->says, log);
-    }
+    /* the mistakes the lesson texts name: tests/mutations/, in-process (every_mistake_...) */
 
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     shell(cmd, &log);
@@ -827,7 +808,7 @@ Test(exercise, the_common_mistakes_fail_as_the_texts_say)
         { M_INCLUSIVE, "02", "fill-rule ties", "leaves it to the triangle on the other side" },
         { M_BOTTOM_RIGHT, "02", "fill-rule ties", "a missing pixel" },
         { M_WEIGHTS, "02", "colour and depth (linear)", "the exact weights of A, B, C" },
-        { M_UNCLIPPED, "01", "watertight meshes", "outside the" },
+        { M_UNCLIPPED, "01", "fill-rule ties", "outside the" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         mistake = cases[i].m;
@@ -903,4 +884,35 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
     cr_expect(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0019f), "0.095 %% of z");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0021f), "0.105 %% of z");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 1.9979f), "0.105 %% nearer");
+}
+
+/* --- the mutation suite ------------------------------------------------------------ */
+
+/* Every classic mistake of tests/mutations/ (a patch to a worked answer,
+ * compiled under its own name: build/mutations.c) fails, and the check
+ * that fails first is the one its patch names: at least 8 per lesson. */
+Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
+{
+    int n = 0, caught = 0, per_lesson[10] = { 0 };
+    for (const struct exercise_mutation *m = all_mutations; m->lesson; m++, n++) {
+        const struct lesson *l = lesson_nn(m->lesson);
+        cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
+        struct run run;
+        use_clip = m->clip;
+        check(&run, l, m->fn, NULL);
+        use_clip = NULL;
+        bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
+        cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,
+                  m->check, run.ok ? "all passed" : run.r.failed, run.report);
+        caught += ok;
+        per_lesson[m->lesson[1] - '0'] += ok;
+        run_free(&run);
+    }
+    fprintf(stderr, "mistakes caught %d of %d\n", caught, n);
+    cr_expect_eq(caught, n, "mistakes caught %d of %d", caught, n);
+    for (int i = 0; all_exercises[i].lesson; i++) {
+        int k = all_exercises[i].lesson[1] - '0';
+        cr_expect_geq(per_lesson[k], 8, "lesson %s: %d mistakes caught, fewer than 8", all_exercises[i].lesson,
+                      per_lesson[k]);
+    }
 }

@@ -36,6 +36,28 @@ static bool covered(const struct checker *C, int x, int y)
         && C->mask[(size_t)y * (size_t)C->want.w + (size_t)x];
 }
 
+/* The class the corner test gives the pixels x0..x1, y0..y1 (lessons 05
+ * and 07): EMPTY when the centres of its four corner pixels all lie outside
+ * one edge (that edge in *edge), FULL when they all lie inside every edge,
+ * PARTIAL otherwise; inside as the fill rule decides it. */
+static enum block_class corner_class(const struct tri_setup *t, int x0, int y0, int x1, int y1, int *edge)
+{
+    bool full = true;
+    for (int k = 0; k < 3; k++) {
+        int in = 0;
+        for (int c = 0; c < 4; c++) {
+            int x = c & 1 ? x1 : x0, y = c & 2 ? y1 : y0;
+            in += edge_inside(t, k, edge_value(t, k, x, y));
+        }
+        if (in == 0) {
+            *edge = k;
+            return BLOCK_EMPTY;
+        }
+        full = full && in == 4;
+    }
+    return full ? BLOCK_FULL : BLOCK_PARTIAL;
+}
+
 /* The narration, watched for the lesson's property. */
 static void watch(void *ctx, const struct trace_event *ev)
 {
@@ -74,19 +96,20 @@ static void watch(void *ctx, const struct trace_event *ev)
             classified = ev->line == *line;
         if (!classified)
             break;
-        int missing_x = -1, missing_y = -1;
-        for (int y = ev->y; y <= ev->y1 && missing_x < 0; y++)
-            for (int x = ev->x; x <= ev->x1; x++)
-                if (!covered(C, x, y)) {
-                    missing_x = x, missing_y = y;
-                    break;
-                }
-        if (ev->klass == BLOCK_FULL && missing_x >= 0)
-            *v = (struct verdict){ .what = WRONG_BLOCK_NOT_FULL, .x = missing_x, .y = missing_y,
-                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
-        else if (ev->klass != BLOCK_FULL && missing_x < 0)
-            *v = (struct verdict){ .what = WRONG_BLOCK_MISSED, .x = ev->x, .y = ev->y,
-                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
+        int edge = -1;
+        enum block_class want = corner_class(C->t, ev->x, ev->y, ev->x1, ev->y1, &edge);
+        if (ev->klass != want) {
+            *v = (struct verdict){ .what = WRONG_BLOCK_CLASS, .x = ev->x, .y = ev->y,
+                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1,
+                                   .want_class = want, .got_class = ev->klass, .edge = edge };
+            /* the pixel that shows it: one not covered in a block called
+             * FULL, one covered in a block called EMPTY */
+            bool found = false;
+            for (int y = ev->y; y <= ev->y1 && !found; y++)
+                for (int x = ev->x; x <= ev->x1 && !found; x++)
+                    if (ev->klass == BLOCK_FULL ? !covered(C, x, y) : ev->klass == BLOCK_EMPTY && covered(C, x, y))
+                        v->x = x, v->y = y, found = true;
+        }
         break;
     }
     default:
@@ -152,6 +175,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         struct verdict prop = { .what = WRONG_NONE };
         struct trace tr = { .sink = property ? watch : NULL, .ctx = C };
         C->prop = &prop;
+        C->t = &t;
         C->in_row = false;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
