@@ -736,6 +736,13 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --scene %s --step %llu --figure f.png && test -s f.png",
              dir, scene, step);
     cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+    /* the counterexample lies in a folder of the checked file's own */
+    cr_expect_not_null(strstr(scene, "/lessons-02-barycentric-exercise/02-"), "%s", scene);
+    /* --help names the exercise's options beside the lesson program's */
+    snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --help", dir);
+    cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+    cr_expect(strstr(log, "--file NAME") && strstr(log, "--check ") && strstr(log, "--check-scene FILE")
+              && strstr(log, "--out DIR") && strstr(log, "--scene FILE"), "%s", log);
 
     /* the mistakes the lesson texts name: tests/mutations/, in-process (every_mistake_...) */
 

@@ -449,6 +449,7 @@ bool gen_property(int i, struct scene *s, char *what, size_t n)
  * whose last column and row of tiles the screen cuts (200 x 150: tiles 8
  * pixels wide and 22 tall there, blocks 6 tall), simplest first. */
 #define TILE_SCENES_RANDOM 48
+#define TILE_SCENES_EDGES 16
 bool gen_tiles(int i, struct scene *s, char *what, size_t n)
 {
     struct rng r = { 0x7113u + (uint64_t)i };
@@ -497,8 +498,33 @@ bool gen_tiles(int i, struct scene *s, char *what, size_t n)
         snprintf(what, n, "a jittered 10 x 8 grid of 160 triangles over 4 x 3 tiles");
         return true;
     }
-    if (i >= 9 + TILE_SCENES_RANDOM)
+    if (i >= 9 + TILE_SCENES_RANDOM + TILE_SCENES_EDGES)
         return false;
+    if (i >= 9 + TILE_SCENES_RANDOM) {
+        /* triangles mostly off-screen, poking in across one side: the
+         * tiles and blocks that the screen's side and the box cut */
+        static const char *const sides[4] = { "left", "top", "right", "bottom" };
+        static const int sizes[][2] = { { 200, 150 }, { 130, 70 } };
+        int e = (i - 9 - TILE_SCENES_RANDOM) % 4;
+        check_scene_start(s, sizes[(i / 4) % 2][0], sizes[(i / 4) % 2][1]);
+        for (int tri = 0; tri < 8; tri++) {
+            double along = rng_range(&r, -20, (e % 2 ? s->w : s->h) + 20), in = rng_range(&r, 0.2, 6);
+            double out1 = rng_range(&r, 4, 160), out2 = rng_range(&r, 4, 160);
+            double a1 = along + rng_range(&r, -90, 90), a2 = along + rng_range(&r, -90, 90);
+            double lim = e % 2 ? s->h : s->w;   /* the side's coordinate: 0 or the size */
+            double d[3][2] = { { along, e < 2 ? in : lim - in }, { a1, e < 2 ? -out1 : lim + out1 },
+                               { a2, e < 2 ? -out2 : lim + out2 } };
+            struct vertex v[3];
+            for (int q = 0; q < 3; q++) {
+                double x = e % 2 ? d[q][0] : d[q][1], y = e % 2 ? d[q][1] : d[q][0];
+                v[q] = rvtx(&r, grid(&r, x), grid(&r, y), 1, 6);
+            }
+            add(s, v[0], v[1], v[2]);
+        }
+        snprintf(what, n, "8 triangles mostly off-screen, each poking in across the %s side of %d x %d pixels",
+                 sides[e], s->w, s->h);
+        return true;
+    }
     /* random scenes: targets of 1 to 4 x 3 tiles, triangles small and large,
      * vertices drawn towards the borders of tiles and blocks */
     static const int sizes[][2] = { { 200, 150 }, { 130, 70 }, { 64, 64 }, { 129, 65 } };
