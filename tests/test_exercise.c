@@ -923,3 +923,40 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
                       per_lesson[k]);
     }
 }
+
+/* A wrong colour is marked by the diff at the very step that writes it,
+ * the triangle unfinished: the printed command opens on a marked pixel. */
+Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
+{
+    const struct exercise_mutation *m = NULL;
+    for (const struct exercise_mutation *k = all_mutations; k->lesson; k++)
+        if (strcmp(k->name, "02-weights-rotated") == 0)
+            m = k;
+    cr_assert_not_null(m, "no tests/mutations/02-weights-rotated.patch");
+    const struct lesson *l = lesson_nn("02");
+    struct run run;
+    check(&run, l, m->fn, NULL);
+    cr_assert_str_eq(run.r.failed, "colour and depth (linear)", "%s", run.report);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l, "test.c");
+    exercise_use(l, m->fn);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
+                                                         .step = run.r.step }, err, sizeof err), "%s", err);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
+    cr_expect_eq(ex.last.x, run.r.x);
+    cr_expect_eq(ex.last.y, run.r.y);
+    cr_expect_lt(ex.step, ex.replay.total, "the triangle is not finished yet");
+    cr_assert_not_null(ex.diff);
+    cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
+                 "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
+    cr_expect_gt(ex.wrong_colour, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}

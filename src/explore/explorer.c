@@ -217,9 +217,12 @@ static void mark_exact(void *ctx, int x, int y)
     e->m[(size_t)y * (size_t)e->w + (size_t)x] = 1;
 }
 
-/* The triangle being drawn: a pixel it has written more often than the
- * exact rule covers it is extra already, whatever comes after (writes only
- * add), so it is marked at the step that writes it. */
+/* The triangle being drawn, compared as it writes: a pixel it has written
+ * more often than the exact rule covers it is extra already, whatever comes
+ * after (writes only add), and a pixel it has written as often as the exact
+ * rule covers it, in another colour or depth than the exact rule's after
+ * this triangle, is wrong already; both are marked at the step that writes
+ * them. (A missing pixel shows when the triangle is finished.) */
 static bool extra_so_far(struct explorer *ex)
 {
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
@@ -227,13 +230,28 @@ static bool extra_so_far(struct explorer *ex)
     if (!exact)
         return false;
     reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
+    /* the exact picture with this triangle too */
+    struct target with = { 0 };
+    struct raster_params p = replay_params(&ex->replay, ex->cur);
+    bool shaded = target_copy(&with, &ex->exact);
+    if (shaded)
+        ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
+    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
     for (size_t i = 0; i < n; i++) {
         int now = ex->fb.count[i] - ex->replay.base.count[i];
-        if (now > exact[i] && ex->diff[i] == 0) {     /* an earlier verdict stands */
+        if (ex->diff[i] != 0)       /* an earlier verdict stands */
+            continue;
+        if (now > exact[i]) {
             ex->diff[i] = EXHIBIT_EXTRA;
             ex->extra++;
+        } else if (shaded && now > 0 && ex->fb.count[i] == with.count[i]
+                   && !pixel_close(with.color[i], other_depth ? ex->fb.depth[i] : with.depth[i],
+                                   ex->fb.color[i], ex->fb.depth[i])) {
+            ex->diff[i] = EXHIBIT_COLOUR;
+            ex->wrong_colour++;
         }
     }
+    target_free(&with);
     free(exact);
     return true;
 }
