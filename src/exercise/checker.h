@@ -10,6 +10,8 @@
 
 #include "exercise/exercise.h"
 
+/* Pictures of other sizes kept for the next scenes. */
+#define CHECK_SPARES 6
 /* Shrinking tries at most this many candidate scenes. */
 #define SHRINK_BUDGET 4000
 /* A scene that takes longer than this is an endless loop: no scene of the
@@ -60,6 +62,10 @@ struct checker {
     struct raster_params p;
     enum check_kind kind;
     struct target want, got;
+    /* pictures of other sizes and sample counts, the most recent first,
+     * kept between scenes: lesson 08 draws each scene at 4, 8 and 1
+     * samples, and random scenes change size (no reallocation each time) */
+    struct target spare_want[CHECK_SPARES], spare_got[CHECK_SPARES];
     uint8_t *mask;              /* the exact coverage of the triangle being run */
     /* the property watch, fed by the narration */
     struct verdict *prop;

@@ -9,8 +9,30 @@
 
 #include "front/front.h"    /* front_scene: the exact picture's triangles */
 
-static bool prepare(struct target *fb, const struct scene *s, int samples)
+static int samples_of(const struct target *fb)
 {
+    return fb->samples ? fb->samples->n : 1;
+}
+
+/* fb cleared for scene s at `samples` per pixel; a picture of another size
+ * or count is put aside in spare (the most recent first, the oldest
+ * dropped), and one that fits is taken from there. */
+static bool prepare(struct target *fb, struct target spare[CHECK_SPARES], const struct scene *s, int samples)
+{
+    if (!fb->color || fb->w != s->w || fb->h != s->h || samples_of(fb) != samples) {
+        int found = CHECK_SPARES - 1;
+        for (int k = CHECK_SPARES - 1; k >= 0; k--)
+            if (spare[k].color && spare[k].w == s->w && spare[k].h == s->h && samples_of(&spare[k]) == samples)
+                found = k;
+        struct target taken = spare[found];
+        if (!(taken.color && taken.w == s->w && taken.h == s->h && samples_of(&taken) == samples)) {
+            target_free(&taken);
+            taken = (struct target){ 0 };
+        }
+        memmove(&spare[1], &spare[0], sizeof spare[0] * (size_t)found);
+        spare[0] = *fb;
+        *fb = taken;
+    }
     if (fb->color && fb->w == s->w && fb->h == s->h) {
         fb->background = scene_background(s);
         target_clear(fb);
@@ -155,7 +177,7 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
     int samples = C->p.samples > 1 ? C->p.samples : 1;
-    if (!prepare(&C->want, s, samples) || !prepare(&C->got, s, samples))
+    if (!prepare(&C->want, C->spare_want, s, samples) || !prepare(&C->got, C->spare_got, s, samples))
         return true;    /* out of memory: said by the caller */
     uint8_t *mask = realloc(C->mask, (size_t)s->w * (size_t)s->h);
     if (!mask)
@@ -243,7 +265,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         scene_free(&want);
         return true;
     }
-    bool ok = prepare(&C->want, s, 1) && prepare(&C->got, s, 1);
+    bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
     C->evaluations += ok;
     const struct lesson_variant *exact = exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();
