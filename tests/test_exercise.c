@@ -960,3 +960,41 @@ Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
     scene_free(&s);
     run_free(&run);
 }
+
+/* Lesson 06: a clipper that leaves nothing of a triangle. The report sends
+ * the student to no empty step, and the explorer around the same clipper
+ * (as make exercise and --figure run it) marks the pixels it misses. */
+Test(exercise, a_clipper_that_draws_nothing_opens_on_the_missing_pixels)
+{
+    const struct exercise_mutation *m = NULL;
+    for (const struct exercise_mutation *k = all_mutations; k->lesson; k++)
+        if (strcmp(k->name, "06-outside-kept") == 0)
+            m = k;
+    cr_assert(m && m->clip, "no tests/mutations/06-outside-kept.patch with a clipper");
+    const struct lesson *l06 = lesson_nn("06");
+    struct run run;
+    use_clip = m->clip;
+    check(&run, l06, m->fn, NULL);
+    use_clip = NULL;
+    cr_assert_not(run.ok);
+    cr_expect_eq(run.r.step, 0, "%s", run.report);
+    cr_expect_null(strstr(run.report, "STEP="), "a command that opens an empty step:\n%s", run.report);
+    cr_expect_not_null(strstr(run.report, "SCENE="), "%s", run.report);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
+    struct lesson el;
+    struct lesson_variant ev[2];
+    exercise_lesson(&el, ev, l06, "test.c");
+    exercise_use(l06, m->fn);
+    exercise_use_clip(m->clip);
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1] }, err,
+                            sizeof err), "%s", err);
+    cr_expect_eq(ex.replay.total, 0, "the student's clipper made screen triangles");
+    cr_expect_gt(ex.missing, 0, "the diff marks nothing");
+    cr_expect_eq(ex.extra, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}

@@ -128,10 +128,16 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     char samples[32] = "";
     if (C->p.samples > 1)
         snprintf(samples, sizeof samples, " SAMPLES=%d", C->p.samples);
-    fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
-            v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
-                                                                 : "first wrong pixel",
-            (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
+    if (r->step == 0)     /* nothing to step through: no STEP= that opens an empty step */
+        fprintf(out, "\n  your code %s, so the explorer has no step to show; opened, it marks\n"
+                "  the pixels the exact rule covers and your code does not (cyan: missing):\n      %s%s SCENE=%s\n",
+                v.world ? "made no screen triangle of it" : "narrated and wrote nothing for it",
+                o->open_cmd, samples, r->counterexample);
+    else
+        fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+                v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
+                                                                     : "first wrong pixel",
+                (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
 
