@@ -217,12 +217,10 @@ static void mark_exact(void *ctx, int x, int y)
     e->m[(size_t)y * (size_t)e->w + (size_t)x] = 1;
 }
 
-/* The triangle being drawn, compared as it writes: a pixel it has written
- * more often than the exact rule covers it is extra already, whatever comes
- * after (writes only add), and a pixel it has written as often as the exact
- * rule covers it, in another colour or depth than the exact rule's after
- * this triangle, is wrong already; both are marked at the step that writes
- * them. (A missing pixel shows when the triangle is finished.) */
+/* The triangle being drawn, compared as it writes (writes only add): a
+ * pixel written more often than the exact rule covers it is extra, one
+ * written as often in another colour or depth than the exact rule's is
+ * wrong, both at the step that writes them; a missing one shows at the end. */
 static bool extra_so_far(struct explorer *ex)
 {
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
@@ -230,8 +228,7 @@ static bool extra_so_far(struct explorer *ex)
     if (!exact)
         return false;
     reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
-    /* the exact picture with this triangle too */
-    struct target with = { 0 };
+    struct target with = { 0 };     /* the exact picture with this triangle too */
     struct raster_params p = replay_params(&ex->replay, ex->cur);
     bool shaded = target_copy(&with, &ex->exact);
     if (shaded)
@@ -239,17 +236,12 @@ static bool extra_so_far(struct explorer *ex)
     bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
     for (size_t i = 0; i < n; i++) {
         int now = ex->fb.count[i] - ex->replay.base.count[i];
-        if (ex->diff[i] != 0)       /* an earlier verdict stands */
-            continue;
-        if (now > exact[i]) {
-            ex->diff[i] = EXHIBIT_EXTRA;
-            ex->extra++;
-        } else if (shaded && now > 0 && ex->fb.count[i] == with.count[i]
-                   && !pixel_close(with.color[i], other_depth ? ex->fb.depth[i] : with.depth[i],
-                                   ex->fb.color[i], ex->fb.depth[i])) {
-            ex->diff[i] = EXHIBIT_COLOUR;
-            ex->wrong_colour++;
-        }
+        if (ex->diff[i] == 0 && now > exact[i])     /* an earlier verdict stands */
+            ex->diff[i] = EXHIBIT_EXTRA, ex->extra++;
+        else if (ex->diff[i] == 0 && shaded && now > 0 && ex->fb.count[i] == with.count[i]
+                 && !pixel_close(with.color[i], other_depth ? ex->fb.depth[i] : with.depth[i],
+                                 ex->fb.color[i], ex->fb.depth[i]))
+            ex->diff[i] = EXHIBIT_COLOUR, ex->wrong_colour++;
     }
     target_free(&with);
     free(exact);
