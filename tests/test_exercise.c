@@ -95,6 +95,32 @@ static void run_free(struct run *run)
     free(run->report);
 }
 
+/* Open run's counterexample as make exercise does: lesson l's explorer on
+ * fn (and lesson 06's clipper clip) as the exercise variant, at step. */
+static void open_counterexample(struct explorer *ex, struct scene *s, const struct lesson *l, rasterize_fn fn,
+                                clip_fn clip, const struct run *run, uint64_t step)
+{
+    static struct lesson el;            /* the explorer keeps pointers to them */
+    static struct lesson_variant ev[2];
+    char err[512];
+    cr_assert(scene_load(s, run->r.counterexample, err, sizeof err), "%s", err);
+    exercise_lesson(&el, ev, l, "test.c");
+    exercise_use(l, fn);
+    exercise_use_clip(clip);
+    cr_assert(explorer_init(ex, &(struct explorer_desc){ .lesson = &el, .scene = s, .variant = &ev[1], .step = step },
+                            err, sizeof err), "%s", err);
+}
+
+/* The mutation of tests/mutations/ called name. */
+static const struct exercise_mutation *mutation(const char *name)
+{
+    for (const struct exercise_mutation *m = all_mutations; m->lesson; m++)
+        if (strcmp(m->name, name) == 0)
+            return m;
+    cr_assert_fail("no tests/mutations/%s.patch", name);
+    return NULL;
+}
+
 /* --- what passes ------------------------------------------------------------ */
 
 Test(exercise, every_lessons_own_algorithm_passes_its_check, .timeout = 180)
@@ -358,6 +384,21 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
     cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
     cr_expect_not_null(strstr(run.report, "narrated PARTIAL; its corner pixel centres make it EMPTY"), "%s",
                        run.report);
+    /* the printed command opens the explorer at the first misclassified
+     * block's own step (the blocks view outlines it), the one the report names */
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l05, blocks_tested, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_BLOCK);
+    cr_expect_eq(ex.last.klass, BLOCK_PARTIAL);
+    char want[96];
+    snprintf(want, sizeof want, "block (%d, %d)-(%d, %d) narrated PARTIAL", ex.last.x, ex.last.y, ex.last.x1,
+             ex.last.y1);
+    cr_expect_not_null(strstr(run.report, want), "the step shows another block than the report's:\n%s\n%s",
+                       want, run.report);
+    explorer_free(&ex);
+    scene_free(&s);
     run_free(&run);
     claim = CLAIM_FULL;
     check(&run, l05, blocks_tested, NULL);
@@ -371,39 +412,6 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
     /* lesson 04 narrates no blocks: it claims nothing, and passes */
     check(&run, l05, lesson_nn("04")->variants[0].rasterize, NULL);
     cr_expect(run.ok, "%s", run.report);
-    run_free(&run);
-}
-
-/* The first misclassified block is where the printed command opens the
- * explorer: its step narrates that very block (the blocks view outlines
- * it), and the report names it. */
-Test(exercise, a_misclassified_block_opens_at_its_own_step)
-{
-    const struct lesson *l05 = lesson_nn("05");
-    struct run run;
-    claim = CLAIM_PARTIAL;
-    check(&run, l05, blocks_tested, NULL);
-    cr_assert_str_eq(run.r.failed, "corner classes", "%s", run.report);
-    struct scene s;
-    char err[512];
-    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
-    struct lesson el;
-    struct lesson_variant ev[2];
-    exercise_lesson(&el, ev, l05, "test.c");
-    exercise_use(l05, blocks_tested);
-    struct explorer ex;
-    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
-                                                         .step = run.r.step }, err, sizeof err), "%s", err);
-    cr_expect(ex.has_last);
-    cr_expect_eq(ex.last.kind, TRACE_BLOCK);
-    cr_expect_eq(ex.last.klass, BLOCK_PARTIAL);
-    char want[96];
-    snprintf(want, sizeof want, "block (%d, %d)-(%d, %d) narrated PARTIAL", ex.last.x, ex.last.y, ex.last.x1,
-             ex.last.y1);
-    cr_expect_not_null(strstr(run.report, want), "the step shows another block than the report's:\n%s\n%s",
-                       want, run.report);
-    explorer_free(&ex);
-    scene_free(&s);
     run_free(&run);
 }
 
@@ -928,25 +936,14 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
  * the triangle unfinished: the printed command opens on a marked pixel. */
 Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
 {
-    const struct exercise_mutation *m = NULL;
-    for (const struct exercise_mutation *k = all_mutations; k->lesson; k++)
-        if (strcmp(k->name, "02-weights-rotated") == 0)
-            m = k;
-    cr_assert_not_null(m, "no tests/mutations/02-weights-rotated.patch");
+    const struct exercise_mutation *m = mutation("02-weights-rotated");
     const struct lesson *l = lesson_nn("02");
     struct run run;
     check(&run, l, m->fn, NULL);
     cr_assert_str_eq(run.r.failed, "colour and depth (linear)", "%s", run.report);
     struct scene s;
-    char err[512];
-    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
-    struct lesson el;
-    struct lesson_variant ev[2];
-    exercise_lesson(&el, ev, l, "test.c");
-    exercise_use(l, m->fn);
     struct explorer ex;
-    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1],
-                                                         .step = run.r.step }, err, sizeof err), "%s", err);
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
     cr_expect(ex.has_last);
     cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
     cr_expect_eq(ex.last.x, run.r.x);
@@ -966,11 +963,8 @@ Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
  * (as make exercise and --figure run it) marks the pixels it misses. */
 Test(exercise, a_clipper_that_draws_nothing_opens_on_the_missing_pixels)
 {
-    const struct exercise_mutation *m = NULL;
-    for (const struct exercise_mutation *k = all_mutations; k->lesson; k++)
-        if (strcmp(k->name, "06-outside-kept") == 0)
-            m = k;
-    cr_assert(m && m->clip, "no tests/mutations/06-outside-kept.patch with a clipper");
+    const struct exercise_mutation *m = mutation("06-outside-kept");
+    cr_assert_not_null(m->clip, "06-outside-kept has no clipper");
     const struct lesson *l06 = lesson_nn("06");
     struct run run;
     use_clip = m->clip;
@@ -981,16 +975,8 @@ Test(exercise, a_clipper_that_draws_nothing_opens_on_the_missing_pixels)
     cr_expect_null(strstr(run.report, "STEP="), "a command that opens an empty step:\n%s", run.report);
     cr_expect_not_null(strstr(run.report, "SCENE="), "%s", run.report);
     struct scene s;
-    char err[512];
-    cr_assert(scene_load(&s, run.r.counterexample, err, sizeof err), "%s", err);
-    struct lesson el;
-    struct lesson_variant ev[2];
-    exercise_lesson(&el, ev, l06, "test.c");
-    exercise_use(l06, m->fn);
-    exercise_use_clip(m->clip);
     struct explorer ex;
-    cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &el, .scene = &s, .variant = &ev[1] }, err,
-                            sizeof err), "%s", err);
+    open_counterexample(&ex, &s, l06, m->fn, m->clip, &run, 0);
     cr_expect_eq(ex.replay.total, 0, "the student's clipper made screen triangles");
     cr_expect_gt(ex.missing, 0, "the diff marks nothing");
     cr_expect_eq(ex.extra, 0);
