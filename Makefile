@@ -1,5 +1,6 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
@@ -49,7 +50,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -84,7 +85,7 @@ $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
 	$(if $(PORT),,@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@)
 	$(if $(PORT),,@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@)
 $(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
-$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
+$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a | $$(SKELETONS) ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
 # Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
 # changes, so the bench is rebuilt once `make bench` has installed it.
@@ -156,6 +157,14 @@ $(B)/exercises.c: Makefile $(wildcard lessons/*/) $(EX_SRC) | $(FIRST)
 	  printf '    { "%s", exercise_%s_exercise, exercise_%s_answer, %s },\n' $$n $$n $$n "$$c"; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+# The skeletons: lessons/NN-name/exercise.c made from the worked answer
+# beside it, its one source (src/exercise/skeleton.awk says how); the build
+# makes them into $(B)/skeletons/, the tests hold the committed ones to
+# them, and `make skeletons` writes them over the committed ones.
+SKELETONS := $(patsubst lessons/%/answer.c,$(B)/skeletons/%/exercise.c,$(wildcard lessons/*/answer.c))
+$(B)/skeletons/%/exercise.c: lessons/%/answer.c src/exercise/skeleton.awk
+	@mkdir -p $(@D) && awk -f src/exercise/skeleton.awk $< > $@.tmp && mv $@.tmp $@
+skeletons: $(SKELETONS) ; @for f in $(SKELETONS); do cp $$f lessons/$${f#$(B)/skeletons/}; done
 # The mutation suite (tests/mutations/NN-name.patch): each a classic mistake
 # made in lesson NN's worked answer, compiled like a student's file under
 # its own name and listed in build/mutations.c with the check it must fail.

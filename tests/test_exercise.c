@@ -984,3 +984,48 @@ Test(exercise, a_clipper_that_draws_nothing_opens_on_the_missing_pixels)
     scene_free(&s);
     run_free(&run);
 }
+
+/* --- the skeleton and the answer, one source ------------------------------------- */
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = NULL;
+    size_t cap = 0, n = 0, got;
+    do {
+        if (n + 4096 > cap && !(text = realloc(text, cap = 2 * cap + 4096)))
+            break;
+        n += got = fread(text + n, 1, cap - n, f);
+    } while (got > 0);
+    fclose(f);
+    *len = n;
+    return text;
+}
+
+/* Every committed skeleton is what the build makes from the answer beside
+ * it (src/exercise/skeleton.awk, into build/skeletons/): the answer is the
+ * one source, and the skeleton never drifts from it. */
+Test(exercise, every_committed_skeleton_is_made_from_its_answer)
+{
+    const char *build = getenv("TRISTEP_BUILD") ? getenv("TRISTEP_BUILD") : "build";
+    int n = 0;
+    for (int i = 0; all_lessons[i]; i++) {
+        char committed[512], made[512];
+        snprintf(committed, sizeof committed, "lessons/%s/exercise.c", all_lessons[i]->id);
+        snprintf(made, sizeof made, "%s/skeletons/%s/exercise.c", build, all_lessons[i]->id);
+        size_t a, b;
+        char *x = slurp(committed, &a);
+        if (!x)
+            continue;   /* a lesson without an exercise */
+        char *y = slurp(made, &b);
+        cr_expect_not_null(y, "%s: not made by the build", made);
+        cr_expect(y && a == b && memcmp(x, y, a) == 0,
+                  "%s differs from %s, made from the answer beside it: run make skeletons", committed, made);
+        free(x);
+        free(y);
+        n++;
+    }
+    cr_expect_geq(n, 8);
+}
