@@ -161,6 +161,14 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         if (k % 64 == 0)
             progress(C->o, n, i, ck->name, k, total);
         ck->gen(k, &s, what, sizeof what);
+        /* many random scenes of one triangle: each at one sample count in
+         * turn, not at every one (the hand-made scenes take them all) */
+        C->only_count = 0;
+        int ncounts = 0;
+        for (const int *c = C->l->exercise.samples; c && *c; c++)
+            ncounts++;
+        if (ck->gen == gen_random && ncounts > 1)
+            C->only_count = C->l->exercise.samples[k % ncounts];
         if (check_guard) {
             check_guard->check = i;
             check_guard->scene = k;

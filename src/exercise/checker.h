@@ -74,6 +74,7 @@ struct checker {
     int last_x, last_y;
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
     bool both_ways;             /* lesson 06: clip every polygon walked both ways */
+    int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };

@@ -300,7 +300,8 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
 }
 
 /* Every sample count of the lesson in turn (lesson_exercise.samples), or the
- * pixel centre alone; at a failure C->p.samples stays the count it failed at. */
+ * one C->only_count names, or the pixel centre alone; at a failure
+ * C->p.samples stays the count it failed at. */
 bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
 {
     *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
@@ -316,6 +317,8 @@ bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
         return evaluate_at(C, s, v);
     }
     for (; *counts; counts++) {
+        if (C->only_count > 0 && *counts != C->only_count)
+            continue;
         C->p.samples = *counts;
         if (!evaluate_at(C, s, v))
             return false;
