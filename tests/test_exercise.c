@@ -905,7 +905,12 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
 
 /* Every classic mistake of tests/mutations/ (a patch to a worked answer,
  * compiled under its own name: build/mutations.c) fails, and the check
- * that fails first is the one its patch names: at least 8 per lesson. */
+ * that fails first is the one its patch names: at least 8 per lesson.
+ *
+ * A mistake of your own: copy lessons/NN-name/answer.c, make the mistake in
+ * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch,
+ * under a first line that says the mistake and a line "check: NAME" naming
+ * the check that must fail first on it (make check on the copy says which). */
 Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
 {
     int n = 0, caught = 0, per_lesson[10] = { 0 };
