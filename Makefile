@@ -1,6 +1,7 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
 #          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
+#          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
@@ -11,7 +12,9 @@ LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o)
+MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.patch))
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
+            $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
@@ -48,7 +51,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -83,7 +86,7 @@ $(B)/lessons.c: Makefile lessons $(wildcard lessons/*/) | $(B)/config.mk
 	$(if $(PORT),,@for f in $(EXP_SRC); do printf 'extern const struct lesson_explorer lesson_%s_explorer;\n' $$(basename $$(dirname $$f) | cut -d- -f1); done >> $@)
 	$(if $(PORT),,@printf 'const struct lesson_explorer *const all_lesson_explorers[] = { %s NULL };\n' "$(foreach f,$(EXP_SRC),&lesson_$(call nn,$(f))_explorer,)" >> $@)
 $(B)/obj/lessons.o: $(B)/lessons.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
-$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
+$(B)/tristep-tests: $(TEST_OBJ) $(ALL_LES) $(B)/libtristep.a | $$(SKELETONS) ; $(LD_ALL) $^ $(LIBS) -lcriterion -o $@
 # The bench (tests/bench/): every lesson's fast build, beside llvmpipe when OSMesa is there.
 # Whether OSMesa is there is recorded in osmesa.flag, rewritten only when it
 # changes, so the bench is rebuilt once `make bench` has installed it.
@@ -156,6 +159,37 @@ $(B)/exercises.c: Makefile $(wildcard lessons/*/) $(EX_SRC) | $(FIRST)
 	  printf '    { "%s", exercise_%s_exercise, exercise_%s_answer, %s },\n' $$n $$n $$n "$$c"; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
+# The skeletons: lessons/NN-name/exercise.c made from the worked answer
+# beside it, its one source (src/exercise/skeleton.awk says how); the build
+# makes them into $(B)/skeletons/, the tests hold the committed ones to
+# them, and `make skeletons` writes them over the committed ones.
+SKELETONS := $(patsubst lessons/%/answer.c,$(B)/skeletons/%/exercise.c,$(wildcard lessons/*/answer.c))
+$(B)/skeletons/%/exercise.c: lessons/%/answer.c src/exercise/skeleton.awk
+	@mkdir -p $(@D) && awk -f src/exercise/skeleton.awk $< > $@.tmp && mv $@.tmp $@
+skeletons: $(SKELETONS) ; @for f in $(SKELETONS); do cp $$f lessons/$${f#$(B)/skeletons/}; done
+# The mutation suite (tests/mutations/NN-name.patch): each a classic mistake
+# made in lesson NN's worked answer, compiled like a student's file under
+# its own name and listed in build/mutations.c with the check it must fail.
+mut_answer = $(wildcard lessons/$(firstword $(subst -, ,$1))-*/answer.c)
+mut_fn     = mutation_$(subst -,_,$1)
+# a mistake leaves a part of the answer unused: not worth a warning
+MUT_WARN   = -Wno-unused-parameter -Wno-unused-variable -Wno-unused-but-set-variable -Wno-unused-function
+$(B)/mutations/%.c: tests/mutations/%.patch $$(call mut_answer,$$*) | $(FIRST)
+	@mkdir -p $(@D) && patch --batch --quiet --no-backup-if-mismatch -r - -o $@ $(call mut_answer,$*) < $< >/dev/null \
+	  || { rm -f $@; echo "$<: does not apply to $(call mut_answer,$*)"; exit 1; }
+$(B)/mutations/%.o: $(B)/mutations/%.c | $(FIRST)
+	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
+$(B)/mutations.c: Makefile $(MUTATIONS:%=tests/mutations/%.patch) $(MUTATIONS:%=$(B)/mutations/%.c) | $(FIRST)
+	@printf '#include "exercise/exercise.h"\nstruct poly;\nstruct plane;\n' > $@
+	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); printf 'void %s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$f; \
+	  if grep -q '^void exercise_clip(' $(B)/mutations/$$m.c; then printf 'void %s_clip(struct poly *, const struct poly *, const struct plane *);\n' $$f; fi; done >> $@
+	@printf 'const struct exercise_mutation all_mutations[] = {\n' >> $@
+	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); c=NULL; \
+	  if grep -q '^void exercise_clip(' $(B)/mutations/$$m.c; then c=$${f}_clip; fi; \
+	  k=$$(sed -n 's/^check: *//p' tests/mutations/$$m.patch | head -n 1); \
+	  printf '    { "%s", "%s", "%s", %s, %s },\n' "$$(echo $$m | cut -c1-2)" "$$m" "$$k" $$f $$c; done >> $@
+	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
+$(B)/obj/mutations.o: $(B)/mutations.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }

@@ -79,12 +79,46 @@ static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
     fclose(out);
 }
 
+/* The counterexample, the folder of the checked file that holds it, and
+ * the check's folder. */
 static void run_free(struct run *run)
 {
-    if (run->r.counterexample[0])
+    if (run->r.counterexample[0]) {
         remove(run->r.counterexample);
+        char *slash = strrchr(run->r.counterexample, '/');
+        if (slash) {
+            *slash = '\0';
+            rmdir(run->r.counterexample);
+        }
+    }
     rmdir(run->dir);
     free(run->report);
+}
+
+/* Open run's counterexample as make exercise does: lesson l's explorer on
+ * fn (and lesson 06's clipper clip) as the exercise variant, at step. */
+static void open_counterexample(struct explorer *ex, struct scene *s, const struct lesson *l, rasterize_fn fn,
+                                clip_fn clip, const struct run *run, uint64_t step)
+{
+    static struct lesson el;            /* the explorer keeps pointers to them */
+    static struct lesson_variant ev[2];
+    char err[512];
+    cr_assert(scene_load(s, run->r.counterexample, err, sizeof err), "%s", err);
+    exercise_lesson(&el, ev, l, "test.c");
+    exercise_use(l, fn);
+    exercise_use_clip(clip);
+    cr_assert(explorer_init(ex, &(struct explorer_desc){ .lesson = &el, .scene = s, .variant = &ev[1], .step = step },
+                            err, sizeof err), "%s", err);
+}
+
+/* The mutation of tests/mutations/ called name. */
+static const struct exercise_mutation *mutation(const char *name)
+{
+    for (const struct exercise_mutation *m = all_mutations; m->lesson; m++)
+        if (strcmp(m->name, name) == 0)
+            return m;
+    cr_assert_fail("no tests/mutations/%s.patch", name);
+    return NULL;
 }
 
 /* --- what passes ------------------------------------------------------------ */
@@ -217,14 +251,15 @@ static const struct {
     { "01", "source-float", false, "single triangle" },
     { "02", "inclusive", false, "fill-rule ties" },
     { "02", "strict", false, "fill-rule ties" },
-    { "03", "float", false, "random triangles" },
+    /* the ties far out and a 1/65536 px^2 from a centre (float rounds them) */
+    { "03", "float", false, "fill-rule ties" },
     { "04", NULL, true, "colour and depth (perspective)" },
     { "05", "corners-outside", false, "single triangle" },
     { "05", "or-inside", false, "single triangle" },
     { "06", "inverse", false, "colour and depth (perspective)" },
     { "06", "reversed", false, "colour and depth (perspective)" },
     { "06", "ndc24", false, "colour and depth (perspective)" },
-    { "06", "no-guard-32", false, "random triangles" },
+    { "06", "no-guard-32", false, "fill-rule ties" },
     /* lesson 06's slips of the front end, checked with their own front ends */
     { "06", "project-first", false, "one vertex behind near" },
     /* a new vertex on the screen's border, snapped, moves the edge it cuts */
@@ -298,9 +333,26 @@ Test(exercise, lesson03_property_finds_multiplications_per_pixel)
 }
 
 /* Lesson 05's: block rasterizers that draw the right picture, every pixel
- * tested, but call their blocks wrong: all partial (full blocks never
- * found), or every non-empty block full (not really full). */
-static bool claim_full;
+ * tested, but call their blocks wrong: all partial (the corner test rejects
+ * some, and finds some full), or every block full (not really full); and
+ * one that calls each block what its four corners say, which passes. */
+enum claim { CLAIM_PARTIAL, CLAIM_FULL, CLAIM_CORNERS };
+static enum claim claim;
+
+static uint8_t corner_claim(const struct tri_setup *t, int x0, int y0, int x1, int y1)
+{
+    if (claim != CLAIM_CORNERS)
+        return claim == CLAIM_FULL ? BLOCK_FULL : BLOCK_PARTIAL;
+    bool full = true;
+    for (int k = 0; k < 3; k++) {
+        int in = edge_inside(t, k, edge_value(t, k, x0, y0)) + edge_inside(t, k, edge_value(t, k, x1, y0))
+               + edge_inside(t, k, edge_value(t, k, x0, y1)) + edge_inside(t, k, edge_value(t, k, x1, y1));
+        if (in == 0)
+            return BLOCK_EMPTY;
+        full = full && in == 4;
+    }
+    return full ? BLOCK_FULL : BLOCK_PARTIAL;
+}
 
 static void blocks_tested(const struct tri_setup *t, const struct raster_params *p,
                           struct target *fb, struct trace *tr)
@@ -311,7 +363,7 @@ static void blocks_tested(const struct tri_setup *t, const struct raster_params 
         for (int bx = t->minx; bx <= t->maxx; bx += 8) {
             int x1 = bx + 7 < t->maxx ? bx + 7 : t->maxx, y1 = by + 7 < t->maxy ? by + 7 : t->maxy;
             NARRATE(tr, .kind = TRACE_BLOCK, .x = bx, .y = by, .x1 = x1, .y1 = y1,
-                    .klass = claim_full ? BLOCK_FULL : BLOCK_PARTIAL);
+                    .klass = corner_claim(t, bx, by, x1, y1));
             for (int y = by; y <= y1; y++)
                 for (int x = bx; x <= x1; x++) {
                     bool in = true;
@@ -330,15 +382,35 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
 {
     const struct lesson *l05 = lesson_nn("05");
     struct run run;
-    claim_full = false;
+    claim = CLAIM_PARTIAL;
     check(&run, l05, blocks_tested, NULL);
-    cr_expect_str_eq(run.r.failed, "full blocks really full", "%s", run.report);
-    cr_expect_not_null(strstr(run.report, "is covered in full, but was not narrated FULL"), "%s", run.report);
+    cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "narrated PARTIAL; its corner pixel centres make it EMPTY"), "%s",
+                       run.report);
+    /* the printed command opens the explorer at the first misclassified
+     * block's own step (the blocks view outlines it), the one the report names */
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l05, blocks_tested, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_BLOCK);
+    cr_expect_eq(ex.last.klass, BLOCK_PARTIAL);
+    char want[96];
+    snprintf(want, sizeof want, "block (%d, %d)-(%d, %d) narrated PARTIAL", ex.last.x, ex.last.y, ex.last.x1,
+             ex.last.y1);
+    cr_expect_not_null(strstr(run.report, want), "the step shows another block than the report's:\n%s\n%s",
+                       want, run.report);
+    explorer_free(&ex);
+    scene_free(&s);
     run_free(&run);
-    claim_full = true;
+    claim = CLAIM_FULL;
     check(&run, l05, blocks_tested, NULL);
-    cr_expect_str_eq(run.r.failed, "full blocks really full", "%s", run.report);
+    cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
     cr_expect_not_null(strstr(run.report, "narrated FULL, but pixel"), "%s", run.report);
+    run_free(&run);
+    claim = CLAIM_CORNERS;
+    check(&run, l05, blocks_tested, NULL);
+    cr_expect(run.ok, "%s", run.report);
     run_free(&run);
     /* lesson 04 narrates no blocks: it claims nothing, and passes */
     check(&run, l05, lesson_nn("04")->variants[0].rasterize, NULL);
@@ -640,62 +712,6 @@ static int shell(const char *cmd, char **log)
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
 }
 
-/* Mistakes the "Write it yourself" sections of the lesson texts name, each
- * made in the lesson's worked answer (find -> replace), the check that must
- * fail first and a phrase of its report. */
-struct mutant {
-    const char *lesson, *what, *find, *replace, *check, *says;
-};
-static const struct mutant mutants[] = {
-    { "01-scanline", "span to X_right", "int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
-      "int64_t x1 = right->x < t->maxx ? right->x : t->maxx;", "single triangle", "an extra pixel" },
-    { "01-scanline", "no prestep across", "c[i] = left->c[i] + g->dc[i] * across;",
-      "c[i] = left->c[i] + 0 * across;", "colour and depth (linear)", "expected colour" },
-    { "01-scanline", "no clipping", "int64_t x0 = left->x > t->minx ? left->x : t->minx;\n"
-      "    int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;",
-      "int64_t x0 = left->x;\n    int64_t x1 = right->x - 1;", "watertight meshes", "outside the" },
-    { "03-edge-stepping", "step by I", "F[k] += e->I[k] * SUBPIXEL_ONE;", "F[k] += e->I[k];",
-      "single triangle", "the exact edge values at its centre" },
-    { "03-edge-stepping", "no step down", "F[k] += e->J[k] * SUBPIXEL_ONE;", "(void)F;",
-      "single triangle", "an extra pixel" },
-    { "04-simd-perspective", "affine", "C[LANE_W] * QC) * depth;", "C[LANE_W] * QC) * 1.0f;",
-      "colour and depth (perspective)", "expected colour" },
-    { "04-simd-perspective", "depth not a reciprocal", "return 1.0f / C[LANE_INV_Z];",
-      "return C[LANE_INV_Z];", "colour and depth (perspective)", "expected colour" },
-    { "05-block-classification", "corner of the next block", "edge_at(e, k, x1, y0) >= 0",
-      "edge_at(e, k, x1 + 1, y0) >= 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
-    { "05-block-classification", "corners tested with > 0", "edge_at(e, k, x0, y0) >= 0",
-      "edge_at(e, k, x0, y0) > 0", "full blocks really full", "is covered in full, but was not narrated FULL" },
-    { "05-block-classification", "|| for full", "mask[0] == 0xF && mask[1] == 0xF && mask[2] == 0xF",
-      "(mask[0] == 0xF || mask[1] == 0xF || mask[2] == 0xF)", "single triangle", "classified FULL" },
-    { "06-clipping", "t from the other end", "double t = (pl->at - p0->pos[2]) / (p1->pos[2] - p0->pos[2]);",
-      "double t = (pl->at - p1->pos[2]) / (p0->pos[2] - p1->pos[2]);", "one vertex behind near", "expected depth" },
-    { "06-clipping", "d not set to the plane", "    n.pos[2] = pl->at;\n", "", "one vertex behind near",
-      "behind the plane" },
-    { "06-clipping", "own walking order", "const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;",
-      "const struct pvert *p0 = a, *p1 = b;", "shared edges, clipped", "the new vertex depends on the walk" },
-    { "06-clipping", "a new vertex only leaving", "if (ina != inb && in_end->pos[2] != pl->at)",
-      "if (ina && !inb && in_end->pos[2] != pl->at)", "one vertex behind near", "a missing pixel" },
-    { "07-tiles", "the wrong corner", "if (reject_corner(e, k, r) < 0)", "if (accept_corner(e, k, r) < 0)",
-      "single triangle", "classified EMPTY" },
-    { "07-tiles", "accepted at the reject corner", "full = full && accept_corner(e, k, r) >= 0;",
-      "full = full && reject_corner(e, k, r) >= 0;", "single triangle", "classified FULL" },
-    { "07-tiles", "the corner picked by dx alone", "e->dx[k] > 0 ? r.x1 : r.x0, e->dy[k] > 0 ? r.y1 : r.y0",
-      "e->dx[k] > 0 ? r.x1 : r.x0, r.y1", "single triangle", "a missing pixel" },
-    { "07-tiles", "corner of the next tile", "e->dx[k] < 0 ? r.x1 : r.x0, e->dy[k] < 0 ? r.y1 : r.y0",
-      "e->dx[k] < 0 ? r.x1 + 1 : r.x0, e->dy[k] < 0 ? r.y1 + 1 : r.y0", "tiles and blocks",
-      "is covered in full, but was not narrated FULL" },
-    { "07-tiles", "accept corner tested with > 0", "full = full && accept_corner(e, k, r) >= 0;",
-      "full = full && accept_corner(e, k, r) > 0;", "tiles and blocks",
-      "is covered in full, but was not narrated FULL" },
-    { "07-tiles", "reject corner tested with <= 0", "if (reject_corner(e, k, r) < 0)",
-      "if (reject_corner(e, k, r) <= 0)", "watertight meshes", "classified EMPTY" },
-    { "08-multisampling", "no bias", "+ t->K[k] + t->bias[k];", "+ t->K[k];", "fill-rule ties",
-      "a sample too many" },
-    { "08-multisampling", "offsets from the corner", "pt.dx[s] = sp->x[s] - SUBPIXEL_HALF;",
-      "pt.dx[s] = sp->x[s];", "single triangle", "covered samples in all" },
-};
-
 /* What a student does after cloning: make check on the answer (passes,
  * short report), on the untouched skeleton (fails within 30 s, with a
  * counterexample and the command to open it), and the program that command
@@ -731,35 +747,15 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --scene %s --step %llu --figure f.png && test -s f.png",
              dir, scene, step);
     cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+    /* the counterexample lies in a folder of the checked file's own */
+    cr_expect_not_null(strstr(scene, "/lessons-02-barycentric-exercise/02-"), "%s", scene);
+    /* --help names the exercise's options beside the lesson program's */
+    snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-02 --help", dir);
+    cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+    cr_expect(strstr(log, "--file NAME") && strstr(log, "--check ") && strstr(log, "--check-scene FILE")
+              && strstr(log, "--out DIR") && strstr(log, "--scene FILE"), "%s", log);
 
-    /* the mistakes the lesson texts name, made in the worked answers */
-    for (size_t i = 0; i < sizeof mutants / sizeof mutants[0]; i++) {
-        const struct mutant *m = &mutants[i];
-        char path[512], *src;
-        snprintf(path, sizeof path, "%s/t/lessons/%s/answer.c", dir, m->lesson);
-        FILE *f = fopen(path, "rb");
-        cr_assert_not_null(f, "%s", path);
-        static char text[1 << 16];
-        size_t n = fread(text, 1, sizeof text - 1, f);
-        text[n] = '\0';
-        fclose(f);
-        cr_assert_not_null(src = strstr(text, m->find), "%s: no \"%s\" in answer.c", m->lesson, m->find);
-        snprintf(path, sizeof path, "%s/t/mistake.c", dir);
-        f = fopen(path, "wb");
-        cr_assert_not_null(f);
-        fwrite(text, 1, (size_t)(src - text), f);
-        fputs(m->replace, f);
-        fputs(src + strlen(m->find), f);
-        fclose(f);
-        snprintf(cmd, sizeof cmd, "cd %s/t && make -s check LESSON=%.2s FILE=mistake.c", dir, m->lesson);
-        st = shell(cmd, &log);
-        char want[96];
-        snprintf(want, sizeof want, " %s ", m->check);
-        const char *at = strstr(log, want);
-        cr_expect(st != 0 && at && (strstr(at, "FAILED") == at + strlen(want) + strspn(at + strlen(want), " ")),
-                  "%s, %s: expected the check \"%s\" to fail first:\n%s", m->lesson, m->what, m->check, log);
-        cr_expect_not_null(strstr(log, m->says), "%s, %s: no \"%s\" in\n%s", m->lesson, m->what, m->says, log);
-    }
+    /* the mistakes the lesson texts name: tests/mutations/, in-process (every_mistake_...) */
 
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     shell(cmd, &log);
@@ -830,7 +826,7 @@ Test(exercise, the_common_mistakes_fail_as_the_texts_say)
         { M_INCLUSIVE, "02", "fill-rule ties", "leaves it to the triangle on the other side" },
         { M_BOTTOM_RIGHT, "02", "fill-rule ties", "a missing pixel" },
         { M_WEIGHTS, "02", "colour and depth (linear)", "the exact weights of A, B, C" },
-        { M_UNCLIPPED, "01", "watertight meshes", "outside the" },
+        { M_UNCLIPPED, "01", "fill-rule ties", "outside the" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         mistake = cases[i].m;
@@ -906,4 +902,138 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
     cr_expect(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0019f), "0.095 %% of z");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 2.0021f), "0.105 %% of z");
     cr_expect_not(pixel_close(0xff102030u, 2.0f, 0xff102030u, 1.9979f), "0.105 %% nearer");
+}
+
+/* --- the mutation suite ------------------------------------------------------------ */
+
+/* Every classic mistake of tests/mutations/ (a patch to a worked answer,
+ * compiled under its own name: build/mutations.c) fails, and the check
+ * that fails first is the one its patch names: at least 8 per lesson.
+ *
+ * A mistake of your own: copy lessons/NN-name/answer.c, make the mistake in
+ * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch,
+ * under a first line that says the mistake and a line "check: NAME" naming
+ * the check that must fail first on it (make check on the copy says which). */
+Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
+{
+    int n = 0, caught = 0, per_lesson[10] = { 0 };
+    for (const struct exercise_mutation *m = all_mutations; m->lesson; m++, n++) {
+        const struct lesson *l = lesson_nn(m->lesson);
+        cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
+        struct run run;
+        use_clip = m->clip;
+        check(&run, l, m->fn, NULL);
+        use_clip = NULL;
+        bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
+        cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,
+                  m->check, run.ok ? "all passed" : run.r.failed, run.report);
+        caught += ok;
+        per_lesson[m->lesson[1] - '0'] += ok;
+        run_free(&run);
+    }
+    fprintf(stderr, "mistakes caught %d of %d\n", caught, n);
+    cr_expect_eq(caught, n, "mistakes caught %d of %d", caught, n);
+    for (int i = 0; all_exercises[i].lesson; i++) {
+        int k = all_exercises[i].lesson[1] - '0';
+        cr_expect_geq(per_lesson[k], 8, "lesson %s: %d mistakes caught, fewer than 8", all_exercises[i].lesson,
+                      per_lesson[k]);
+    }
+}
+
+/* A wrong colour is marked by the diff at the very step that writes it,
+ * the triangle unfinished: the printed command opens on a marked pixel. */
+Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
+{
+    const struct exercise_mutation *m = mutation("02-weights-rotated");
+    const struct lesson *l = lesson_nn("02");
+    struct run run;
+    check(&run, l, m->fn, NULL);
+    cr_assert_str_eq(run.r.failed, "colour and depth (linear)", "%s", run.report);
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
+    cr_expect_eq(ex.last.x, run.r.x);
+    cr_expect_eq(ex.last.y, run.r.y);
+    cr_expect_lt(ex.step, ex.replay.total, "the triangle is not finished yet");
+    cr_assert_not_null(ex.diff);
+    cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
+                 "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
+    cr_expect_gt(ex.wrong_colour, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}
+
+/* Lesson 06: a clipper that leaves nothing of a triangle. The report sends
+ * the student to no empty step, and the explorer around the same clipper
+ * (as make exercise and --figure run it) marks the pixels it misses. */
+Test(exercise, a_clipper_that_draws_nothing_opens_on_the_missing_pixels)
+{
+    const struct exercise_mutation *m = mutation("06-outside-kept");
+    cr_assert_not_null(m->clip, "06-outside-kept has no clipper");
+    const struct lesson *l06 = lesson_nn("06");
+    struct run run;
+    use_clip = m->clip;
+    check(&run, l06, m->fn, NULL);
+    use_clip = NULL;
+    cr_assert_not(run.ok);
+    cr_expect_eq(run.r.step, 0, "%s", run.report);
+    cr_expect_null(strstr(run.report, "STEP="), "a command that opens an empty step:\n%s", run.report);
+    cr_expect_not_null(strstr(run.report, "SCENE="), "%s", run.report);
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l06, m->fn, m->clip, &run, 0);
+    cr_expect_eq(ex.replay.total, 0, "the student's clipper made screen triangles");
+    cr_expect_gt(ex.missing, 0, "the diff marks nothing");
+    cr_expect_eq(ex.extra, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}
+
+/* --- the skeleton and the answer, one source ------------------------------------- */
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = NULL;
+    size_t cap = 0, n = 0, got;
+    do {
+        if (n + 4096 > cap && !(text = realloc(text, cap = 2 * cap + 4096)))
+            break;
+        n += got = fread(text + n, 1, cap - n, f);
+    } while (got > 0);
+    fclose(f);
+    *len = n;
+    return text;
+}
+
+/* Every committed skeleton is what the build makes from the answer beside
+ * it (src/exercise/skeleton.awk, into build/skeletons/): the answer is the
+ * one source, and the skeleton never drifts from it. */
+Test(exercise, every_committed_skeleton_is_made_from_its_answer)
+{
+    const char *build = getenv("TRISTEP_BUILD") ? getenv("TRISTEP_BUILD") : "build";
+    int n = 0;
+    for (int i = 0; all_lessons[i]; i++) {
+        char committed[512], made[512];
+        snprintf(committed, sizeof committed, "lessons/%s/exercise.c", all_lessons[i]->id);
+        snprintf(made, sizeof made, "%s/skeletons/%s/exercise.c", build, all_lessons[i]->id);
+        size_t a, b;
+        char *x = slurp(committed, &a);
+        if (!x)
+            continue;   /* a lesson without an exercise */
+        char *y = slurp(made, &b);
+        cr_expect_not_null(y, "%s: not made by the build", made);
+        cr_expect(y && a == b && memcmp(x, y, a) == 0,
+                  "%s differs from %s, made from the answer beside it: run make skeletons", committed, made);
+        free(x);
+        free(y);
+        n++;
+    }
+    cr_expect_geq(n, 8);
 }

@@ -2,6 +2,11 @@
  * README.md explains it; `make check LESSON=01
  * FILE=lessons/01-scanline/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 01: write lesson 01's span walk yourself.
  *
  * Everything around the span is here, as scanline.c has it: the vertices
@@ -71,6 +76,9 @@ struct gradient {
 static void span(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
                  struct trace *tr, int y, const struct edge *left, const struct edge *right, const struct gradient *g)
 {
+#if SKELETON
+    (void)t, (void)p, (void)fb, (void)tr, (void)y, (void)left, (void)right, (void)g;
+#else
     int64_t x0 = left->x > t->minx ? left->x : t->minx;
     int64_t x1 = right->x - 1 < t->maxx ? right->x - 1 : t->maxx;
     double across = (double)left->err / (double)left->den + (double)(x0 - left->x);
@@ -83,6 +91,7 @@ static void span(const struct tri_setup *t, const struct raster_params *p, struc
         for (int i = 0; i < ATTR_COUNT; i++)
             c[i] += g->dc[i];
     }
+#endif
 }
 
 /* --- the walk, as scanline.c writes it ------------------------------------------ */

@@ -2,6 +2,11 @@
  * written as README.md explains them. `make check LESSON=02
  * FILE=lessons/02-barycentric/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * (What follows is the skeleton's own comment.)
  *
  * Exercise 02: write lesson 02's rasterizer yourself.
@@ -53,10 +58,15 @@ enum { L_SETUP, L_BOX, L_LOOP, L_EDGES, L_TEST, L_BARY, L_COLOR, L_DRAW };
  *   - Multiply in int64_t: the products need up to 47 bits. */
 static void edge_values(const struct tri_setup *t, int x, int y, int64_t F[3])
 {
+#if SKELETON
+    (void)t, (void)x, (void)y;
+    F[0] = F[1] = F[2] = 0;
+#else
     int64_t X = (int64_t)x * SUBPIXEL_ONE + SUBPIXEL_HALF;    /* the centre, 1/256 px */
     int64_t Y = (int64_t)y * SUBPIXEL_ONE + SUBPIXEL_HALF;
     for (int k = 0; k < 3; k++)
         F[k] = t->I[k] * X + t->J[k] * Y + t->K[k];
+#endif
 }
 
 /* TODO 2, README section 4: is the centre covered? Every F > 0 is inside;
@@ -66,12 +76,17 @@ static void edge_values(const struct tri_setup *t, int x, int y, int64_t F[3])
  * shared edges twice, F > 0 leaves cracks between triangles. */
 static bool inside(const struct tri_setup *t, const int64_t F[3])
 {
+#if SKELETON
+    (void)t, (void)F;
+    return false;
+#else
     for (int k = 0; k < 3; k++) {
         bool top = t->I[k] == 0 && t->J[k] > 0, left = t->I[k] > 0;
         if (F[k] < 0 || (F[k] == 0 && !top && !left))
             return false;
     }
     return true;
+#endif
 }
 
 /* TODO 3, README section 2 (formula 5): the barycentric weights of A, B and
@@ -81,10 +96,15 @@ static bool inside(const struct tri_setup *t, const int64_t F[3])
 static void weights(const struct tri_setup *t, const int64_t F[3], double *alpha, double *beta,
                     double *gamma)
 {
+#if SKELETON
+    (void)t, (void)F;
+    *alpha = *beta = *gamma = 0;
+#else
     double inv = 1.0 / (double)t->area2;
     *alpha = (double)F[1] * inv;    /* F_bc: the edge opposite A */
     *beta = (double)F[2] * inv;     /* F_ca, opposite B */
     *gamma = (double)F[0] * inv;    /* F_ab, opposite C */
+#endif
 }
 
 /* The loop of README section 3, ready: it calls your three functions. */

@@ -2,6 +2,11 @@
  * README.md explains them; `make check LESSON=03
  * FILE=lessons/03-edge-stepping/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 03: write lesson 03's stepping yourself.
  *
  * Lesson 02's loop, with the three edge values obtained by additions: one
@@ -44,10 +49,15 @@ struct edges {
  * triangle's edge values are here. */
 static void first_centre(const struct tri_setup *t, const struct edges *e, int64_t F[3])
 {
+#if SKELETON
+    (void)t, (void)e;
+    F[0] = F[1] = F[2] = 0;
+#else
     int64_t X = (int64_t)t->minx * SUBPIXEL_ONE + SUBPIXEL_HALF;
     int64_t Y = (int64_t)t->miny * SUBPIXEL_ONE + SUBPIXEL_HALF;
     for (int k = 0; k < 3; k++)
         F[k] = e->I[k] * X + e->J[k] * Y + e->K[k];
+#endif
 }
 
 /* TODO 2, formula (9): one pixel to the right. The next centre is 256
@@ -55,18 +65,26 @@ static void first_centre(const struct tri_setup *t, const struct edges *e, int64
  * do: COUNT(tr, 3, EDGE_STEP_COST) for three steps of one addition. */
 static void step_right(const struct edges *e, int64_t F[3], struct trace *tr)
 {
+#if SKELETON
+    (void)e, (void)F, (void)tr;
+#else
     for (int k = 0; k < 3; k++)
         F[k] += e->I[k] * SUBPIXEL_ONE;     /* a shift: the compiler adds I << 8 */
     COUNT(tr, 3, EDGE_STEP_COST);
+#endif
 }
 
 /* TODO 3, formula (10): one row down, from the first pixel of this row to
  * the first pixel of the next: F0k grows by 256 * J0k. */
 static void step_down(const struct edges *e, int64_t F[3], struct trace *tr)
 {
+#if SKELETON
+    (void)e, (void)F, (void)tr;
+#else
     for (int k = 0; k < 3; k++)
         F[k] += e->J[k] * SUBPIXEL_ONE;
     COUNT(tr, 3, EDGE_STEP_COST);
+#endif
 }
 
 /* --- colour and depth, stepped beside the edges (README section 4) -------------- */

@@ -2,6 +2,11 @@
  * README.md explains them; `make check LESSON=04
  * FILE=lessons/04-simd-perspective/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 04: write lesson 04's vector step and perspective divide.
  *
  * The register (1/z, w, u, v) of README "The register, lane by lane": its
@@ -36,8 +41,12 @@ enum { LANE_INV_Z, LANE_W, LANE_U, LANE_V };
  * function does Cy += J at the end of a row. */
 static void vector_step(float C[4], const float D[4])
 {
+#if SKELETON
+    (void)C, (void)D;
+#else
     for (int lane = 0; lane < 4; lane++)
         C[lane] += D[lane];
+#endif
 }
 
 /* TODO 2, formula (23) and "Why screen-space weights are not enough": the
@@ -52,12 +61,22 @@ static void vector_step(float C[4], const float D[4])
  * triangle. */
 static float depth_of(const float C[4])
 {
+#if SKELETON
+    (void)C;
+    return 1.0f;
+#else
     return 1.0f / C[LANE_INV_Z];
+#endif
 }
 
 static float attribute(const float C[4], float depth, float QA, float QB, float QC)
 {
+#if SKELETON
+    (void)C, (void)depth, (void)QA, (void)QB, (void)QC;
+    return 0.0f;
+#else
     return (C[LANE_U] * QA + C[LANE_V] * QB + C[LANE_W] * QC) * depth;
+#endif
 }
 
 /* --- the set-up and the loop, as the lesson has them ----------------------------- */

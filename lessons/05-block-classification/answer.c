@@ -2,6 +2,11 @@
  * README.md explains them; `make check LESSON=05
  * FILE=lessons/05-block-classification/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 05: write lesson 05's corner masks and block classification.
  *
  * The block loop of README "The three cases" is here: the q x q grid
@@ -15,9 +20,9 @@
  *     make exercise LESSON=05        the explorer on this file: the blocks
  *                                    view shows your classes
  *     make check LESSON=05           the checks; the last one is the
- *                                    lesson's own: every block you call full
- *                                    is covered in full, and every block
- *                                    covered in full is called full
+ *                                    lesson's own, "corner classes": every
+ *                                    block gets exactly the class its four
+ *                                    corners give it, EMPTY, FULL, PARTIAL
  */
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
@@ -51,9 +56,14 @@ static int64_t edge_at(const struct edges *e, int k, int x, int y)
  * (x0 + q, y0) is the next block's first pixel, not this block's corner. */
 static void corner_masks(const struct edges *e, int x0, int y0, int x1, int y1, unsigned mask[3])
 {
+#if SKELETON
+    (void)e, (void)x0, (void)y0, (void)x1, (void)y1;
+    mask[0] = mask[1] = mask[2] = 0;
+#else
     for (int k = 0; k < 3; k++)
         mask[k] = (unsigned)(edge_at(e, k, x0, y0) >= 0) << 3 | (unsigned)(edge_at(e, k, x1, y0) >= 0) << 2
                 | (unsigned)(edge_at(e, k, x0, y1) >= 0) << 1 | (unsigned)(edge_at(e, k, x1, y1) >= 0);
+#endif
 }
 
 /* TODO 2, README "The three cases" and "Why the test must be per edge":
@@ -63,11 +73,16 @@ static void corner_masks(const struct edges *e, int x0, int y0, int x1, int y1, 
  * masks 0xF: the seed's `||` there is a slip); partial otherwise. */
 static enum block_class classify(const unsigned mask[3])
 {
+#if SKELETON
+    (void)mask;
+    return BLOCK_EMPTY;
+#else
     if (mask[0] == 0 || mask[1] == 0 || mask[2] == 0)
         return BLOCK_EMPTY;
     if (mask[0] == 0xF && mask[1] == 0xF && mask[2] == 0xF)
         return BLOCK_FULL;
     return BLOCK_PARTIAL;
+#endif
 }
 
 /* --- shading and the block loop, as the lesson has them ------------------------- */

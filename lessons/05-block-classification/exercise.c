@@ -11,9 +11,9 @@
  *     make exercise LESSON=05        the explorer on this file: the blocks
  *                                    view shows your classes
  *     make check LESSON=05           the checks; the last one is the
- *                                    lesson's own: every block you call full
- *                                    is covered in full, and every block
- *                                    covered in full is called full
+ *                                    lesson's own, "corner classes": every
+ *                                    block gets exactly the class its four
+ *                                    corners give it, EMPTY, FULL, PARTIAL
  */
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */

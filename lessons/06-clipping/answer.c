@@ -2,6 +2,11 @@
  * README.md explains them; `make check LESSON=06
  * FILE=lessons/06-clipping/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 06: write lesson 06's clipper, Sutherland-Hodgman against one
  * plane in view space.
  *
@@ -78,11 +83,16 @@ static struct pvert lerp(const struct pvert *p0, const struct pvert *p1, double 
  * and P's d set to the plane exactly (pos[2] = pl->at). */
 static struct pvert crossing(const struct plane *pl, const struct pvert *a, const struct pvert *b)
 {
+#if SKELETON
+    (void)pl, (void)b, (void)before, (void)lerp;
+    return *a;
+#else
     const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;
     double t = (pl->at - p0->pos[2]) / (p1->pos[2] - p0->pos[2]);
     struct pvert n = lerp(p0, p1, t);
     n.pos[2] = pl->at;
     return n;
+#endif
 }
 
 /* TODO 2, README "Clipping against near and far": Sutherland-Hodgman
@@ -97,6 +107,10 @@ static struct pvert crossing(const struct plane *pl, const struct pvert *a, cons
  * out->n starts at 0; a triangle comes out with 0, 3 or 4 vertices. */
 void exercise_clip(struct poly *out, const struct poly *in, const struct plane *pl)
 {
+#if SKELETON
+    (void)crossing, (void)inside, (void)pl;
+    *out = *in;         /* clips nothing */
+#else
     out->n = 0;
     for (int i = 0; i < in->n; i++) {
         const struct pvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
@@ -107,6 +121,7 @@ void exercise_clip(struct poly *out, const struct poly *in, const struct plane *
         if (ina != inb && in_end->pos[2] != pl->at)
             out->v[out->n++] = crossing(pl, a, b);
     }
+#endif
 }
 
 /* --- given: the rasterizer, lesson 05's, its steps on the pseudo-code's last line ---- */

@@ -2,6 +2,11 @@
  * README.md explains them; `make check LESSON=07
  * FILE=lessons/07-tiles/answer.c` passes every check.
  *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
  * Exercise 07: write lesson 07's trivial-reject and trivial-accept corners,
  * and the class of a tile or block they give.
  *
@@ -21,10 +26,10 @@
  *                                    discs the corners the lesson picks
  *     make check LESSON=07           the checks; "tiles and blocks" draws
  *                                    scenes over many tiles, and the last
- *                                    is the lesson's own: every tile and
- *                                    block you call FULL is covered in
- *                                    full, and every one covered in full
- *                                    is called FULL
+ *                                    is the lesson's own, "corner classes":
+ *                                    every tile and block gets exactly the
+ *                                    class its corners give it, EMPTY,
+ *                                    FULL or PARTIAL
  *
  * One triangle at a time, not the bins and threads of the whole scene: the
  * check compares your picture with the exact rule after every triangle,
@@ -75,7 +80,12 @@ struct rect {
  * is < 0, every pixel of r is outside edge k. */
 static int64_t reject_corner(const struct edges *e, int k, struct rect r)
 {
+#if SKELETON
+    (void)e, (void)k, (void)r;
+    return 0;
+#else
     return edge_at(e, k, e->dx[k] > 0 ? r.x1 : r.x0, e->dy[k] > 0 ? r.y1 : r.y0);
+#endif
 }
 
 /* TODO 2, the same section: the trivial-accept corner, the opposite one,
@@ -83,7 +93,12 @@ static int64_t reject_corner(const struct edges *e, int k, struct rect r)
  * inside edge k. */
 static int64_t accept_corner(const struct edges *e, int k, struct rect r)
 {
+#if SKELETON
+    (void)e, (void)k, (void)r;
+    return 0;
+#else
     return edge_at(e, k, e->dx[k] < 0 ? r.x1 : r.x0, e->dy[k] < 0 ? r.y1 : r.y0);
+#endif
 }
 
 /* TODO 3, README "2. Binning: one corner per edge" and "4. Hierarchical
@@ -94,6 +109,11 @@ static int64_t accept_corner(const struct edges *e, int k, struct rect r)
  * corner is >= 0; partial otherwise. */
 static enum block_class classify(const struct edges *e, struct rect r)
 {
+#if SKELETON
+    (void)e, (void)r;
+    (void)reject_corner, (void)accept_corner;
+    return BLOCK_EMPTY;
+#else
     bool full = true;
     for (int k = 0; k < 3; k++) {
         if (reject_corner(e, k, r) < 0)
@@ -101,6 +121,7 @@ static enum block_class classify(const struct edges *e, struct rect r)
         full = full && accept_corner(e, k, r) >= 0;
     }
     return full ? BLOCK_FULL : BLOCK_PARTIAL;
+#endif
 }
 
 /* --- the descent, the narration and the shading, as the lesson has them ------------ */

@@ -17,10 +17,10 @@
  *                                    discs the corners the lesson picks
  *     make check LESSON=07           the checks; "tiles and blocks" draws
  *                                    scenes over many tiles, and the last
- *                                    is the lesson's own: every tile and
- *                                    block you call FULL is covered in
- *                                    full, and every one covered in full
- *                                    is called FULL
+ *                                    is the lesson's own, "corner classes":
+ *                                    every tile and block gets exactly the
+ *                                    class its corners give it, EMPTY,
+ *                                    FULL or PARTIAL
  *
  * One triangle at a time, not the bins and threads of the whole scene: the
  * check compares your picture with the exact rule after every triangle,

@@ -1,6 +1,31 @@
 /* Answer to exercise 08: the skeleton exercise.c with its TODOs written as
  * README.md explains them; `make check LESSON=08
  * FILE=lessons/08-multisampling/answer.c` passes every check.
+ *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
+ * Exercise 08: write lesson 08's per-sample coverage (MSAA).
+ *
+ * The pixel loop of the README is here: the sample pattern
+ * as offsets from the pixel centre, the box of pixels a sample of which may
+ * be covered, the shading (one colour per pixel, at its centre, depth per
+ * sample), the depth test of each sample and the resolve. Yours: each
+ * sample's edge values as the pixel's plus a constant offset, the top-left
+ * rule at every sample, the coverage mask, and writing the covered samples.
+ * As given, the file compiles and runs, every mask is 0, and nothing is
+ * drawn.
+ *
+ *     make exercise LESSON=08 SAMPLES=4   the explorer on this file, at 4
+ *                                         samples per pixel
+ *     make check LESSON=08                the checks, each scene at 4 and
+ *                                         8 samples, then at 1 (a random
+ *                                         one at one of them): every
+ *                                         sample as the exact rule decides
+ *                                         it, every pixel inside a mesh
+ *                                         holding exactly N
  */
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
@@ -27,7 +52,7 @@ static int64_t edge_at(const struct edges *e, int k, int x, int y)
     return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
 }
 
-/* README section 2, "A sample is a pixel centre somewhere else": the
+/* TODO 1 and 2, README section 2, "A sample is a pixel centre somewhere else": the
  * offsets O_sk = I0k dx_s + J0k dy_s, the same in every pixel, once per
  * triangle; and the top-left rule at every sample: the bias folded into
  * f0 as lesson 05 does, so a sample on a shared edge belongs to one side. */
@@ -36,21 +61,37 @@ static void edges_setup(struct edges *e, const struct tri_setup *t, const struct
     for (int k = 0; k < 3; k++) {
         e->dx[k] = t->I[k] * SUBPIXEL_ONE;
         e->dy[k] = t->J[k] * SUBPIXEL_ONE;
+#if SKELETON
+        /* TODO 1: fold the fill rule's bias t->bias[k] into f0 */
+        e->f0[k] = t->I[k] * SUBPIXEL_HALF + t->J[k] * SUBPIXEL_HALF + t->K[k];
+        /* TODO 2: sample s's offset on edge k, from pt->dx[s] and pt->dy[s] */
+#else
         e->f0[k] = t->I[k] * SUBPIXEL_HALF + t->J[k] * SUBPIXEL_HALF + t->K[k] + t->bias[k];
+#endif
         for (int s = 0; s < pt->n; s++)
+#if SKELETON
+            e->off[s][k] = 0;
+#else
             e->off[s][k] = t->I[k] * pt->dx[s] + t->J[k] * pt->dy[s];
+#endif
     }
 }
 
-/* README section 2, the coverage mask: bit s set when F0k + bias_k + O_sk >= 0 for
+/* TODO 3, README section 2, the coverage mask: bit s set when F0k + bias_k + O_sk >= 0 for
  * all three edges. */
 static unsigned coverage_mask(const struct edges *e, const struct pattern *pt, const int64_t c[3])
 {
+#if SKELETON
+    /* TODO 3: one bit per sample, from the centre's values c[] plus e->off[s] */
+    (void)e, (void)pt, (void)c;
+    return 0;
+#else
     unsigned mask = 0;
     for (int s = 0; s < pt->n; s++)
         if (c[0] + e->off[s][0] >= 0 && c[1] + e->off[s][1] >= 0 && c[2] + e->off[s][2] >= 0)
             mask |= 1u << s;
     return mask;
+#endif
 }
 
 /* --- shading, the samples and the resolve, as the lesson has them --------------- */
@@ -113,7 +154,7 @@ static void resolve(struct target *fb, size_t i, int n)
     fb->depth[i] = nearest;
 }
 
-/* README section 4, "Depth per sample, colour once": each sample of the mask gets its
+/* TODO 4, README section 4, "Depth per sample, colour once": each sample of the mask gets its
  * own depth (1/z at the sample) and, if nearer than what it holds, the
  * pixel's colour; the pixel counts its covered samples. */
 static void write_samples(const struct tri_setup *t, const struct edges *e, const struct pattern *pt,
@@ -122,6 +163,14 @@ static void write_samples(const struct tri_setup *t, const struct edges *e, cons
     size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
     uint32_t *c = sample_colour(fb, i, pt->n);
     float *z = sample_depth(fb, i, pt->n);
+#if SKELETON
+    /* TODO 4: for each sample s of the mask, its edge values
+     *     F[k] = edge_at(e, k, x, y) - t->bias[k] + e->off[s][k],
+     * its depth 1.0 / inv_z(t, F, w) as a float, and, when nearer than
+     * z[s], z[s] and c[s] = colour; then fb->count[i] plus the number of
+     * covered samples (saturating at 255; fb->count may be NULL). */
+    (void)t, (void)e, (void)x, (void)y, (void)mask, (void)colour, (void)c, (void)z, (void)i;
+#else
     for (int s = 0; s < pt->n; s++) {
         if (!(mask >> s & 1))
             continue;
@@ -139,6 +188,7 @@ static void write_samples(const struct tri_setup *t, const struct edges *e, cons
         unsigned count = fb->count[i] + (unsigned)__builtin_popcount(mask);
         fb->count[i] = (uint8_t)(count > 255 ? 255 : count);
     }
+#endif
 }
 
 /* --- the pixel loop --------------------------------------------------------------- */

@@ -12,7 +12,8 @@
  *     make exercise LESSON=08 SAMPLES=4   the explorer on this file, at 4
  *                                         samples per pixel
  *     make check LESSON=08                the checks, each scene at 4 and
- *                                         8 samples, then at 1: every
+ *                                         8 samples, then at 1 (a random
+ *                                         one at one of them): every
  *                                         sample as the exact rule decides
  *                                         it, every pixel inside a mesh
  *                                         holding exactly N

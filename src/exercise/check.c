@@ -12,8 +12,9 @@
  *   colour     colour and depth pixel_close() to the exact ones (raster.h),
  *              on every pixel the exact rule covers;
  *   property   what the lesson is about: no multiplication between two
- *              pixels of a row (lesson 03), every block narrated full
- *              really full and every full block found (lessons 05, 07).
+ *              pixels of a row (lesson 03); every tile and block narrated
+ *              with exactly the class its four corner pixel centres give
+ *              it, EMPTY, FULL or PARTIAL (lessons 05, 07).
  *
  * Lesson 07 adds a check of its own scenes, over many tiles (gen_tiles),
  * that compares all three at once.
@@ -55,6 +56,37 @@ static void progress(const struct check_options *o, int n, int i, const char *na
     fflush(o->out);
 }
 
+/* A name of lower-case letters, digits and single dashes: "Fill-rule
+ * ties" -> "fill-rule-ties", "../mine/a.c" -> "mine-a". */
+static void slugify(char *slug, size_t n, const char *name)
+{
+    size_t k = 0;
+    for (const char *p = name; *p && k + 1 < n; p++) {
+        char c = *p >= 'A' && *p <= 'Z' ? (char)(*p - 'A' + 'a') : *p;
+        bool keep = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+        if (keep || (k > 0 && slug[k - 1] != '-'))
+            slug[k++] = keep ? c : '-';
+    }
+    while (k > 0 && slug[k - 1] == '-')
+        k--;
+    slug[k] = '\0';
+}
+
+/* Where the counterexamples of the checked file go, created: a folder of
+ * its own under out_dir, named after the file (its path without ".c"), so
+ * that checking another file never overwrites them. */
+static bool counterexample_dir(const struct check_options *o, char *dir, size_t n)
+{
+    char file[256], slug[200];
+    snprintf(file, sizeof file, "%s", o->file ? o->file : "exercise.c");
+    size_t len = strlen(file);
+    if (len > 2 && strcmp(file + len - 2, ".c") == 0)
+        file[len - 2] = '\0';
+    slugify(slug, sizeof slug, file);
+    snprintf(dir, n, "%s/%s", o->out_dir, slug[0] ? slug : "file");
+    return make_dirs(dir);
+}
+
 /* A failing scene: shrink it, write it, say everything. */
 static bool report_failure(struct checker *C, const char *name, struct scene *s, const char *what,
                            struct check_result *r)
@@ -76,20 +108,13 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     snprintf(r->failed, sizeof r->failed, "%s", name);
 
     char slug[64];
-    size_t k = 0;
-    for (const char *p = name; *p && k + 1 < sizeof slug; p++)
-        slug[k++] = (*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') ? *p : '-';
-    while (k > 0 && slug[k - 1] == '-')
-        k--;
-    slug[k] = '\0';
-    for (char *p = slug; (p = strstr(p, "--"));)
-        memmove(p, p + 1, strlen(p));
-    char nn[3] = { C->l->id[0], C->l->id[1], '\0' };
-    if (!make_dirs(o->out_dir)) {
-        fprintf(out, "  cannot create %s: %s\n", o->out_dir, strerror(errno));
+    slugify(slug, sizeof slug, name);
+    char dir[400];
+    if (!counterexample_dir(o, dir, sizeof dir)) {
+        fprintf(out, "  cannot create %s: %s\n", dir, strerror(errno));
         return false;
     }
-    snprintf(r->counterexample, sizeof r->counterexample, "%s/%s-%s.scene", o->out_dir, nn, slug);
+    snprintf(r->counterexample, sizeof r->counterexample, "%s/%.2s-%s.scene", dir, C->l->id, slug);
     char err[600];
     if (!write_counterexample(r->counterexample, s, name, C->l, o->file, &v, err, sizeof err)) {
         fprintf(out, "  %s\n", err);
@@ -103,10 +128,16 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     char samples[32] = "";
     if (C->p.samples > 1)
         snprintf(samples, sizeof samples, " SAMPLES=%d", C->p.samples);
-    fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
-            v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
-                                                                 : "first wrong pixel",
-            (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
+    if (r->step == 0)     /* nothing to step through: no STEP= that opens an empty step */
+        fprintf(out, "\n  your code %s, so the explorer has no step to show; opened, it marks\n"
+                "  the pixels the exact rule covers and your code does not (cyan: missing):\n      %s%s SCENE=%s\n",
+                v.world ? "made no screen triangle of it" : "narrated and wrote nothing for it",
+                o->open_cmd, samples, r->counterexample);
+    else
+        fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
+                v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
+                                                                     : "first wrong pixel",
+                (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
 
@@ -130,6 +161,14 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         if (k % 64 == 0)
             progress(C->o, n, i, ck->name, k, total);
         ck->gen(k, &s, what, sizeof what);
+        /* many random scenes of one triangle: each at one sample count in
+         * turn, not at every one (the hand-made scenes take them all) */
+        C->only_count = 0;
+        int ncounts = 0;
+        for (const int *c = C->l->exercise.samples; c && *c; c++)
+            ncounts++;
+        if (ck->gen == gen_random && ncounts > 1)
+            C->only_count = C->l->exercise.samples[k % ncounts];
         if (check_guard) {
             check_guard->check = i;
             check_guard->scene = k;
@@ -217,7 +256,7 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     if (l->exercise.no_pixel_mul)
         c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
     if (l->exercise.full_blocks)
-        c[P->n++] = (struct check){ "full blocks really full", CK_PROPERTY, gen_property, false };
+        c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false };
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
         c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };
         c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false };
@@ -266,6 +305,10 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     plan_free();
     target_free(&C.want);
     target_free(&C.got);
+    for (int i = 0; i < CHECK_SPARES; i++) {
+        target_free(&C.spare_want[i]);
+        target_free(&C.spare_got[i]);
+    }
     free(C.mask);
     return ok;
 }
@@ -370,9 +413,9 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
             }
         }
     }
-    if (make_dirs(o->out_dir)) {
-        char nn[3] = { l->id[0], l->id[1], '\0' };
-        snprintf(r->counterexample, sizeof r->counterexample, "%s/%s-%s.scene", o->out_dir, nn,
+    char dir[400];
+    if (counterexample_dir(o, dir, sizeof dir)) {
+        snprintf(r->counterexample, sizeof r->counterexample, "%s/%.2s-%s.scene", dir, l->id,
                  endless ? "endless" : "crash");
         struct verdict v = { .tri = 0 };
         char err[600];

@@ -10,6 +10,8 @@
 
 #include "exercise/exercise.h"
 
+/* Pictures of other sizes kept for the next scenes. */
+#define CHECK_SPARES 6
 /* Shrinking tries at most this many candidate scenes. */
 #define SHRINK_BUDGET 4000
 /* A scene that takes longer than this is an endless loop: no scene of the
@@ -31,7 +33,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_NOT_FULL, WRONG_BLOCK_MISSED, WRONG_MASK, WRONG_CLIP,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP,
 };
 
 struct verdict {
@@ -42,6 +44,8 @@ struct verdict {
     uint32_t want_c, got_c;     /* colours */
     float want_z, got_z;
     int bx, by, bx1, by1;       /* a block, for the block properties */
+    int want_class, got_class;  /* WRONG_BLOCK_CLASS: enum block_class, the corners' and the narrated */
+    int edge;                   /* ... an edge all four corners lie outside (want EMPTY), else -1 */
     uint64_t mul;               /* multiplications between two pixels */
     int samples;                /* samples per pixel it was drawn at (1: the pixel centre) */
     unsigned want_mask, got_mask;   /* WRONG_MASK: the samples holding a depth */
@@ -58,13 +62,19 @@ struct checker {
     struct raster_params p;
     enum check_kind kind;
     struct target want, got;
+    /* pictures of other sizes and sample counts, the most recent first,
+     * kept between scenes: lesson 08 draws each scene at 4, 8 and 1
+     * samples, and random scenes change size (no reallocation each time) */
+    struct target spare_want[CHECK_SPARES], spare_got[CHECK_SPARES];
     uint8_t *mask;              /* the exact coverage of the triangle being run */
     /* the property watch, fed by the narration */
     struct verdict *prop;
+    const struct tri_setup *t;  /* the triangle being drawn */
     bool in_row;
     int last_x, last_y;
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
     bool both_ways;             /* lesson 06: clip every polygon walked both ways */
+    int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };
@@ -86,6 +96,8 @@ void shrink(struct checker *C, struct scene *s);
 /* What the code's own narration said about the first wrong pixel. */
 struct trail {
     int x, y;
+    bool by_rect;               /* the block or tile that is exactly rect, not the one holding (x, y) */
+    int rect[4];
     bool written, tested, held;
     struct trace_event write, test, hold;
 };

@@ -9,8 +9,30 @@
 
 #include "front/front.h"    /* front_scene: the exact picture's triangles */
 
-static bool prepare(struct target *fb, const struct scene *s, int samples)
+static int samples_of(const struct target *fb)
 {
+    return fb->samples ? fb->samples->n : 1;
+}
+
+/* fb cleared for scene s at `samples` per pixel; a picture of another size
+ * or count is put aside in spare (the most recent first, the oldest
+ * dropped), and one that fits is taken from there. */
+static bool prepare(struct target *fb, struct target spare[CHECK_SPARES], const struct scene *s, int samples)
+{
+    if (!fb->color || fb->w != s->w || fb->h != s->h || samples_of(fb) != samples) {
+        int found = CHECK_SPARES - 1;
+        for (int k = CHECK_SPARES - 1; k >= 0; k--)
+            if (spare[k].color && spare[k].w == s->w && spare[k].h == s->h && samples_of(&spare[k]) == samples)
+                found = k;
+        struct target taken = spare[found];
+        if (!(taken.color && taken.w == s->w && taken.h == s->h && samples_of(&taken) == samples)) {
+            target_free(&taken);
+            taken = (struct target){ 0 };
+        }
+        memmove(&spare[1], &spare[0], sizeof spare[0] * (size_t)found);
+        spare[0] = *fb;
+        *fb = taken;
+    }
     if (fb->color && fb->w == s->w && fb->h == s->h) {
         fb->background = scene_background(s);
         target_clear(fb);
@@ -34,6 +56,28 @@ static bool covered(const struct checker *C, int x, int y)
 {
     return x >= 0 && y >= 0 && x < C->want.w && y < C->want.h
         && C->mask[(size_t)y * (size_t)C->want.w + (size_t)x];
+}
+
+/* The class the corner test gives the pixels x0..x1, y0..y1 (lessons 05
+ * and 07): EMPTY when the centres of its four corner pixels all lie outside
+ * one edge (that edge in *edge), FULL when they all lie inside every edge,
+ * PARTIAL otherwise; inside as the fill rule decides it. */
+static enum block_class corner_class(const struct tri_setup *t, int x0, int y0, int x1, int y1, int *edge)
+{
+    bool full = true;
+    for (int k = 0; k < 3; k++) {
+        int in = 0;
+        for (int c = 0; c < 4; c++) {
+            int x = c & 1 ? x1 : x0, y = c & 2 ? y1 : y0;
+            in += edge_inside(t, k, edge_value(t, k, x, y));
+        }
+        if (in == 0) {
+            *edge = k;
+            return BLOCK_EMPTY;
+        }
+        full = full && in == 4;
+    }
+    return full ? BLOCK_FULL : BLOCK_PARTIAL;
 }
 
 /* The narration, watched for the lesson's property. */
@@ -74,19 +118,20 @@ static void watch(void *ctx, const struct trace_event *ev)
             classified = ev->line == *line;
         if (!classified)
             break;
-        int missing_x = -1, missing_y = -1;
-        for (int y = ev->y; y <= ev->y1 && missing_x < 0; y++)
-            for (int x = ev->x; x <= ev->x1; x++)
-                if (!covered(C, x, y)) {
-                    missing_x = x, missing_y = y;
-                    break;
-                }
-        if (ev->klass == BLOCK_FULL && missing_x >= 0)
-            *v = (struct verdict){ .what = WRONG_BLOCK_NOT_FULL, .x = missing_x, .y = missing_y,
-                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
-        else if (ev->klass != BLOCK_FULL && missing_x < 0)
-            *v = (struct verdict){ .what = WRONG_BLOCK_MISSED, .x = ev->x, .y = ev->y,
-                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1 };
+        int edge = -1;
+        enum block_class want = corner_class(C->t, ev->x, ev->y, ev->x1, ev->y1, &edge);
+        if (ev->klass != want) {
+            *v = (struct verdict){ .what = WRONG_BLOCK_CLASS, .x = ev->x, .y = ev->y,
+                                   .bx = ev->x, .by = ev->y, .bx1 = ev->x1, .by1 = ev->y1,
+                                   .want_class = want, .got_class = ev->klass, .edge = edge };
+            /* the pixel that shows it: one not covered in a block called
+             * FULL, one covered in a block called EMPTY */
+            bool found = false;
+            for (int y = ev->y; y <= ev->y1 && !found; y++)
+                for (int x = ev->x; x <= ev->x1 && !found; x++)
+                    if (ev->klass == BLOCK_FULL ? !covered(C, x, y) : ev->klass == BLOCK_EMPTY && covered(C, x, y))
+                        v->x = x, v->y = y, found = true;
+        }
         break;
     }
     default:
@@ -132,7 +177,7 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
     int samples = C->p.samples > 1 ? C->p.samples : 1;
-    if (!prepare(&C->want, s, samples) || !prepare(&C->got, s, samples))
+    if (!prepare(&C->want, C->spare_want, s, samples) || !prepare(&C->got, C->spare_got, s, samples))
         return true;    /* out of memory: said by the caller */
     uint8_t *mask = realloc(C->mask, (size_t)s->w * (size_t)s->h);
     if (!mask)
@@ -152,6 +197,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         struct verdict prop = { .what = WRONG_NONE };
         struct trace tr = { .sink = property ? watch : NULL, .ctx = C };
         C->prop = &prop;
+        C->t = &t;
         C->in_row = false;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
@@ -219,7 +265,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         scene_free(&want);
         return true;
     }
-    bool ok = prepare(&C->want, s, 1) && prepare(&C->got, s, 1);
+    bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
     C->evaluations += ok;
     const struct lesson_variant *exact = exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();
@@ -254,7 +300,8 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
 }
 
 /* Every sample count of the lesson in turn (lesson_exercise.samples), or the
- * pixel centre alone; at a failure C->p.samples stays the count it failed at. */
+ * one C->only_count names, or the pixel centre alone; at a failure
+ * C->p.samples stays the count it failed at. */
 bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
 {
     *v = (struct verdict){ .what = WRONG_NONE, .samples = 1 };
@@ -270,6 +317,8 @@ bool evaluate(struct checker *C, const struct scene *s, struct verdict *v)
         return evaluate_at(C, s, v);
     }
     for (; *counts; counts++) {
+        if (C->only_count > 0 && *counts != C->only_count)
+            continue;
         C->p.samples = *counts;
         if (!evaluate_at(C, s, v))
             return false;

@@ -142,4 +142,16 @@ struct exercise_code {
 };
 extern const struct exercise_code all_exercises[];     /* ends with lesson == NULL */
 
+/* The mutation suite (tests/mutations/NN-name.patch, generated
+ * build/mutations.c): classic mistakes, each made in a worked answer, and
+ * the check that must fail first on each. */
+struct exercise_mutation {
+    const char *lesson;             /* "02" */
+    const char *name;               /* "02-float-edges", the patch's name */
+    const char *check;              /* the check that names the mistake */
+    rasterize_fn fn;
+    clip_fn clip;                   /* lesson 06's exercise_clip, or NULL */
+};
+extern const struct exercise_mutation all_mutations[];  /* ends with lesson == NULL */
+
 #endif

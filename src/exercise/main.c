@@ -6,6 +6,7 @@
  *     exercise-NN [--file NAME] [LESSON PROGRAM OPTIONS]      the explorer
  *     exercise-NN --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD]
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -50,6 +51,20 @@ int main(int argc, char **argv)
         }
     }
 
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0) {
+            /* the exercise's own options, then the lesson program's */
+            printf("Usage: %s [--file NAME] [LESSON PROGRAM OPTION]...      the explorer on your code\n"
+                   "       %s --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD]\n"
+                   "The lesson's program with your exercise_rasterize() as the variant \"exercise\", or its checks.\n\n"
+                   "  --file NAME             the name of the file compiled in (shown and put in commands; default exercise.c)\n"
+                   "  --check                 run the lesson's checks on your code (make check), not the explorer\n"
+                   "  --check-scene FILE      with --check: check this scene of your own first (make check SCENE=FILE)\n"
+                   "  --out DIR               with --check: write counterexamples under DIR/NAME/ (default build/check)\n"
+                   "  --open CMD              with --check: the command printed to open a counterexample\n\n",
+                   argv[0], argv[0]);
+            break;
+        }
     exercise_use(&LESSON, exercise_rasterize);
     if (LESSON.exercise.clip)
         exercise_use_clip(exercise_clip);

@@ -120,6 +120,8 @@ void say_verdict(const struct checker *C, FILE *out, const struct verdict *v,
     say_pixels(C, out, v);
 }
 
+static const char *const edge_names[3] = { "AB", "BC", "CA" };
+
 /* What is wrong at the pixel (or in the clipper), with its neighbourhood. */
 static void say_pixels(const struct checker *C, FILE *out, const struct verdict *v)
 {
@@ -160,14 +162,22 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
                 "      expected none (COUNT_OPS and every edge_value() or pixel_centre() call count)\n",
                 (unsigned long long)v->mul, v->mul == 1 ? "" : "s", v->bx, v->y, v->x, v->y);
         break;
-    case WRONG_BLOCK_NOT_FULL:
-        fprintf(out, "      block (%d, %d)-(%d, %d) narrated FULL, but pixel (%d, %d) in it is not covered\n",
-                v->bx, v->by, v->bx1, v->by1, v->x, v->y);
+    case WRONG_BLOCK_CLASS: {
+        static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };
+        const char *got = v->got_class >= 0 && v->got_class < 3 ? klass[v->got_class] : "no class";
+        fprintf(out, "      block (%d, %d)-(%d, %d) narrated %s; its corner pixel centres make it %s\n",
+                v->bx, v->by, v->bx1, v->by1, got, klass[v->want_class]);
+        if (v->want_class == BLOCK_FULL)
+            fprintf(out, "      (block (%d, %d)-(%d, %d) is covered in full, but was not narrated FULL)\n", v->bx, v->by, v->bx1, v->by1);
+        else if (v->got_class == BLOCK_FULL)
+            fprintf(out, "      (narrated FULL, but pixel (%d, %d) in it is not covered)\n", v->x, v->y);
+        else if (v->want_class == BLOCK_EMPTY)
+            fprintf(out, "      (all four corners lie outside edge %s: trivially rejected, never tested pixel by pixel)\n",
+                    edge_names[v->edge]);
+        else if (v->got_class == BLOCK_EMPTY)
+            fprintf(out, "      (no edge has all four corners outside it: the corner test cannot reject it)\n");
         break;
-    case WRONG_BLOCK_MISSED:
-        fprintf(out, "      block (%d, %d)-(%d, %d) is covered in full, but was not narrated FULL\n",
-                v->bx, v->by, v->bx1, v->by1);
-        break;
+    }
     case WRONG_CLIP:
         say_clip(out, &v->clip);
         break;
@@ -185,6 +195,12 @@ static void follow(void *ctx, const struct trace_event *ev)
 {
     struct trail *f = ctx;
     bool here = ev->x == f->x && ev->y == f->y;
+    if (f->by_rect) {       /* the misclassified block itself, the first time it is narrated */
+        if (ev->kind == TRACE_BLOCK && !f->held && ev->x == f->rect[0] && ev->y == f->rect[1]
+            && ev->x1 == f->rect[2] && ev->y1 == f->rect[3])
+            f->held = true, f->hold = *ev;
+        return;
+    }
     if (ev->kind == TRACE_PIXEL_WRITE && here && !f->written)
         f->written = true, f->write = *ev;
     else if (ev->kind == TRACE_PIXEL_TEST && here)
@@ -199,7 +215,8 @@ static void follow(void *ctx, const struct trace_event *ev)
 uint64_t step_of(const struct checker *C, const struct scene *s, const struct verdict *v,
                         struct trail *f)
 {
-    *f = (struct trail){ .x = v->x, .y = v->y };
+    *f = (struct trail){ .x = v->x, .y = v->y, .by_rect = v->what == WRONG_BLOCK_CLASS,
+                         .rect = { v->bx, v->by, v->bx1, v->by1 } };
     struct replay r;
     if (v->world) {
         /* other triangles than the exact picture's: the explorer compares
@@ -243,7 +260,6 @@ static const char *line_text(const struct lesson *l, int line)
     return "?";
 }
 
-static const char *const edge_names[3] = { "AB", "BC", "CA" };
 
 /* Why the exact rule decides the pixel as it does, when its centre lies
  * exactly on an edge; and what the code's narration said about it. */
@@ -265,7 +281,7 @@ void explain(const struct checker *C, FILE *out, const struct verdict *v,
         }
     }
     const struct lesson *l = C->l;
-    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_NOT_FULL || v->what == WRONG_BLOCK_MISSED
+    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_CLASS
         || v->what == WRONG_OUTSIDE)
         return;     /* the verdict said it all */
     if (f->held) {

@@ -77,6 +77,77 @@ bool gen_single(int i, struct scene *s, char *what, size_t n)
     return true;
 }
 
+/* Two triangles sharing an edge that runs through pixel centres C + t d
+ * (t whole) of a 20 x 16 target, its ends and the third vertices off those
+ * centres, on the 1/256 grid: far out, up to the coordinate limit (j even),
+ * or a few pixels away (j odd). The exact edge function is 0 on those
+ * centres and the top-left rule gives each to one triangle; the same
+ * function in float rounds products of 20 to 40 significant bits, and its
+ * sign there is a coin toss. */
+static bool far_ties(int j, bool f1, bool f2, struct scene *s, char *what, size_t n)
+{
+    static const int dirs[8][2] = { { 7, 3 }, { -5, 11 }, { 13, -2 }, { 1, 9 },
+                                    { 3, 4 }, { -9, 5 }, { 11, 1 }, { 2, -7 } };
+    const int *d = dirs[j / 2];
+    bool far = j % 2 == 0;
+    double cx = 9.5 + j % 3, cy = 7.5 + j % 2;
+    double len = fmax(abs(d[0]), abs(d[1]));
+    /* the ends at t = -ta and t = tb, fractions of 1/256 that are odd */
+    double ta = far ? floor(16000 / len) + 37.0 / 256 : 1 + (29 + 8 * j) / 256.0;
+    double tb = far ? floor(15000 / len) + 211.0 / 256 : 1 + (157 + 4 * j) / 256.0;
+    struct vertex A = vtx(cx - ta * d[0], cy - ta * d[1], 1, 1, 0, 0);
+    struct vertex B = vtx(cx + tb * d[0], cy + tb * d[1], 1, 0, 1, 0);
+    /* the third vertices either side, along the normal (-d1, d0) */
+    double u = far ? floor(9000 / len) + 101.0 / 256 : 3 + 77.0 / 256;
+    double fx = far ? 0.25 : 0.5;
+    struct vertex P = vtx(cx - u * d[1] + fx * d[0], cy + u * d[0] + fx * d[1], 2, 0, 0, 1);
+    struct vertex Q = vtx(cx + u * d[1] - fx * d[0], cy - u * d[0] - fx * d[1], 2, 1, 1, 0);
+    add_flipped(s, A, B, P, f1);
+    add_flipped(s, B, A, Q, f2);
+    snprintf(what, n, "two triangles sharing an edge through the pixel centres (%g, %g) + t (%d, %d), "
+             "%s (%s, %s)", cx, cy, d[0], d[1],
+             far ? "its ends near the coordinate limit" : "its ends a pixel off, between 1/256 grid points",
+             f1 ? "counter-clockwise" : "clockwise", f2 ? "counter-clockwise" : "clockwise");
+    return true;
+}
+
+/* Two triangles sharing a long edge that misses a pixel centre C by the
+ * least an edge can miss it, F = +-1 (1/65536 of a pixel squared): one
+ * triangle covers C, the other does not. The edge's ends lie thousands of
+ * pixels away on the 1/256 grid, so that the products of any float form of
+ * F, (x - xa)(ya - yb) and the like, are rounded by a thousand times F:
+ * only exact integers tell the two triangles apart. */
+static bool near_ties(int j, bool f1, bool f2, struct scene *s, char *what, size_t n)
+{
+    static const int64_t dirs[8][2] = { { 1795, 769 }, { -1283, 2819 }, { 3331, -515 }, { 257, 2305 },
+                                        { 771, 1025 }, { -2305, 1283 }, { 2819, 259 }, { 517, -1793 } };
+    int64_t dx = dirs[j][0], dy = dirs[j][1];
+    /* e with dx ey - dy ex = 1 (extended Euclid on dx and -dy, coprime) */
+    int64_t r0 = dx, r1 = -dy, s0 = 1, s1 = 0, t0 = 0, t1 = 1;
+    while (r1 != 0) {
+        int64_t q = r0 / r1, r = r0 - q * r1, ss = s0 - q * s1, tt = t0 - q * t1;
+        r0 = r1, r1 = r, s0 = s1, s1 = ss, t0 = t1, t1 = tt;
+    }
+    /* dx s0 - dy t0 = r0 = +-1: e = (ex, ey) = (t0, s0) * r0 */
+    int64_t ex = t0 * r0, ey = s0 * r0;
+    int64_t len = llabs(dx) > llabs(dy) ? llabs(dx) : llabs(dy);
+    int64_t m = (int64_t)14000 * SUBPIXEL_ONE / len, k = (int64_t)27000 * SUBPIXEL_ONE / len;
+    double cx = 9.5 + j % 3, cy = 7.5 + j % 2;
+    int64_t X = (int64_t)(cx * SUBPIXEL_ONE), Y = (int64_t)(cy * SUBPIXEL_ONE);
+    int64_t ax = X - m * dx + ex, ay = Y - m * dy + ey;
+    struct vertex A = vtx((double)ax / SUBPIXEL_ONE, (double)ay / SUBPIXEL_ONE, 1, 1, 0, 0);
+    struct vertex B = vtx((double)(ax + k * dx) / SUBPIXEL_ONE, (double)(ay + k * dy) / SUBPIXEL_ONE, 1, 0, 1, 0);
+    double u = 3000.0 / ((double)len / SUBPIXEL_ONE);
+    struct vertex P = vtx(cx - u * (double)dy / SUBPIXEL_ONE, cy + u * (double)dx / SUBPIXEL_ONE, 2, 0, 0, 1);
+    struct vertex Q = vtx(cx + u * (double)dy / SUBPIXEL_ONE, cy - u * (double)dx / SUBPIXEL_ONE, 2, 1, 1, 0);
+    add_flipped(s, A, B, P, f1);
+    add_flipped(s, B, A, Q, f2);
+    snprintf(what, n, "two triangles sharing an edge from (%g, %g) to (%g, %g) that misses the pixel centre "
+             "(%g, %g) by 1/65536 of a pixel squared (%s, %s)", A.x, A.y, B.x, B.y, cx, cy,
+             f1 ? "counter-clockwise" : "clockwise", f2 ? "counter-clockwise" : "clockwise");
+    return true;
+}
+
 bool gen_ties(int i, struct scene *s, char *what, size_t n)
 {
     check_scene_start(s, 20, 16);
@@ -116,7 +187,12 @@ bool gen_ties(int i, struct scene *s, char *what, size_t n)
         snprintf(what, n, "a fan of eight triangles around the pixel centre (10.5, 8.5), windings mixed");
         return true;
     }
-    case 5:     /* degenerate: they cover nothing */
+    case 5: case 6: case 7: case 8: case 9: case 10: case 11: case 12:
+    case 13: case 14: case 15: case 16: case 17: case 18: case 19: case 20:
+        return far_ties((i >> 2) - 5, f1, f2, s, what, n);
+    case 21: case 22: case 23: case 24: case 25: case 26: case 27: case 28:
+        return near_ties((i >> 2) - 21, f1, f2, s, what, n);
+    case 29:    /* degenerate: they cover nothing (the last scenes) */
         if (f2)
             return false;
         if (!f1) {
@@ -373,6 +449,7 @@ bool gen_property(int i, struct scene *s, char *what, size_t n)
  * whose last column and row of tiles the screen cuts (200 x 150: tiles 8
  * pixels wide and 22 tall there, blocks 6 tall), simplest first. */
 #define TILE_SCENES_RANDOM 48
+#define TILE_SCENES_EDGES 16
 bool gen_tiles(int i, struct scene *s, char *what, size_t n)
 {
     struct rng r = { 0x7113u + (uint64_t)i };
@@ -421,8 +498,33 @@ bool gen_tiles(int i, struct scene *s, char *what, size_t n)
         snprintf(what, n, "a jittered 10 x 8 grid of 160 triangles over 4 x 3 tiles");
         return true;
     }
-    if (i >= 9 + TILE_SCENES_RANDOM)
+    if (i >= 9 + TILE_SCENES_RANDOM + TILE_SCENES_EDGES)
         return false;
+    if (i >= 9 + TILE_SCENES_RANDOM) {
+        /* triangles mostly off-screen, poking in across one side: the
+         * tiles and blocks that the screen's side and the box cut */
+        static const char *const sides[4] = { "left", "top", "right", "bottom" };
+        static const int sizes[][2] = { { 200, 150 }, { 130, 70 } };
+        int e = (i - 9 - TILE_SCENES_RANDOM) % 4;
+        check_scene_start(s, sizes[(i / 4) % 2][0], sizes[(i / 4) % 2][1]);
+        for (int tri = 0; tri < 8; tri++) {
+            double along = rng_range(&r, -20, (e % 2 ? s->w : s->h) + 20), in = rng_range(&r, 0.2, 6);
+            double out1 = rng_range(&r, 4, 160), out2 = rng_range(&r, 4, 160);
+            double a1 = along + rng_range(&r, -90, 90), a2 = along + rng_range(&r, -90, 90);
+            double lim = e % 2 ? s->h : s->w;   /* the side's coordinate: 0 or the size */
+            double d[3][2] = { { along, e < 2 ? in : lim - in }, { a1, e < 2 ? -out1 : lim + out1 },
+                               { a2, e < 2 ? -out2 : lim + out2 } };
+            struct vertex v[3];
+            for (int q = 0; q < 3; q++) {
+                double x = e % 2 ? d[q][0] : d[q][1], y = e % 2 ? d[q][1] : d[q][0];
+                v[q] = rvtx(&r, grid(&r, x), grid(&r, y), 1, 6);
+            }
+            add(s, v[0], v[1], v[2]);
+        }
+        snprintf(what, n, "8 triangles mostly off-screen, each poking in across the %s side of %d x %d pixels",
+                 sides[e], s->w, s->h);
+        return true;
+    }
     /* random scenes: targets of 1 to 4 x 3 tiles, triangles small and large,
      * vertices drawn towards the borders of tiles and blocks */
     static const int sizes[][2] = { { 200, 150 }, { 130, 70 }, { 64, 64 }, { 129, 65 } };

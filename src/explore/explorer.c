@@ -217,9 +217,10 @@ static void mark_exact(void *ctx, int x, int y)
     e->m[(size_t)y * (size_t)e->w + (size_t)x] = 1;
 }
 
-/* The triangle being drawn: a pixel it has written more often than the
- * exact rule covers it is extra already, whatever comes after (writes only
- * add), so it is marked at the step that writes it. */
+/* The triangle being drawn, compared as it writes (writes only add): a
+ * pixel written more often than the exact rule covers it is extra, one
+ * written as often in another colour or depth than the exact rule's is
+ * wrong, both at the step that writes them; a missing one shows at the end. */
 static bool extra_so_far(struct explorer *ex)
 {
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
@@ -227,13 +228,22 @@ static bool extra_so_far(struct explorer *ex)
     if (!exact)
         return false;
     reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
+    struct target with = { 0 };     /* the exact picture with this triangle too */
+    struct raster_params p = replay_params(&ex->replay, ex->cur);
+    bool shaded = target_copy(&with, &ex->exact);
+    if (shaded)
+        ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
+    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
     for (size_t i = 0; i < n; i++) {
         int now = ex->fb.count[i] - ex->replay.base.count[i];
-        if (now > exact[i] && ex->diff[i] == 0) {     /* an earlier verdict stands */
-            ex->diff[i] = EXHIBIT_EXTRA;
-            ex->extra++;
-        }
+        if (ex->diff[i] == 0 && now > exact[i])     /* an earlier verdict stands */
+            ex->diff[i] = EXHIBIT_EXTRA, ex->extra++;
+        else if (ex->diff[i] == 0 && shaded && now > 0 && ex->fb.count[i] == with.count[i]
+                 && !pixel_close(with.color[i], other_depth ? ex->fb.depth[i] : with.depth[i],
+                                 ex->fb.color[i], ex->fb.depth[i]))
+            ex->diff[i] = EXHIBIT_COLOUR, ex->wrong_colour++;
     }
+    target_free(&with);
     free(exact);
     return true;
 }
