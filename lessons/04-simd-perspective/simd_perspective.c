@@ -10,10 +10,10 @@
  * The source packs the four linear quantities of one pixel into one SSE
  * register, (F00, F01, F02, F03) / Area2 = (1/z, w, u, v), and walks the
  * bounding box with one vector add per pixel (Cx += I) and one per row
- * (Cy += J). That register walk is written twice, side by side: once with
- * SSE intrinsics and once as its scalar twin on four floats (the tests
- * hold the two equal). A second layout closes the lesson: four PIXELS per
- * register instead of four quantities of one pixel.
+ * (Cy += J). The walk is written once; each operation on the register is
+ * written twice, side by side: with SSE intrinsics and as its scalar twin
+ * on four floats (the tests hold the two equal). A second layout closes the
+ * lesson: four PIXELS per register instead of four quantities of one pixel.
  *
  * New since lesson 03: the fourth lane (1/z, formulas 16 to 22), the
  * perspective-correct attributes (23), the depth test written the right way
