@@ -188,6 +188,30 @@ static void edge_step(struct edge *e)
  * The long edge is walked once from top to bottom; the short side changes
  * edge at the middle vertex's height. A flat top or flat bottom simply gives
  * one half no rows. */
+struct corners {
+    struct point p1, p2, p3;            /* 1 on top, then in setup's (clockwise) order */
+    bool case_a;                        /* [A]: 3 is the middle vertex, on the left */
+    const struct point *mid, *bottom;   /* the long edge runs from p1 to bottom */
+};
+
+/* "1 is the top point (reordination cycling included)": the start of both
+ * readings of seed 002, the exact walk and the exhibit. */
+static void corners_of(struct corners *k, const struct tri_setup *t,
+                       const struct raster_params *p)
+{
+    int top = 0;
+    if (t->y[1] < t->y[top])
+        top = 1;
+    if (t->y[2] < t->y[top])
+        top = 2;
+    k->p1 = point_of(t, p, top);
+    k->p2 = point_of(t, p, (top + 1) % 3);
+    k->p3 = point_of(t, p, (top + 2) % 3);
+    k->case_a = k->p2.y > k->p3.y;
+    k->mid = k->case_a ? &k->p3 : &k->p2;
+    k->bottom = k->case_a ? &k->p2 : &k->p3;
+}
+
 struct gradient {
     double dc[ATTR_COUNT];      /* Dc, formula (1), per pixel in x */
 };
@@ -252,25 +276,14 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
     if (t->empty)
         return;
 
-    /* "1 is the top point (reordination cycling included)" */
-    int top = 0;
-    if (t->y[1] < t->y[top])
-        top = 1;
-    if (t->y[2] < t->y[top])
-        top = 2;
-    struct point p1 = point_of(t, p, top);
-    struct point p2 = point_of(t, p, (top + 1) % 3);
-    struct point p3 = point_of(t, p, (top + 2) % 3);
+    struct corners k;
+    corners_of(&k, t, p);
     COUNT(tr, 3, POINT_OF_COST);
-
-    bool case_a = p2.y > p3.y;                  /* [A]: 3 is the middle vertex, on the left */
-    const struct point *mid = case_a ? &p3 : &p2;
-    const struct point *bottom = case_a ? &p2 : &p3;
-    struct gradient g = gradient_of(t, &p1, &p2, &p3);
+    struct gradient g = gradient_of(t, &k.p1, &k.p2, &k.p3);
     COUNT(tr, ATTR_COUNT, GRADIENT_COST);
 
     /* rows [first, middle) use the upper short edge, [middle, end) the lower */
-    int64_t first = row_at(p1.y), middle = row_at(mid->y), end = row_at(bottom->y);
+    int64_t first = row_at(k.p1.y), middle = row_at(k.mid->y), end = row_at(k.bottom->y);
     if (first < t->miny)
         first = t->miny;                        /* rows above the target are skipped */
     if (end > t->maxy + 1)
@@ -279,7 +292,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
         return;
 
     struct edge long_edge;
-    edge_start(&long_edge, &p1, bottom, first);
+    edge_start(&long_edge, &k.p1, k.bottom, first);
     COUNT(tr, 1, EDGE_START_COST);
     COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
 
@@ -290,13 +303,13 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             continue;
         struct edge short_edge;
         if (half == 0)
-            edge_start(&short_edge, &p1, mid, from);
+            edge_start(&short_edge, &k.p1, k.mid, from);
         else
-            edge_start(&short_edge, mid, bottom, from);
+            edge_start(&short_edge, k.mid, k.bottom, from);
         COUNT(tr, 1, EDGE_START_COST);
         COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
-        struct edge *left = case_a ? &short_edge : &long_edge;
-        struct edge *right = case_a ? &long_edge : &short_edge;
+        struct edge *left = k.case_a ? &short_edge : &long_edge;
+        struct edge *right = k.case_a ? &long_edge : &short_edge;
 
         for (int64_t row = from; row < to; row++) {
             fill(t, p, fb, tr, row, left, right, &g);
@@ -310,11 +323,12 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
 /* --- exhibit: the printed loop, read literally ---------------------------------
  *
- * Seed 002's triangle() with float coordinates: the edges start at the top
- * vertex itself, not at the first pixel centre below it, x moves by a float
- * increment per row, and the row count of a segment is its float height
- * truncated. The text does not print calc_seg_incr() and fill(); they are
- * written here the way its loop uses them:
+ * Seed 002's triangle() with float coordinates: the same corners and halves
+ * as the exact walk above, but each edge starts at its top vertex itself,
+ * not at the first pixel centre below it, x moves by a float increment per
+ * row, and the row count of a segment is its float height truncated. The
+ * text does not print calc_seg_incr() and fill(); they are written here the
+ * way its loop uses them:
  *
  *     calc_seg_incr(&sg, &p, &q):  sg.len = (int)(q.Ya - p.Ya);
  *                                  sg.incx = (q.Xa - p.Xa) / (q.Ya - p.Ya);
@@ -323,45 +337,37 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
  * and the rows are counted from the top vertex: y = a.Ya, a.Ya + 1, ...
  * The result has gaps and doubly covered pixels where triangles meet (see
  * README.md for the count on the built-in scene "offgrid-strip"). */
-struct fpoint {
-    float Xa, Ya;
-    double c[ATTR_COUNT];
-};
-
-struct seg_incr {
+struct seg {
+    float Xa;                   /* x on the current row, from the top vertex p on */
+    double c[ATTR_COUNT];       /* the attributes there */
     int len;                    /* rows in the segment: the float height, truncated */
     float incx;                 /* x per row */
     double inc[ATTR_COUNT];     /* attributes per row */
 };
 
-static struct fpoint fpoint_of(const struct point *p)
+static struct seg calc_seg_incr(const struct point *p, const struct point *q)
 {
-    struct fpoint f = { .Xa = (float)p->x / SUBPIXEL_ONE, .Ya = (float)p->y / SUBPIXEL_ONE };
-    for (int i = 0; i < ATTR_COUNT; i++)
-        f.c[i] = p->c[i];
-    return f;
-}
-
-static struct seg_incr calc_seg_incr(const struct fpoint *p, const struct fpoint *q)
-{
-    struct seg_incr sg = { .len = (int)(q->Ya - p->Ya) };
-    float h = q->Ya - p->Ya;
-    sg.incx = h > 0 ? (q->Xa - p->Xa) / h : 0.0f;
-    for (int i = 0; i < ATTR_COUNT; i++)
+    float pXa = (float)p->x / SUBPIXEL_ONE, pYa = (float)p->y / SUBPIXEL_ONE;
+    float qXa = (float)q->x / SUBPIXEL_ONE, qYa = (float)q->y / SUBPIXEL_ONE;
+    float h = qYa - pYa;
+    struct seg sg = { .Xa = pXa, .len = (int)h, .incx = h > 0 ? (qXa - pXa) / h : 0.0f };
+    for (int i = 0; i < ATTR_COUNT; i++) {
+        sg.c[i] = p->c[i];
         sg.inc[i] = h > 0 ? (q->c[i] - p->c[i]) / h : 0.0;
+    }
     return sg;
 }
 
-static void seg_step(struct fpoint *e, const struct seg_incr *sg)
+static void seg_step(struct seg *e)
 {
-    e->Xa += sg->incx;
+    e->Xa += e->incx;
     for (int i = 0; i < ATTR_COUNT; i++)
-        e->c[i] += sg->inc[i];
+        e->c[i] += e->inc[i];
 }
 
 static void fill_float(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr, float Ya,
-                       const struct fpoint *g, const struct fpoint *d, const struct gradient *grad)
+                       const struct seg *g, const struct seg *d, const struct gradient *grad)
 {
     int y = (int)floorf(Ya);
     NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)floorf(g->Xa), .y = y,
@@ -388,45 +394,22 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
     NARRATE_SETUP(tr, t, L_SORT);
     if (t->empty)
         return;
-    int top = 0;
-    if (t->y[1] < t->y[top])
-        top = 1;
-    if (t->y[2] < t->y[top])
-        top = 2;
-    struct point p1 = point_of(t, p, top), p2 = point_of(t, p, (top + 1) % 3),
-                 p3 = point_of(t, p, (top + 2) % 3);
-    struct gradient grad = gradient_of(t, &p1, &p2, &p3);
-    struct fpoint a = fpoint_of(&p1), b = fpoint_of(&p2), c = fpoint_of(&p3);
-    struct fpoint g = a, d = a;                 /* g: left ("gauche"), d: right ("droite") */
-    float y = a.Ya;
 
-    if (b.Ya > c.Ya) {                          /* [A] */
-        struct seg_incr sg1 = calc_seg_incr(&a, &b), sg2 = calc_seg_incr(&a, &c),
-                        sg3 = calc_seg_incr(&c, &b);
-        for (int n = 0; n < sg2.len; n++, y++) {
-            fill_float(t, p, fb, tr, y, &g, &d, &grad);
-            seg_step(&g, &sg2);
-            seg_step(&d, &sg1);
-        }
-        g = c;
-        for (int n = 0; n < sg3.len; n++, y++) {
-            fill_float(t, p, fb, tr, y, &g, &d, &grad);
-            seg_step(&g, &sg3);
-            seg_step(&d, &sg1);
-        }
-    } else {                                    /* [B] */
-        struct seg_incr sg1 = calc_seg_incr(&a, &b), sg2 = calc_seg_incr(&a, &c),
-                        sg3 = calc_seg_incr(&b, &c);
-        for (int n = 0; n < sg1.len; n++, y++) {
-            fill_float(t, p, fb, tr, y, &g, &d, &grad);
-            seg_step(&g, &sg2);
-            seg_step(&d, &sg1);
-        }
-        d = b;
-        for (int n = 0; n < sg3.len; n++, y++) {
-            fill_float(t, p, fb, tr, y, &g, &d, &grad);
-            seg_step(&g, &sg2);
-            seg_step(&d, &sg3);
+    struct corners k;
+    corners_of(&k, t, p);
+    struct gradient grad = gradient_of(t, &k.p1, &k.p2, &k.p3);
+
+    float y = (float)k.p1.y / SUBPIXEL_ONE;     /* a.Ya: the top vertex's height */
+    struct seg long_edge = calc_seg_incr(&k.p1, k.bottom);
+    for (int half = 0; half < 2; half++) {
+        struct seg short_edge = half == 0 ? calc_seg_incr(&k.p1, k.mid)
+                                          : calc_seg_incr(k.mid, k.bottom);
+        struct seg *g = k.case_a ? &short_edge : &long_edge;   /* left ("gauche") */
+        struct seg *d = k.case_a ? &long_edge : &short_edge;   /* right ("droite") */
+        for (int n = 0; n < short_edge.len; n++, y++) {
+            fill_float(t, p, fb, tr, y, g, d, &grad);
+            seg_step(g);
+            seg_step(d);
         }
     }
 }

@@ -168,6 +168,18 @@ static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *
 
 /* --- the algorithm ---------------------------------------------------------------- */
 
+/* How the loop holds its running edge values after each addition: exactly,
+ * as 64-bit integers (the algorithm), or in a single-precision float (the
+ * exhibit at the end of the file). Everything else in the loop is the same.
+ * The values and their steps are whole numbers, so a float addition gives
+ * the exact sum rounded to the nearest float: what (float) does to it. */
+enum hold { EXACT, IN_FLOAT };
+
+static inline int64_t held(int64_t F, enum hold h)
+{
+    return h == EXACT ? F : (int64_t)(float)F;
+}
+
 /* Seed 001's loop with the fill rule. The bounding box comes from setup,
  * already clamped to the target:
  *
@@ -178,9 +190,12 @@ static inline uint32_t attrs_colour(struct attrs P, const struct raster_params *
  *        |  o  o  /o  o\  o   |      by "+ 256 I" to the right or
  *        |  o  o /o  o  o\o   |      "+ 256 J" down from the row above.
  *   maxY +--o--o/--------- \--+
- */
-static void rasterize(const struct tri_setup *t, const struct raster_params *p,
-                      struct target *fb, struct trace *tr)
+ *
+ * Compiled once per way of holding the values (always_inline, h a constant):
+ * the exact loop carries no trace of the float one. */
+static inline __attribute__((always_inline)) void
+step_edges(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
+           struct trace *tr, enum hold h)
 {
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
@@ -204,9 +219,9 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
     /* The only evaluation of the edge functions: the first pixel centre. */
     const int64_t X = pixel_centre(t->minx), Y = pixel_centre(t->miny);
-    int64_t Cy01 = I01 * X + J01 * Y + K01;
-    int64_t Cy02 = I02 * X + J02 * Y + K02;
-    int64_t Cy03 = I03 * X + J03 * Y + K03;
+    int64_t Cy01 = held(I01 * X + J01 * Y + K01, h);
+    int64_t Cy02 = held(I02 * X + J02 * Y + K02, h);
+    int64_t Cy03 = held(I03 * X + J03 * Y + K03, h);
     COUNT(tr, 3, EDGE_VALUE_COST);
 
     struct attributes at;
@@ -214,8 +229,20 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
     for (int y = t->miny; y <= t->maxy; y++) {
         int64_t Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
-        struct attrs P = attributes_restart(&at, Cx01 - b01, Cx02 - b02, Cx03 - b03, tr);
-        COUNT(tr, 3, FILL_RULE_COST);           /* the bias taken off again */
+        /* The attributes restart from the exact edge values of the row's
+         * first centre: the running ones with the bias taken off again, or,
+         * where those may have drifted (float), evaluated anew. */
+        int64_t F01, F02, F03;
+        if (h == EXACT) {
+            F01 = Cx01 - b01, F02 = Cx02 - b02, F03 = Cx03 - b03;
+            COUNT(tr, 3, FILL_RULE_COST);
+        } else {
+            F01 = edge_value(t, EDGE_AB, t->minx, y);
+            F02 = edge_value(t, EDGE_BC, t->minx, y);
+            F03 = edge_value(t, EDGE_CA, t->minx, y);
+            COUNT(tr, 3, EDGE_VALUE_COST);
+        }
+        struct attrs P = attributes_restart(&at, F01, F02, F03, tr);
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
                 .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
 
@@ -227,23 +254,29 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             if (inside)
                 PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
 
-            Cx01 += dx01;
-            Cx02 += dx02;
-            Cx03 += dx03;
+            Cx01 = held(Cx01 + dx01, h);
+            Cx02 = held(Cx02 + dx02, h);
+            Cx03 = held(Cx03 + dx03, h);
             P = attrs_step(P, at.dPdx);
             COUNT(tr, 3, EDGE_STEP_COST);
             COUNT(tr, NATTR, PLANE_STEP_COST);
         }
-        Cy01 += dy01;
-        Cy02 += dy02;
-        Cy03 += dy03;
+        Cy01 = held(Cy01 + dy01, h);
+        Cy02 = held(Cy02 + dy02, h);
+        Cy03 = held(Cy03 + dy03, h);
         COUNT(tr, 3, EDGE_STEP_COST);
     }
 }
 
+static void rasterize(const struct tri_setup *t, const struct raster_params *p,
+                      struct target *fb, struct trace *tr)
+{
+    step_edges(t, p, fb, tr, EXACT);
+}
+
 /* --- exhibit: the same loop in single-precision float ------------------------------- */
 
-/* Only the type of the running values changes. The increments 256 I and
+/* Only how the running values are held changes. The increments 256 I and
  * 256 J are exact in float (I has at most 24 bits; times 256 is a shift of
  * the exponent), and so is nothing else: a float has 24 significant bits,
  * and an edge value of a triangle a few hundred pixels wide needs 30 or
@@ -253,62 +286,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 static void rasterize_float(const struct tri_setup *t, const struct raster_params *p,
                             struct target *fb, struct trace *tr)
 {
-    NARRATE_SETUP(tr, t, L_SETUP);
-    if (t->empty)
-        return;
-
-    const float dx01 = (float)(t->I[EDGE_AB] * SUBPIXEL_ONE);
-    const float dx02 = (float)(t->I[EDGE_BC] * SUBPIXEL_ONE);
-    const float dx03 = (float)(t->I[EDGE_CA] * SUBPIXEL_ONE);
-    const float dy01 = (float)(t->J[EDGE_AB] * SUBPIXEL_ONE);
-    const float dy02 = (float)(t->J[EDGE_BC] * SUBPIXEL_ONE);
-    const float dy03 = (float)(t->J[EDGE_CA] * SUBPIXEL_ONE);
-    COUNT(tr, 3, EDGE_INCREMENTS_COST);
-
-    /* the first centre exactly, bias included, then rounded once to float */
-    float Cy01 = (float)(edge_value(t, EDGE_AB, t->minx, t->miny) + t->bias[EDGE_AB]);
-    float Cy02 = (float)(edge_value(t, EDGE_BC, t->minx, t->miny) + t->bias[EDGE_BC]);
-    float Cy03 = (float)(edge_value(t, EDGE_CA, t->minx, t->miny) + t->bias[EDGE_CA]);
-    COUNT(tr, 3, EDGE_VALUE_COST);
-    COUNT(tr, 3, FILL_RULE_COST);
-
-    struct attributes at;
-    attributes_setup(&at, t, p, tr);
-
-    for (int y = t->miny; y <= t->maxy; y++) {
-        float Cx01 = Cy01, Cx02 = Cy02, Cx03 = Cy03;
-        /* the attributes restart from the exact values, as in the exact loop,
-         * so that only coverage differs */
-        struct attrs P = attributes_restart(&at, edge_value(t, EDGE_AB, t->minx, y),
-                                            edge_value(t, EDGE_BC, t->minx, y),
-                                            edge_value(t, EDGE_CA, t->minx, y), tr);
-        COUNT(tr, 3, EDGE_VALUE_COST);
-        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
-                .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
-                       (int64_t)Cx03 - t->bias[EDGE_CA] });
-
-        for (int x = t->minx; x <= t->maxx; x++) {
-            bool inside = Cx01 >= 0 && Cx02 >= 0 && Cx03 >= 0;
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { (int64_t)Cx01 - t->bias[EDGE_AB], (int64_t)Cx02 - t->bias[EDGE_BC],
-                           (int64_t)Cx03 - t->bias[EDGE_CA] },
-                    .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t },
-                    .flags = inside ? TRACE_INSIDE : 0);
-            if (inside)
-                PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
-
-            Cx01 += dx01;
-            Cx02 += dx02;
-            Cx03 += dx03;
-            P = attrs_step(P, at.dPdx);
-            COUNT(tr, 3, EDGE_STEP_COST);
-            COUNT(tr, NATTR, PLANE_STEP_COST);
-        }
-        Cy01 += dy01;
-        Cy02 += dy02;
-        Cy03 += dy03;
-        COUNT(tr, 3, EDGE_STEP_COST);
-    }
+    step_edges(t, p, fb, tr, IN_FLOAT);
 }
 
 static const struct lesson_variant variants[] = {

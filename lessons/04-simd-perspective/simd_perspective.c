@@ -10,10 +10,10 @@
  * The source packs the four linear quantities of one pixel into one SSE
  * register, (F00, F01, F02, F03) / Area2 = (1/z, w, u, v), and walks the
  * bounding box with one vector add per pixel (Cx += I) and one per row
- * (Cy += J). That register walk is written twice, side by side: once with
- * SSE intrinsics and once as its scalar twin on four floats (the tests
- * hold the two equal). A second layout closes the lesson: four PIXELS per
- * register instead of four quantities of one pixel.
+ * (Cy += J). The walk is written once; each operation on the register is
+ * written twice, side by side: with SSE intrinsics and as its scalar twin
+ * on four floats (the tests hold the two equal). A second layout closes the
+ * lesson: four PIXELS per register instead of four quantities of one pixel.
  *
  * New since lesson 03: the fourth lane (1/z, formulas 16 to 22), the
  * perspective-correct attributes (23), the depth test written the right way
@@ -154,92 +154,111 @@ static void narrate_setup(const struct tri_setup *t, const struct persp_setup *s
     (void)s;
 }
 
-/* --- the source's layout, scalar twin ---------------------------------------------
+/* --- the source's layout: one pixel's (1/z, w, u, v) in one register ----------------
  *
- * The four lanes as four floats, every step written out. This is the
- * reference for the SSE function below (same operations, same order, same
- * rounding) and what builds without SSE run. */
-static void rasterize_scalar(const struct tri_setup *t, const struct raster_params *p,
-                             struct target *fb, struct trace *tr)
-{
-    struct persp_setup s;
-    if (t->empty) {
-        NARRATE_SETUP(tr, t, L_BOX);
-        return;
-    }
-    persp_setup(t, p, &s);
-    narrate_setup(t, &s, tr);
-    const float *QA = s.Q[0], *QB = s.Q[1], *QC = s.Q[2];
-    float I[4], J[4], Cy[4];
-    for (int lane = 0; lane < 4; lane++) {
-        I[lane] = (float)s.I[lane];
-        J[lane] = (float)s.J[lane];
-        Cy[lane] = (float)s.F[lane];
-    }
-    int64_t ey[3] = { s.e[0], s.e[1], s.e[2] };
-
-    for (int y = t->miny; y <= t->maxy; y++) {
-        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
-        float Cx[4] = { Cy[0], Cy[1], Cy[2], Cy[3] };
-        int64_t e[3] = { ey[0], ey[1], ey[2] };
-        for (int x = t->minx; x <= t->maxx; x++) {
-            bool in = covered(t, e);
-            COUNT(tr, 3, FILL_RULE_COST);
-            float attr[ATTR_COUNT] = { 0 };
-            float depth = 0;
-            if (in) {
-                depth = 1.0f / Cx[LANE_INV_Z];
-                COUNT(tr, 1, RECIPROCAL_COST);
-            }
-            bool shows = in && target_depth_pass(fb, x, y, depth);
-            if (shows) {                                /* shade only what will show */
-                float u = Cx[LANE_U], v = Cx[LANE_V], w = Cx[LANE_W];
-                float m = p->affine ? 1.0f : depth;
-                for (int i = 0; i < ATTR_COUNT; i++)
-                    attr[i] = (u * QA[i] + v * QB[i] + w * QC[i]) * m;   /* (23) */
-                COUNT(tr, 5, PERSPECTIVE_COST);         /* r, g, b, s, t */
-            }
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0, .z = depth,
-                    .aux = { Cx[0], Cx[1], Cx[2], Cx[3], attr[ATTR_S], attr[ATTR_T] });
-            /* a hidden fragment is still counted (PLOT), its colour never written */
-            if (in)
-                PLOT(fb, tr, L_WRITE, x, y, depth,
-                     shows ? shade_pixel(p, tr, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
-                                         attr[ATTR_S], attr[ATTR_T]) : 0);
-            for (int lane = 0; lane < 4; lane++)      /* Cx += I */
-                Cx[lane] += I[lane];
-            for (int k = 0; k < 3; k++)
-                e[k] += s.ex[k];
-            COUNT(tr, 4, PLANE_STEP_COST);
-            COUNT(tr, 3, EDGE_STEP_COST);
-        }
-        for (int lane = 0; lane < 4; lane++)          /* Cy += J */
-            Cy[lane] += J[lane];
-        for (int k = 0; k < 3; k++)
-            ey[k] += s.ey[k];
-        COUNT(tr, 4, PLANE_STEP_COST);
-        COUNT(tr, 3, EDGE_STEP_COST);
-    }
-}
-
-/* --- SSE ------------------------------------------------------------------------------
+ *     Cx  [ 1/z |  w  |  u  |  v  ]
+ *            |     |     |     |
+ *     +  I [ I00 | I01 | I02 | I03 ] / Area2      one vector add per pixel
  *
- * SSE2 is the baseline of every x86-64 compiler; on other CPUs (ARM64)
- * simd.h translates the same intrinsics (SIMDe), so every CPU runs this code. */
+ * The walk over the box is written once (walk_box, below); what it does to
+ * the register is written twice, side by side: as four plain floats, every
+ * step written out (the scalar twin, the reference), and as SSE intrinsics
+ * (the same operations in the same order, so the same rounding; the tests
+ * hold the two equal). SSE2 is the baseline of every x86-64 compiler; on
+ * other CPUs (ARM64) simd.h translates the same intrinsics (SIMDe), so
+ * every CPU runs both twins. */
 #include "simd.h"   /* SSE2 intrinsics: __m128, _mm_add_ps, _mm_shuffle_ps, ... */
+
+enum twin { SCALAR, SSE };
+
+/* One register: the SSE twin holds it as an __m128, the scalar twin as four
+ * floats. */
+union reg {
+    __m128 sse;
+    float lane[4];
+};
 
 /* The lanes of one register, broadcast: lane i copied into all four. */
 #define BROADCAST(r, i) _mm_shuffle_ps((r), (r), _MM_SHUFFLE(i, i, i, i))
 
-/* The source's layout: one pixel's (1/z, w, u, v) in one register.
- *
- *     Cx  [ 1/z |  w  |  u  |  v  ]
- *            |     |     |     |
- *     +  I [ I00 | I01 | I02 | I03 ] / Area2      one _mm_add_ps per pixel
- */
-static void rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
-                          struct target *fb, struct trace *tr)
+/* (a[0], a[1], a[2], a[3]), each rounded to float. */
+static inline union reg reg_set(const double a[4], enum twin tw)
+{
+    union reg r;
+    if (tw == SSE) {   /* _mm_set_ps lists lanes from the highest down: lane 0 last */
+        r.sse = _mm_set_ps((float)a[3], (float)a[2], (float)a[1], (float)a[0]);
+    } else {
+        for (int i = 0; i < 4; i++)
+            r.lane[i] = (float)a[i];
+    }
+    return r;
+}
+
+/* Four floats from memory, and back. */
+static inline union reg reg_load(const float a[4], enum twin tw)
+{
+    union reg r;
+    if (tw == SSE) {
+        r.sse = _mm_loadu_ps(a);
+    } else {
+        for (int i = 0; i < 4; i++)
+            r.lane[i] = a[i];
+    }
+    return r;
+}
+
+static inline void reg_store(float out[4], union reg r, enum twin tw)
+{
+    if (tw == SSE) {
+        _mm_storeu_ps(out, r.sse);
+    } else {
+        for (int i = 0; i < 4; i++)
+            out[i] = r.lane[i];
+    }
+}
+
+/* Cx += I, Cy += J */
+static inline union reg reg_add(union reg a, union reg b, enum twin tw)
+{
+    if (tw == SSE)
+        return (union reg){ .sse = _mm_add_ps(a.sse, b.sse) };
+    for (int i = 0; i < 4; i++)
+        a.lane[i] += b.lane[i];
+    return a;
+}
+
+/* Depth = 1 / Cx[0] */
+static inline float reg_depth(union reg Cx, enum twin tw)
+{
+    if (tw == SSE)
+        return _mm_cvtss_f32(_mm_div_ss(_mm_set1_ps(1.0f), Cx.sse));
+    return 1.0f / Cx.lane[LANE_INV_Z];
+}
+
+/* (23) on four attributes: (u QA + v QB + w QC) * m, with the weights u, v,
+ * w read from the lanes of Cx (SSE: broadcast into whole registers). */
+static inline union reg reg_perspective(union reg Cx, union reg QA, union reg QB, union reg QC,
+                                        float m, enum twin tw)
+{
+    if (tw == SSE) {
+        __m128 u = BROADCAST(Cx.sse, LANE_U), v = BROADCAST(Cx.sse, LANE_V);
+        __m128 w = BROADCAST(Cx.sse, LANE_W);
+        __m128 P = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, QA.sse), _mm_mul_ps(v, QB.sse)),
+                              _mm_mul_ps(w, QC.sse));
+        return (union reg){ .sse = _mm_mul_ps(P, _mm_set1_ps(m)) };
+    }
+    float u = Cx.lane[LANE_U], v = Cx.lane[LANE_V], w = Cx.lane[LANE_W];
+    union reg P;
+    for (int i = 0; i < 4; i++)
+        P.lane[i] = (u * QA.lane[i] + v * QB.lane[i] + w * QC.lane[i]) * m;
+    return P;
+}
+
+/* The source's loop over the box, one pixel per step. Compiled once per
+ * twin (always_inline, tw a constant): each keeps only its own register. */
+static inline __attribute__((always_inline)) void
+walk_box(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
+         struct trace *tr, enum twin tw)
 {
     struct persp_setup s;
     if (t->empty) {
@@ -248,19 +267,16 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
     }
     persp_setup(t, p, &s);
     narrate_setup(t, &s, tr);
-    /* _mm_set_ps lists lanes from the highest down: lane 0 is the last argument */
-    __m128 I = _mm_set_ps((float)s.I[3], (float)s.I[2], (float)s.I[1], (float)s.I[0]);
-    __m128 J = _mm_set_ps((float)s.J[3], (float)s.J[2], (float)s.J[1], (float)s.J[0]);
-    __m128 Cy = _mm_set_ps((float)s.F[3], (float)s.F[2], (float)s.F[1], (float)s.F[0]);
-    __m128 QA0 = _mm_loadu_ps(s.Q[0]), QA1 = _mm_loadu_ps(s.Q[0] + 4);
-    __m128 QB0 = _mm_loadu_ps(s.Q[1]), QB1 = _mm_loadu_ps(s.Q[1] + 4);
-    __m128 QC0 = _mm_loadu_ps(s.Q[2]), QC1 = _mm_loadu_ps(s.Q[2] + 4);
-    const __m128 one = _mm_set1_ps(1.0f);
+    union reg I = reg_set(s.I, tw), J = reg_set(s.J, tw), Cy = reg_set(s.F, tw);
+    /* each vertex's (r, g, b, s) / Z and (t, 0, 0, 0) / Z: two registers */
+    union reg QA[2] = { reg_load(s.Q[0], tw), reg_load(s.Q[0] + 4, tw) };
+    union reg QB[2] = { reg_load(s.Q[1], tw), reg_load(s.Q[1] + 4, tw) };
+    union reg QC[2] = { reg_load(s.Q[2], tw), reg_load(s.Q[2] + 4, tw) };
     int64_t ey[3] = { s.e[0], s.e[1], s.e[2] };
 
     for (int y = t->miny; y <= t->maxy; y++) {
         NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
-        __m128 Cx = Cy;
+        union reg Cx = Cy;
         int64_t e[3] = { ey[0], ey[1], ey[2] };
         for (int x = t->minx; x <= t->maxx; x++) {
             bool in = covered(t, e);
@@ -268,24 +284,20 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
             float attr[ATTR_COUNT] = { 0 }, lane[4] = { 0 };
             float depth = 0;
             if (in) {
-                depth = _mm_cvtss_f32(_mm_div_ss(one, Cx));       /* 1 / Cx[0] */
+                depth = reg_depth(Cx, tw);
                 COUNT(tr, 1, RECIPROCAL_COST);
             }
             bool shows = in && target_depth_pass(fb, x, y, depth);
             if (shows) {                                /* shade only what will show */
-                __m128 u = BROADCAST(Cx, LANE_U), v = BROADCAST(Cx, LANE_V);
-                __m128 w = BROADCAST(Cx, LANE_W);
-                __m128 m = _mm_set1_ps(p->affine ? 1.0f : depth);
-                __m128 P0 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, QA0), _mm_mul_ps(v, QB0)),
-                                       _mm_mul_ps(w, QC0));        /* (23): r, g, b, s */
-                __m128 P1 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, QA1), _mm_mul_ps(v, QB1)),
-                                       _mm_mul_ps(w, QC1));        /* (23): t */
-                _mm_storeu_ps(attr, _mm_mul_ps(P0, m));
-                _mm_storeu_ps(attr + 4, _mm_mul_ps(P1, m));
-                COUNT(tr, 5, PERSPECTIVE_COST);         /* r, g, b, s, t */
+                float m = p->affine ? 1.0f : depth;
+                union reg P0 = reg_perspective(Cx, QA[0], QB[0], QC[0], m, tw);  /* r, g, b, s */
+                union reg P1 = reg_perspective(Cx, QA[1], QB[1], QC[1], m, tw);  /* t */
+                reg_store(attr, P0, tw);
+                reg_store(attr + 4, P1, tw);
+                COUNT(tr, 5, PERSPECTIVE_COST);
             }
             if (NARRATING)
-                _mm_storeu_ps(lane, Cx);
+                reg_store(lane, Cx, tw);
             NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
                     .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0, .z = depth,
                     .aux = { lane[0], lane[1], lane[2], lane[3], attr[ATTR_S], attr[ATTR_T] });
@@ -294,18 +306,30 @@ static void rasterize_sse(const struct tri_setup *t, const struct raster_params 
                 PLOT(fb, tr, L_WRITE, x, y, depth,
                      shows ? shade_pixel(p, tr, attr[ATTR_R], attr[ATTR_G], attr[ATTR_B],
                                          attr[ATTR_S], attr[ATTR_T]) : 0);
-            Cx = _mm_add_ps(Cx, I);                               /* Cx += I */
+            Cx = reg_add(Cx, I, tw);                          /* Cx += I */
             for (int k = 0; k < 3; k++)
                 e[k] += s.ex[k];
             COUNT(tr, 4, PLANE_STEP_COST);
             COUNT(tr, 3, EDGE_STEP_COST);
         }
-        Cy = _mm_add_ps(Cy, J);                                   /* Cy += J */
+        Cy = reg_add(Cy, J, tw);                              /* Cy += J */
         for (int k = 0; k < 3; k++)
             ey[k] += s.ey[k];
         COUNT(tr, 4, PLANE_STEP_COST);
         COUNT(tr, 3, EDGE_STEP_COST);
     }
+}
+
+static void rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
+                          struct target *fb, struct trace *tr)
+{
+    walk_box(t, p, fb, tr, SSE);
+}
+
+static void rasterize_scalar(const struct tri_setup *t, const struct raster_params *p,
+                             struct target *fb, struct trace *tr)
+{
+    walk_box(t, p, fb, tr, SCALAR);
 }
 
 /* Beyond the source: four PIXELS per register, one register per quantity.

@@ -59,35 +59,15 @@ static const char *const aux_names[] = { "q", "level", NULL };
 
 /* --- the edges, as the block loop uses them ------------------------------- */
 
-/* Seed 001's edge functions with the fill rule folded in. The top-left rule
- * says a pixel is covered when F0k + bias_k >= 0 for k = 1, 2, 3 (bias 0 on a
- * top or left edge, -1 otherwise: src/raster/raster.h). Adding the bias to
- * the constant once makes every test below, corner or pixel, a plain sign
- * test, and makes the corners and the pixels agree by construction.
+/* Seed 001's edge functions with the fill rule folded in (struct
+ * biased_edges, src/raster/raster.h): a pixel is covered when F0k + bias_k
+ * >= 0 for k = 1, 2, 3 (bias 0 on a top or left edge, -1 otherwise). With
+ * the bias in the constant, every test below, corner or pixel, is a plain
+ * sign test, and the corners and the pixels agree by construction.
  *
  * Index k = 0, 1, 2 is the source's F01 (edge AB, checkw), F02 (edge BC,
- * checku) and F03 (edge CA, checkv). */
-struct edges {
-    int64_t f0[3];          /* F0k + bias_k at the centre of pixel (0, 0) */
-    int64_t dx[3], dy[3];   /* one pixel right: I0k * 256, one row down: J0k * 256 */
-    int64_t bias[3];        /* kept to narrate F0k itself, without the bias */
-};
-
-static void edges_setup(struct edges *e, const struct tri_setup *t)
-{
-    for (int k = 0; k < 3; k++) {
-        e->dx[k] = t->I[k] * SUBPIXEL_ONE;
-        e->dy[k] = t->J[k] * SUBPIXEL_ONE;
-        e->f0[k] = edge_value(t, k, 0, 0) + t->bias[k];
-        e->bias[k] = t->bias[k];
-    }
-}
-
-/* F0k + bias_k at the centre of pixel (x, y): exact. */
-static int64_t edge_at(const struct edges *e, int k, int x, int y)
-{
-    return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
-}
+ * checku) and F03 (edge CA, checkv); biased_edge_at(e, k, x, y) is
+ * F0k + bias_k at the centre of pixel (x, y), exact. */
 
 /* --- shading -------------------------------------------------------------
  *
@@ -101,19 +81,13 @@ struct run {
     const struct tri_setup *t;
     struct target *fb;
     struct trace *tr;
-    struct edges e;
+    struct biased_edges e;
     struct planes pl;
     bool narrate;       /* a live trace in the narrated build: pixel by pixel */
     bool pixelwise;     /* partial blocks pixel by pixel even without a trace */
     bool fits_int32;    /* partial blocks' edge values fit the SSE int32 lanes */
     int size, level;    /* of the blocks being classified, for the narration */
 };
-
-/* Writes of a step that has not happened must not reach the target. */
-static bool frozen(const struct trace *tr)
-{
-    return NARRATING && tr && tr->frozen;
-}
 
 /* --- classifying a block by its corners ---------------------------------- */
 
@@ -133,9 +107,9 @@ static bool frozen(const struct trace *tr)
 
 static void corner_masks(struct run *r, int x0, int y0, int x1, int y1, unsigned mask[3])
 {
-    const struct edges *e = &r->e;
+    const struct biased_edges *e = &r->e;
     for (int k = 0; k < 3; k++) {
-        int64_t tl = edge_at(e, k, x0, y0);
+        int64_t tl = biased_edge_at(e, k, x0, y0);
         int64_t tr = tl + e->dx[k] * (x1 - x0);
         int64_t bl = tl + e->dy[k] * (y1 - y0);
         int64_t br = tr + (bl - tl);
@@ -210,9 +184,10 @@ static void render_block(struct run *r, int x0, int y0, int x1, int y1)
  * write is a step of the narration. */
 static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
 {
-    const struct edges *e = &r->e;
+    const struct biased_edges *e = &r->e;
     struct quad step = quad_step(&r->pl);
-    int64_t cy[3] = { edge_at(e, 0, x0, y0), edge_at(e, 1, x0, y0), edge_at(e, 2, x0, y0) };
+    int64_t cy[3] = { biased_edge_at(e, 0, x0, y0), biased_edge_at(e, 1, x0, y0),
+                      biased_edge_at(e, 2, x0, y0) };
     for (int y = y0; y <= y1; y++) {
         struct quad qd = quad_at(&r->pl, x0 & ~3, y);
         int64_t cx[3] = { cy[0], cy[1], cy[2] };
@@ -260,7 +235,7 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
  * and the caller checked that this fits an int32 lane. */
 static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, const unsigned mask[3])
 {
-    const struct edges *e = &r->e;
+    const struct biased_edges *e = &r->e;
     int xq0 = x0 & ~3;
     __m128i row_f[3], step_x[3], step_y[3];
     for (int k = 0; k < 3; k++) {
@@ -268,7 +243,7 @@ static void partial_block_quads(struct run *r, int x0, int y0, int x1, int y1, c
             row_f[k] = step_x[k] = step_y[k] = _mm_setzero_si128();
             continue;
         }
-        int64_t f = edge_at(e, k, xq0, y0);
+        int64_t f = biased_edge_at(e, k, xq0, y0);
         row_f[k] = _mm_setr_epi32((int32_t)f, (int32_t)(f + e->dx[k]),
                                   (int32_t)(f + 2 * e->dx[k]), (int32_t)(f + 3 * e->dx[k]));
         step_x[k] = _mm_set1_epi32((int32_t)(4 * e->dx[k]));
@@ -312,10 +287,11 @@ static enum block_class block(struct run *r, enum block_rule rule, int x0, int y
             .x = x0, .y = y0,
             .x1 = x1, .y1 = y1, .klass = (uint8_t)klass,
             .mask = { (uint16_t)m[0], (uint16_t)m[1], (uint16_t)m[2] },
-            .e = { edge_at(&r->e, 0, x0, y0) - r->e.bias[0], edge_at(&r->e, 1, x0, y0) - r->e.bias[1],
-                   edge_at(&r->e, 2, x0, y0) - r->e.bias[2] },
+            .e = { biased_edge_at(&r->e, 0, x0, y0) - r->e.bias[0],
+                   biased_edge_at(&r->e, 1, x0, y0) - r->e.bias[1],
+                   biased_edge_at(&r->e, 2, x0, y0) - r->e.bias[2] },
             .aux = { (float)r->size, (float)r->level });
-    if (klass == BLOCK_FULL && !frozen(r->tr))
+    if (klass == BLOCK_FULL && !trace_frozen(r->tr))
         render_block(r, x0, y0, x1, y1);
     if (klass != BLOCK_PARTIAL || !act_on_partial)
         return klass;
@@ -374,7 +350,7 @@ static void rasterize_blocks(const struct tri_setup *t, const struct raster_para
     r.pixelwise = o.pixelwise;
     r.size = q;
     r.level = 0;
-    edges_setup(&r.e, t);
+    biased_edges_setup(&r.e, t, true);
     planes_setup(&r.pl, t, p);
     /* the SSE partial loop keeps edge values in int32 lanes: see there */
     int64_t widest = 0;

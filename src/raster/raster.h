@@ -134,6 +134,36 @@ static inline bool edge_inside(const struct tri_setup *t, int k, int64_t f)
     return f + t->bias[k] >= 0;
 }
 
+/* The edge functions with the fill rule folded in (lessons 05 onwards). The
+ * top-left rule covers a point when F_k + bias_k >= 0 for k = 0, 1, 2;
+ * adding the bias to the constant once makes every later test, at a pixel,
+ * a block's corner or a sample, a plain sign test, and makes them all agree
+ * by construction. Stepped from pixel (0, 0): one pixel right adds 256 I_k,
+ * one row down 256 J_k, exactly. */
+struct biased_edges {
+    int64_t f0[3];          /* F_k + bias_k at the centre of pixel (0, 0) */
+    int64_t dx[3], dy[3];   /* one pixel right: 256 I_k, one row down: 256 J_k */
+    int64_t bias[3];        /* what was folded in, to narrate F_k itself */
+};
+
+/* fill_rule false folds in no bias: every edge inclusive (an exhibit's). */
+static inline void biased_edges_setup(struct biased_edges *e, const struct tri_setup *t,
+                                      bool fill_rule)
+{
+    for (int k = 0; k < 3; k++) {
+        e->bias[k] = fill_rule ? t->bias[k] : 0;
+        e->dx[k] = t->I[k] * SUBPIXEL_ONE;
+        e->dy[k] = t->J[k] * SUBPIXEL_ONE;
+        e->f0[k] = edge_value(t, k, 0, 0) + e->bias[k];
+    }
+}
+
+/* F_k + bias_k at the centre of pixel (x, y): exact. */
+static inline int64_t biased_edge_at(const struct biased_edges *e, int k, int x, int y)
+{
+    return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
+}
+
 /* Barycentric weights (u, v, w) of A, B, C from the three edge values. Cost:
  * three products with 1 / area2, which a lesson computes once per triangle. */
 #define BARYCENTRIC_COST { .mul = 3, .add = 0 }

@@ -155,6 +155,14 @@ void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
 #define NARRATING 0
 #endif
 
+/* Has the run reached a step that has not happened? Then its writes must
+ * not reach the target: a lesson that writes without PLOT or FILL (a block
+ * or a tile stored at once) asks this first. Always false in the fast build. */
+static inline bool trace_frozen(const struct trace *tr)
+{
+    return NARRATING && tr && tr->frozen;
+}
+
 /* The triangle is set up: its box and twice its area, the first event of
  * every triangle (the explorer draws the box). */
 #define NARRATE_SETUP(tr, t, ln) \
