@@ -27,7 +27,7 @@
 
 extern const struct lesson lesson_06;
 
-/* --- the world triangle behind the focus, through the stages ------------------- */
+/* --- the world triangle told, through the stages -------------------------------- */
 
 struct staged {
     struct frustum fr;
@@ -38,39 +38,75 @@ struct staged {
     struct pvert made[POLY_MAX];/* new vertices of near and far, view space */
     double t[POLY_MAX];
     int nmade;
+    struct poly after[PLANE_BOTTOM + 1];    /* what each plane kept and made */
+    int plane, last_guard;      /* the plane being clipped against; the last guard plane */
+    bool guard_inside;
 };
 
-static void collect(void *ctx, const struct clip_step *s)
+static void add(struct poly *p, const float *pos)
+{
+    if (p->n < POLY_MAX)
+        p->v[p->n++] = (struct pvert){ .pos = { pos[0], pos[1], pos[2] } };
+}
+
+/* The stages, as the pipeline tells them. */
+static void collect(void *ctx, const struct trace_event *ev)
 {
     struct staged *st = ctx;
-    if (s->what == CLIP_NEW && !s->plane->screen && st->nmade < POLY_MAX) {
-        st->made[st->nmade] = *s->v;
-        st->t[st->nmade++] = s->t;
+    if (ev->kind != TRACE_FRONT)
+        return;
+    switch ((enum front_step)ev->klass) {
+    case FRONT_VIEW:
+        add(&st->view, ev->aux);
+        break;
+    case FRONT_PLANE:
+        st->plane = ev->x >= 0 && ev->x <= PLANE_BOTTOM ? ev->x : PLANE_NEAR;
+        st->after[st->plane].n = 0;
+        if (st->plane > PLANE_FAR)
+            st->last_guard = st->plane;
+        break;
+    case FRONT_NEW:
+        if (st->plane <= PLANE_FAR && st->nmade < POLY_MAX) {
+            st->made[st->nmade] = (struct pvert){ .pos = { ev->aux[0], ev->aux[1], ev->aux[2] } };
+            st->t[st->nmade++] = ev->aux[3];
+        }
+        add(&st->after[st->plane], ev->aux);
+        break;
+    case FRONT_KEEP:
+        add(&st->after[st->plane], ev->aux);
+        break;
+    case FRONT_PROJECT:
+        add(&st->projected, ev->aux);
+        break;
+    case FRONT_GUARD:
+        st->guard_inside = (ev->flags & TRACE_INSIDE) != 0;
+        break;
+    case FRONT_DROP:
+    case FRONT_TRIANGLE:
+    case FRONT_WORLD:
+    case FRONT_STEP_COUNT:
+        break;
     }
 }
 
-/* The stages of the world triangle that screen triangle `tri` came from. */
-static bool stage(const struct raster_params *p, uint32_t tri, struct staged *st)
+/* The stages of world triangle w: the lesson's pipeline run on it, told to
+ * collect(). */
+static bool stage(const struct raster_params *p, int w, struct staged *st)
 {
     const struct scene *s = p->scene;
-    if (!s || !s->world.camera_line || !s->world.from || tri >= (uint32_t)s->ntris)
+    if (!s || !s->world.camera_line || w < 0 || w >= s->world.ntris)
         return false;
-    const struct world_tri *t = &s->world.tris[s->world.from[tri]];
     memset(st, 0, sizeof *st);
+    st->last_guard = -1;
     frustum_init(&st->fr, &s->world.cam, s->w, s->h);
-    st->view.n = 3;
-    for (int k = 0; k < 3; k++)
-        st->view.v[k] = view_vertex(&st->fr, t->p[k], t->rgb[k]);
-    struct clip_watch w = { collect, st };
-    struct plane near = depth_plane(&st->fr, PLANE_NEAR), far = depth_plane(&st->fr, PLANE_FAR);
-    struct poly q;
-    clip_polygon(&q, &st->view, &near, &w);
-    clip_polygon(&st->clipped, &q, &far, &w);
-    st->projected = st->clipped;
-    project(&st->fr, &st->projected);
-    st->drawn = st->projected;
-    if (!in_guard_band(&st->drawn))
-        clip_guard_band(&st->drawn, NULL);
+    struct trace tr = { .sink = collect, .ctx = st };
+    trace_begin(&tr, 0, TRACE_UNLIMITED);
+    tr.part = w;
+    struct vertex out[POLY_MAX - 2][3];
+    front_pipeline(&st->fr, s->world.cull, &s->world.tris[w], NULL, &tr, out);
+    st->clipped = st->after[PLANE_FAR];
+    st->drawn = st->guard_inside ? st->projected
+                : st->last_guard >= 0 ? st->after[st->last_guard] : (struct poly){ 0 };
     return true;
 }
 
@@ -263,8 +299,12 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     bool top = strcmp(c->view, "frustum") == 0, screen = strcmp(c->view, "screen") == 0;
     if ((!top && !screen) || !last || !p->scene)
         return;
+    /* the world triangle told (a front-end step), or the focus's */
+    const struct world *wd = &p->scene->world;
+    int w = last->kind == TRACE_FRONT ? last->part
+            : wd->from && last->tri < (uint32_t)p->scene->ntris ? wd->from[last->tri] : -1;
     struct staged st;
-    if (!stage(p, last->tri, &st))
+    if (!stage(p, w, &st))
         return;
     (void)t;
     if (top)
@@ -345,12 +385,15 @@ static const char *plane_name(int id)
 static void watch(const struct tri_setup *t, const struct raster_params *p,
                   const struct trace_event *ev, char *buf, size_t n)
 {
-    (void)t, (void)p;
+    (void)t;
     buf[0] = '\0';
     if (ev->kind != TRACE_FRONT)
         return;
     const float *a = ev->aux;
     switch ((enum front_step)ev->klass) {
+    case FRONT_WORLD:
+        snprintf(buf, n, "world triangle %d of %d\n", ev->part + 1, p->scene ? p->scene->world.ntris : 0);
+        break;
     case FRONT_VIEW:
         snprintf(buf, n, "vertex %c in view space:\nx_v %.5g, y_v %.5g, d %.5g%s\n", 'A' + ev->x,
                  a[0], a[1], a[2], a[2] <= 0 ? "  (behind the eye)" : "");

@@ -81,8 +81,7 @@ static bool inside(const struct plane *pl, const struct pvert *v)
     return pl->keep > 0 ? c >= pl->at : c <= pl->at;
 }
 
-/* The canonical order of an edge's ends: lexicographic on the position. */
-static bool before(const struct pvert *a, const struct pvert *b)
+bool pvert_before(const struct pvert *a, const struct pvert *b)
 {
     for (int i = 0; i < 3; i++)
         if (a->pos[i] != b->pos[i])
@@ -130,35 +129,34 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
     return n;
 }
 
-static void watch(const struct clip_watch *w, struct clip_step s)
-{
-    if (w && w->step)
-        w->step(w->ctx, &s);
-}
+/* A vertex's position, as the narration carries it. */
+#define AUX_POS(v) (float)(v)->pos[0], (float)(v)->pos[1], (float)(v)->pos[2]
 
 void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
-                  const struct clip_watch *w)
+                  struct trace *tr)
 {
+    uint8_t line = pl->id == PLANE_NEAR ? FRONT_LINE_NEAR
+                   : pl->id == PLANE_FAR ? FRONT_LINE_FAR : FRONT_LINE_GUARD;
+    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PLANE, .line = line, .x = (int32_t)pl->id,
+            .y = in->n, .aux = { (float)pl->at });
     out->n = 0;
     for (int i = 0; i < in->n; i++) {
         const struct pvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
         bool ina = inside(pl, a), inb = inside(pl, b);
-        if (ina) {
+        if (ina)
             out->v[out->n++] = *a;
-            watch(w, (struct clip_step){ .what = CLIP_KEEP, .plane = pl, .v = a });
-        } else {
-            watch(w, (struct clip_step){ .what = CLIP_DROP, .plane = pl, .v = a });
-        }
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = ina ? FRONT_KEEP : FRONT_DROP, .line = line,
+                .x = (int32_t)pl->id, .aux = { AUX_POS(a) });
         /* a new vertex only where the edge really crosses: an end lying on
          * the plane is itself the crossing, and is kept as it is */
         const struct pvert *in_end = ina ? a : b;
         if (ina != inb && in_end->pos[pl->axis] != pl->at) {
-            const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;
+            const struct pvert *p0 = pvert_before(b, a) ? b : a, *p1 = p0 == a ? b : a;
             double t;
-            out->v[out->n] = edge_point(pl, p0, p1, &t);
-            watch(w, (struct clip_step){ .what = CLIP_NEW, .plane = pl, .v = &out->v[out->n],
-                                         .p0 = p0, .p1 = p1, .t = t });
-            out->n++;
+            struct pvert *n = &out->v[out->n++];
+            *n = edge_point(pl, p0, p1, &t);
+            NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_NEW, .line = line,
+                    .x = (int32_t)pl->id, .aux = { AUX_POS(n), (float)t });
         }
     }
 }
@@ -185,11 +183,11 @@ bool in_guard_band(const struct poly *p)
     return true;
 }
 
-void clip_guard_band(struct poly *p, const struct clip_watch *w)
+void clip_guard_band(struct poly *p, struct trace *tr)
 {
     for (int k = 0; k < 4 && p->n > 0; k++) {
         struct poly out;
-        clip_polygon(&out, p, &guard_planes[k], w);
+        clip_polygon(&out, p, &guard_planes[k], tr);
         *p = out;
     }
 }
@@ -220,13 +218,16 @@ static struct vertex screen_vertex(const struct pvert *p)
                             .r = p->rgb[0], .g = p->rgb[1], .b = p->rgb[2] };
 }
 
-int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
+int fan(const struct poly *p, enum cull cull, struct vertex out[][3], struct trace *tr)
 {
     int n = 0;
     for (int i = 1; i + 1 < p->n; i++) {
         struct vertex t[3] = { screen_vertex(&p->v[0]), screen_vertex(&p->v[i]),
                                screen_vertex(&p->v[i + 1]) };
-        if (!culled(cull, t))
+        bool drawn = !culled(cull, t);
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_TRIANGLE, .line = FRONT_LINE_FAN, .x = i - 1,
+                .flags = drawn ? TRACE_INSIDE : 0, .aux = { (float)facing_area(t) / 65536.0f });
+        if (drawn)
             memcpy(out[n++], t, sizeof t);
     }
     return n;
@@ -234,21 +235,54 @@ int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
 
 /* --- the pipeline ------------------------------------------------------------------ */
 
+/* Pixel of a screen position, for the explorer to outline (clamped: the
+ * position may be far off the screen). */
+static int32_t pixel_of(double v)
+{
+    return (int32_t)fmax(-2e9, fmin(2e9, floor(v)));
+}
+
+int front_pipeline(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                   const struct front_way *way, struct trace *tr, struct vertex out[][3])
+{
+    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_WORLD, .line = FRONT_LINE_EACH);
+    struct poly p = { .n = 3 }, q;
+    for (int k = 0; k < 3; k++) {                               /* world -> view */
+        p.v[k] = view_vertex(v, t->p[k], t->rgb[k]);
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_VIEW, .line = FRONT_LINE_VIEW, .x = k,
+                .aux = { AUX_POS(&p.v[k]) });
+    }
+    void (*clip)(struct poly *, const struct poly *, const struct plane *, struct trace *) =
+        way && way->clip ? way->clip : clip_polygon;
+    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
+    clip(&q, &p, &near, tr);                                    /* d >= near */
+    if (q.n == 0)
+        return 0;                                               /* wholly behind near */
+    clip(&p, &q, &far, tr);                                     /* d <= far */
+    if (p.n == 0)
+        return 0;                                               /* wholly beyond far */
+    project(v, &p);                                             /* view -> screen */
+    for (int k = 0; k < p.n; k++) {
+        const double *c = p.v[k].pos;
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PROJECT, .line = FRONT_LINE_PROJECT,
+                .x = pixel_of(c[0]), .y = pixel_of(c[1]), .aux = { AUX_POS(&p.v[k]), (float)k });
+    }
+    if (way && way->screen) {
+        way->screen(v, &p);                                     /* an exhibit's x, y */
+    } else {
+        bool inside = in_guard_band(&p);
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_GUARD, .line = FRONT_LINE_GUARD, .y = p.n,
+                .flags = inside ? TRACE_INSIDE : 0);
+        if (!inside)
+            clip_guard_band(&p, tr);                            /* only beyond the band */
+    }
+    return fan(&p, cull, out, tr);                              /* triangles, culled */
+}
+
 int front_triangle(const struct frustum *v, enum cull cull, const struct world_tri *t,
                    struct vertex out[][3])
 {
-    struct poly world = { .n = 3 }, near_clipped, clipped;
-    for (int i = 0; i < 3; i++)
-        world.v[i] = view_vertex(v, t->p[i], t->rgb[i]);        /* world -> view */
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip_polygon(&near_clipped, &world, &near, NULL);           /* d >= near */
-    if (near_clipped.n == 0)
-        return 0;                                               /* wholly behind near */
-    clip_polygon(&clipped, &near_clipped, &far, NULL);          /* d <= far */
-    project(v, &clipped);                                       /* view -> screen */
-    if (!in_guard_band(&clipped))
-        clip_guard_band(&clipped, NULL);                        /* only beyond the band */
-    return fan(&clipped, cull, out);                            /* triangles, culled */
+    return front_pipeline(v, cull, t, NULL, NULL, out);
 }
 
 bool front_scene(struct scene *s)
