@@ -399,6 +399,98 @@ static int pipeline_no_guard(const struct frustum *v, enum cull cull, const stru
     return front_pipeline(v, cull, t, &way, NULL, out);
 }
 
+/* --- the APIs' way: clipping in homogeneous clip space -------------------------
+ *
+ * OpenGL, Vulkan and Direct3D clip after the projection matrix and before
+ * the divide, a vertex being (x_c, y_c, z_c, w) with
+ *
+ *     x_c = (g / a) x_v,   y_c = g y_v,   z_c = A d + B,   w = d
+ *
+ *     OpenGL:      A = (f+n)/(f-n), B = -2fn/(f-n),  kept where -w <= z_c <= w
+ *     Vulkan, D3D: A = f/(f-n),     B = -fn/(f-n),   kept where  0 <= z_c <= w
+ *
+ * z_c = -w (GL) and z_c = 0 (Vulkan) hold where d = n, z_c = w where d = f:
+ * the same planes. A boundary value b = k . (x_c, y_c, z_c, w) is linear in
+ * the four coordinates, so along an edge it is linear in t: the crossing is
+ * at t = b0 / (b0 - b1), (n - d0) / (d1 - d0) again but rounded another
+ * way, and every coordinate is interpolated with it; the divide by w comes
+ * after. */
+struct hvert { double c[4], rgb[3]; };
+struct hpoly { int n; struct hvert v[POLY_MAX]; };
+
+static bool h_before(const struct hvert *a, const struct hvert *b)
+{
+    for (int i = 0; i < 4; i++)
+        if (a->c[i] != b->c[i])
+            return a->c[i] < b->c[i];
+    return false;
+}
+
+/* Sutherland-Hodgman against the boundary kz z_c + kw w >= 0, the edge's
+ * ends in canonical order. */
+static void clip_homogeneous(struct hpoly *out, const struct hpoly *in, double kz, double kw)
+{
+    out->n = 0;
+    for (int i = 0; i < in->n; i++) {
+        const struct hvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
+        double ba = kz * a->c[2] + kw * a->c[3], bb = kz * b->c[2] + kw * b->c[3];
+        if (ba >= 0)
+            out->v[out->n++] = *a;
+        if ((ba >= 0) != (bb >= 0) && (ba >= 0 ? ba : bb) != 0) {
+            const struct hvert *p0 = h_before(b, a) ? b : a, *p1 = p0 == a ? b : a;
+            double b0 = p0 == a ? ba : bb, b1 = p0 == a ? bb : ba, t = b0 / (b0 - b1);
+            struct hvert *n = &out->v[out->n++];
+            for (int k = 0; k < 4; k++)
+                n->c[k] = p0->c[k] + t * (p1->c[k] - p0->c[k]);
+            for (int k = 0; k < 3; k++)
+                n->rgb[k] = fmin(fmax(p0->rgb[k] + t * (p1->rgb[k] - p0->rgb[k]),
+                                      fmin(p0->rgb[k], p1->rgb[k])), fmax(p0->rgb[k], p1->rgb[k]));
+        }
+    }
+}
+
+/* View space -> clip space, near and far, the divide and the viewport. */
+static void clip_space(const struct frustum *v, struct poly *p, bool gl)
+{
+    double n = v->near, f = v->far;
+    double A = gl ? (f + n) / (f - n) : f / (f - n), B = gl ? -2 * f * n / (f - n) : -f * n / (f - n);
+    struct hpoly h = { .n = p->n }, q;
+    for (int k = 0; k < p->n; k++) {
+        const double *c = p->v[k].pos;
+        h.v[k] = (struct hvert){ .c = { v->g / v->aspect * c[0], v->g * c[1], A * c[2] + B, c[2] } };
+        memcpy(h.v[k].rgb, p->v[k].rgb, sizeof h.v[k].rgb);
+    }
+    clip_homogeneous(&q, &h, 1, gl ? 1 : 0);        /* z_c >= -w, or z_c >= 0 */
+    clip_homogeneous(&h, &q, -1, 1);                /* z_c <= w */
+    p->n = h.n;
+    for (int k = 0; k < h.n; k++) {
+        const double *c = h.v[k].c;
+        p->v[k] = (struct pvert){ .pos = { v->half_w * (1 + c[0] / c[3]), v->half_h * (1 - c[1] / c[3]),
+                                           c[3] } };
+        memcpy(p->v[k].rgb, h.v[k].rgb, sizeof p->v[k].rgb);
+    }
+}
+
+static void clip_space_gl(const struct frustum *v, struct poly *p) { clip_space(v, p, true); }
+static void clip_space_vk(const struct frustum *v, struct poly *p) { clip_space(v, p, false); }
+
+static int pipeline_clip_space_gl(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                                  struct vertex out[][3])
+{
+    static const struct front_way way = { .clip_project = clip_space_gl };
+    return front_pipeline(v, cull, t, &way, NULL, out);
+}
+
+static int pipeline_clip_space_vk(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                                  struct vertex out[][3])
+{
+    static const struct front_way way = { .clip_project = clip_space_vk };
+    return front_pipeline(v, cull, t, &way, NULL, out);
+}
+
+static bool front_clip_space_gl(struct scene *s) { return front_scene_with(s, pipeline_clip_space_gl); }
+static bool front_clip_space_vk(struct scene *s) { return front_scene_with(s, pipeline_clip_space_vk); }
+
 static bool front_project_first(struct scene *s) { return front_scene_with(s, pipeline_project_first); }
 static bool front_walk_order(struct scene *s) { return front_scene_with(s, pipeline_walk_order); }
 static bool front_float_canonical(struct scene *s) { return front_scene_with(s, pipeline_float_canonical); }
@@ -459,19 +551,23 @@ static const struct lesson_variant variants[] = {
       rasterize_05, true },
     { "no-guard-32", "exhibit: no guard band and 32-bit edge values: lesson 03's overflow",
       rasterize_edges32, true },
+    { "clip-space-gl", "near and far clipped in clip space, -w <= z <= w (OpenGL): the same picture",
+      rasterize_05, false },
+    { "clip-space-vk", "near and far clipped in clip space, 0 <= z <= w (Vulkan, D3D): the same picture",
+      rasterize_05, false },
 };
 
 /* How each variant makes the screen triangles (NULL: the shared front end). */
 static const front_fn fronts[] = {
     NULL, NULL, NULL, NULL, front_project_first, front_walk_order, front_float_canonical, front_viewport,
-    front_no_guard,
+    front_no_guard, front_clip_space_gl, front_clip_space_vk,
 };
 
 _Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof variants[0],
                "one front end per variant");
 
 /* The variants whose depth buffer holds another quantity than d. */
-static const bool other_depth[] = { false, true, true, true, false, false, false, false, false };
+static const bool other_depth[] = { false, true, true, true, false, false, false, false, false, false, false };
 _Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
                "one entry per variant");
 

@@ -252,16 +252,22 @@ int front_pipeline(const struct frustum *v, enum cull cull, const struct world_t
         NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_VIEW, .line = FRONT_LINE_VIEW, .x = k,
                 .aux = { AUX_POS(&p.v[k]) });
     }
-    void (*clip)(struct poly *, const struct poly *, const struct plane *, struct trace *) =
-        way && way->clip ? way->clip : clip_polygon;
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip(&q, &p, &near, tr);                                    /* d >= near */
-    if (q.n == 0)
-        return 0;                                               /* wholly behind near */
-    clip(&p, &q, &far, tr);                                     /* d <= far */
-    if (p.n == 0)
-        return 0;                                               /* wholly beyond far */
-    project(v, &p);                                             /* view -> screen */
+    if (way && way->clip_project) {
+        way->clip_project(v, &p);                               /* an alternative's */
+        if (p.n == 0)
+            return 0;
+    } else {
+        void (*clip)(struct poly *, const struct poly *, const struct plane *, struct trace *) =
+            way && way->clip ? way->clip : clip_polygon;
+        struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
+        clip(&q, &p, &near, tr);                                /* d >= near */
+        if (q.n == 0)
+            return 0;                                           /* wholly behind near */
+        clip(&p, &q, &far, tr);                                 /* d <= far */
+        if (p.n == 0)
+            return 0;                                           /* wholly beyond far */
+        project(v, &p);                                         /* view -> screen */
+    }
     for (int k = 0; k < p.n; k++) {
         const double *c = p.v[k].pos;
         NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PROJECT, .line = FRONT_LINE_PROJECT,

@@ -125,6 +125,9 @@ int fan(const struct poly *p, enum cull cull, struct vertex out[][3], struct tra
 struct front_way {
     /* clipping against d >= near, then d <= far (clip_polygon) */
     void (*clip)(struct poly *out, const struct poly *in, const struct plane *pl, struct trace *tr);
+    /* near, far and the projection at once, from view space to the screen
+     * (clipping in homogeneous clip space, as the APIs do) */
+    void (*clip_project)(const struct frustum *v, struct poly *p);
     /* x and y after projection (the guard band) */
     void (*screen)(const struct frustum *v, struct poly *p);
 };
