@@ -150,9 +150,10 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
  *                that the float's dense values near 0 go to the far range
  *
  * With a small near plane NDC z crowds almost all its values next to the
- * near plane: 400 units away with n = 0.01 and f = 1000, one step of 24 bits
- * is 0.32 units of depth. The reversed float spends its exponent where NDC z
- * wastes its bits. */
+ * near plane: the window depth grows by fn / ((f - n) d^2) per unit of d,
+ * so 400 units away with n = 0.01 and f = 1000 one step of 24 bits,
+ * 1 / (2^24 - 1), is 0.954 units of depth. The reversed float spends its
+ * exponent where NDC z wastes its bits. */
 enum depth_store { STORE_D, STORE_NDC24, STORE_INVERSE, STORE_REVERSED };
 
 #define NDC24_STEPS 16777215.0      /* 2^24 - 1 */
