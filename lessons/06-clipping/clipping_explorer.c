@@ -476,7 +476,8 @@ static const struct lesson_view views[] = {
     { "screen", "the screen zoomed out: the framebuffer, the guard band, the projected "
                 "polygon and the polygon drawn", no_cell },
     { "stored", "the depth buffer's value between near (white) and far (black), linear: "
-                "NDC z crowds into the black end; a depth variant's pixels only", stored_cell },
+                "NDC z, 1/d and reversed depth alike crowd into the black end; a depth variant's "
+                "pixels only", stored_cell },
     { "depth-error", "stored depth against the exact d: black below 1e-9, blue 1e-7, "
                      "green 1e-5, red 1e-2 and more (relative)", depth_error_cell },
 };
