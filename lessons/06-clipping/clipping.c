@@ -280,14 +280,6 @@ static void depth_as_abs_then_guard_band(const struct frustum *v, struct poly *p
         clip_guard_band(p, NULL);
 }
 
-static int pipeline_project_first(const struct frustum *v, enum cull cull,
-                                   const struct world_tri *t, struct vertex out[][3])
-{
-    static const struct front_way way = { .clip = clip_nothing,
-                                          .screen = depth_as_abs_then_guard_band };
-    return front_pipeline(v, cull, t, &way, NULL, out);
-}
-
 /* Exhibit walk-order: near and far clipped as many pipelines clip, in single
  * precision (as GPUs do), and each triangle taking its edges in its own
  * walking order. The two triangles sharing an edge walk it in opposite
@@ -338,20 +330,6 @@ static void clip_float_canonical(struct poly *out, const struct poly *in, const 
     clip_float(out, in, pl, true);
 }
 
-static int pipeline_walk_order(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                               struct vertex out[][3])
-{
-    static const struct front_way way = { .clip = clip_float_walk };
-    return front_pipeline(v, cull, t, &way, NULL, out);
-}
-
-static int pipeline_float_canonical(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                                    struct vertex out[][3])
-{
-    static const struct front_way way = { .clip = clip_float_canonical };
-    return front_pipeline(v, cull, t, &way, NULL, out);
-}
-
 /* Exhibit viewport: x and y clipped to the framebuffer, [0, W] x [0, H],
  * for every triangle that crosses its border, instead of only beyond the
  * guard band. The picture is the same; the vertices and triangles are not:
@@ -369,13 +347,6 @@ static void clip_to_viewport(const struct frustum *v, struct poly *p)
     }
 }
 
-static int pipeline_viewport(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                             struct vertex out[][3])
-{
-    static const struct front_way way = { .screen = clip_to_viewport };
-    return front_pipeline(v, cull, t, &way, NULL, out);
-}
-
 /* Exhibit no-guard-32: no x/y clipping at all, and edge values in 32-bit
  * integers, as a rasterizer without a guard band would have them. Lesson
  * 03's budget: with 8 sub-pixel bits, |F| <= 8 R^2 must stay below 2^31, so
@@ -391,13 +362,6 @@ static void no_guard_band(const struct frustum *v, struct poly *p)
     for (int k = 0; k < p->n; k++)
         for (int a = 0; a < 2; a++)
             p->v[k].pos[a] = fmax(-NO_GUARD_LIMIT, fmin(NO_GUARD_LIMIT, p->v[k].pos[a]));
-}
-
-static int pipeline_no_guard(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                             struct vertex out[][3])
-{
-    static const struct front_way way = { .screen = no_guard_band };
-    return front_pipeline(v, cull, t, &way, NULL, out);
 }
 
 /* --- the APIs' way: clipping in homogeneous clip space -------------------------
@@ -475,28 +439,42 @@ static void clip_space(const struct frustum *v, struct poly *p, bool gl)
 static void clip_space_gl(const struct frustum *v, struct poly *p) { clip_space(v, p, true); }
 static void clip_space_vk(const struct frustum *v, struct poly *p) { clip_space(v, p, false); }
 
-static int pipeline_clip_space_gl(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                                  struct vertex out[][3])
+/* The slips and the alternatives, each a front end of its own. */
+static bool front_project_first(struct scene *s)
 {
-    static const struct front_way way = { .clip_project = clip_space_gl };
-    return front_pipeline(v, cull, t, &way, NULL, out);
+    return front_scene_way(s, &(struct front_way){ .clip = clip_nothing,
+                                                   .screen = depth_as_abs_then_guard_band });
 }
 
-static int pipeline_clip_space_vk(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                                  struct vertex out[][3])
+static bool front_walk_order(struct scene *s)
 {
-    static const struct front_way way = { .clip_project = clip_space_vk };
-    return front_pipeline(v, cull, t, &way, NULL, out);
+    return front_scene_way(s, &(struct front_way){ .clip = clip_float_walk });
 }
 
-static bool front_clip_space_gl(struct scene *s) { return front_scene_with(s, pipeline_clip_space_gl); }
-static bool front_clip_space_vk(struct scene *s) { return front_scene_with(s, pipeline_clip_space_vk); }
+static bool front_float_canonical(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip = clip_float_canonical });
+}
 
-static bool front_project_first(struct scene *s) { return front_scene_with(s, pipeline_project_first); }
-static bool front_walk_order(struct scene *s) { return front_scene_with(s, pipeline_walk_order); }
-static bool front_float_canonical(struct scene *s) { return front_scene_with(s, pipeline_float_canonical); }
-static bool front_viewport(struct scene *s) { return front_scene_with(s, pipeline_viewport); }
-static bool front_no_guard(struct scene *s) { return front_scene_with(s, pipeline_no_guard); }
+static bool front_viewport(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .screen = clip_to_viewport });
+}
+
+static bool front_no_guard(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .screen = no_guard_band });
+}
+
+static bool front_clip_space_gl(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip_project = clip_space_gl });
+}
+
+static bool front_clip_space_vk(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip_project = clip_space_vk });
+}
 
 /* Edge values wrapped to 32 bits, as int32_t arithmetic would leave them
  * (computed in uint32_t, where wrapping is defined, then read back). */
@@ -568,7 +546,8 @@ _Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof vari
                "one front end per variant");
 
 /* The variants whose depth buffer holds another quantity than d. */
-static const bool other_depth[] = { false, true, true, true, false, false, false, false, false, false, false };
+static const bool other_depth[] = { false, true, true, true, false, false, false, false, false,
+                                    false, false };
 _Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
                "one entry per variant");
 

@@ -348,7 +348,8 @@ static void draw_frustum(const struct lesson_canvas *c, const struct staged *st,
     double b[4][2];
     top_point(&whole, nx0, nd0, b[0]), top_point(&whole, nx1, nd0, b[1]);
     top_point(&whole, nx1, nd1, b[2]), top_point(&whole, nx0, nd1, b[3]);
-    rect_polygon(c, &left, (const double(*)[2])b, 4, (struct pen){ .stroke = INK_MARK, .width = 1, .dashed = true });
+    rect_polygon(c, &left, (const double(*)[2])b, 4,
+                 (struct pen){ .stroke = INK_MARK, .width = 1, .dashed = true });
 }
 
 /* --- screen: zoomed out ------------------------------------------------------------ */

@@ -291,12 +291,9 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
     return front_pipeline(v, cull, t, NULL, NULL, out);
 }
 
-bool front_scene(struct scene *s)
-{
-    return front_scene_with(s, front_triangle);
-}
-
-bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+/* Every world triangle through pipeline, or (pipeline NULL) through
+ * front_pipeline() the way `way` says. */
+static bool scene_through(struct scene *s, pipeline_fn pipeline, const struct front_way *way)
 {
     struct world *w = &s->world;
     if (!w->camera_line)
@@ -307,7 +304,8 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
     int from_cap = 0;
     for (int i = 0; i < w->ntris; i++) {
         struct vertex tris[POLY_MAX - 2][3];
-        int n = pipeline(&v, w->cull, &w->tris[i], tris);
+        int n = pipeline ? pipeline(&v, w->cull, &w->tris[i], tris)
+                         : front_pipeline(&v, w->cull, &w->tris[i], way, NULL, tris);
         for (int k = 0; k < n; k++) {
             if (!scene_add(s, tris[k]))
                 return false;
@@ -323,6 +321,21 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
         }
     }
     return true;
+}
+
+bool front_scene(struct scene *s)
+{
+    return scene_through(s, NULL, NULL);
+}
+
+bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+{
+    return scene_through(s, pipeline, NULL);
+}
+
+bool front_scene_way(struct scene *s, const struct front_way *way)
+{
+    return scene_through(s, NULL, way);
 }
 
 bool front_move_vertex(struct scene *s, int i, double ox, double oy, double x, double y)

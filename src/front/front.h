@@ -149,8 +149,12 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
  * False only when out of memory. */
 bool front_scene(struct scene *s);
 
-/* The same with another pipeline for each world triangle (lesson 06's
- * exhibits of the classic slips), writing at most POLY_MAX - 2 triangles. */
+/* The same with a stage done another way (lesson 06's exhibits of the
+ * classic slips and its alternatives). */
+bool front_scene_way(struct scene *s, const struct front_way *way);
+
+/* The same with another pipeline for each world triangle (the exercise's,
+ * around the student's clipper), writing at most POLY_MAX - 2 triangles. */
 typedef int (*pipeline_fn)(const struct frustum *v, enum cull cull, const struct world_tri *t,
                            struct vertex out[][3]);
 bool front_scene_with(struct scene *s, pipeline_fn pipeline);
