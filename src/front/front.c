@@ -1,6 +1,7 @@
 /* front.c - the 3-D front end, stage by stage (see front.h). */
 #include "front.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -129,8 +130,14 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
     return n;
 }
 
-/* A vertex's position, as the narration carries it. */
-#define AUX_POS(v) (float)(v)->pos[0], (float)(v)->pos[1], (float)(v)->pos[2]
+/* A value as the narration carries it: a float (a position projected from
+ * just beyond near may lie beyond the float's range: held at its end). */
+static float aux(double v)
+{
+    return (float)fmax(-FLT_MAX, fmin(FLT_MAX, v));
+}
+
+#define AUX_POS(v) aux((v)->pos[0]), aux((v)->pos[1]), aux((v)->pos[2])
 
 void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
                   struct trace *tr)
