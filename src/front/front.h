@@ -120,8 +120,9 @@ bool culled(enum cull cull, const struct vertex v[3]);
  * FRONT_TRIANGLE, drawn or culled). */
 int fan(const struct poly *p, enum cull cull, struct vertex out[][3], struct trace *tr);
 
-/* A stage done another way: lesson 06's exhibits of the classic slips run
- * the same pipeline with one stage replaced. NULL members: the lesson's. */
+/* A stage done another way: lesson 06's exhibits of the classic slips, and
+ * its clipping in clip space, run the same pipeline with one stage
+ * replaced. NULL members: the lesson's. */
 struct front_way {
     /* clipping against d >= near, then d <= far (clip_polygon) */
     void (*clip)(struct poly *out, const struct poly *in, const struct plane *pl, struct trace *tr);
