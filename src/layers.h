@@ -1,6 +1,6 @@
 /* layers.h - the folders of src/ in their dependency order, lowest first.
  *
- *     util <- raster <- scene <- front <- trace <- (src/ itself: lesson.h,
+ *     util <- raster <- scene <- trace <- front <- (src/ itself: lesson.h,
  *     the lesson interface) <- shade <- explore <- draw <- app <- cli <- exercise
  *
  * A file may include the headers of its own folder and of folders before
@@ -18,8 +18,8 @@
     "util",    /* writing files all or nothing */ \
     "raster",  /* snapping, triangle setup, the fill rule, the target */ \
     "scene",   /* scene files (2-D and 3-D), OBJ files, the built-in scenes */ \
-    "front",   /* the 3-D front end: 3-D scene -> screen triangles */ \
     "trace",   /* the narration: events, counters, NARRATE */ \
+    "front",   /* the 3-D front end: 3-D scene -> screen triangles, narrated */ \
     ".",       /* the lesson interface: lesson.h, lesson_explorer.h */ \
     "shade",   /* shared lesson machinery: shading pixels, four at a time */ \
     "explore", /* the explorer's state: replaying a run to any step */ \

@@ -610,18 +610,27 @@ Test(front, a_shared_edge_gets_the_same_new_vertex_from_both_sides)
 
 struct steps {
     int n, news;
-    double t[16];
-    struct pvert made[16];
+    float t[16];
+    float made[16][3];
 };
 
-static void record(void *ctx, const struct clip_step *s)
+/* The clipper's narration: the plane, then each vertex kept, dropped or made. */
+static void record(void *ctx, const struct trace_event *ev)
 {
     struct steps *st = ctx;
+    if (ev->kind != TRACE_FRONT || ev->klass == FRONT_PLANE)
+        return;
     st->n++;
-    if (s->what == CLIP_NEW) {
-        st->t[st->news] = s->t;
-        st->made[st->news++] = *s->v;
+    if (ev->klass == FRONT_NEW) {
+        st->t[st->news] = ev->aux[3];
+        memcpy(st->made[st->news++], ev->aux, sizeof st->made[0]);
     }
+}
+
+/* Where v lies on the edge a -> b, as a fraction of it along x. */
+static double edge_t(const struct pvert *v, const struct pvert *a, const struct pvert *b)
+{
+    return (v->pos[0] - a->pos[0]) / (b->pos[0] - a->pos[0]);
 }
 
 Test(front, a_new_vertex_lies_on_the_plane_exactly_at_its_t)
@@ -631,9 +640,10 @@ Test(front, a_new_vertex_lies_on_the_plane_exactly_at_its_t)
     struct poly in = { 3, { pv(0, 0, -1), pv(3, 0, 3.1), pv(0, 6, 1.1) } }, out;
     in.v[0].rgb[0] = 0, in.v[1].rgb[0] = 1, in.v[2].rgb[0] = 0.5;
     struct steps st = { 0 };
-    struct clip_watch w = { record, &st };
+    struct trace tr = { .sink = record, .ctx = &st };
+    trace_begin(&tr, 0, TRACE_UNLIMITED);
     struct plane pn = depth_plane(&fr, PLANE_NEAR);
-    clip_polygon(&out, &in, &pn, &w);
+    clip_polygon(&out, &in, &pn, &tr);
     cr_assert_eq(out.n, 4);
     cr_assert_eq(st.news, 2);
     cr_assert_eq(st.n, 5, "3 vertices kept or dropped, 2 made");
@@ -641,12 +651,15 @@ Test(front, a_new_vertex_lies_on_the_plane_exactly_at_its_t)
     cr_expect_eq(memcmp(&out.v[1], &in.v[1], sizeof in.v[1]), 0, "B kept as it was");
     cr_expect_eq(memcmp(&out.v[2], &in.v[2], sizeof in.v[2]), 0, "C kept as it was");
     double t = 1.1 / 4.1;      /* (near - d_A) / (d_B - d_A) */
-    cr_expect(fabs(st.t[0] - t) < 1e-15, "t = %.17g", st.t[0]);
+    cr_expect(fabs(edge_t(&out.v[0], &in.v[0], &in.v[1]) - t) < 1e-15, "t = %.17g",
+              edge_t(&out.v[0], &in.v[0], &in.v[1]));
+    cr_expect_eq(st.t[0], (float)t, "the narration told t = %.9g", st.t[0]);
     cr_expect(fabs(out.v[0].pos[0] - 3 * t) < 1e-15, "A + t (B - A)");
     cr_expect_eq(out.v[0].pos[2], 0.1, "d set to near exactly");
     cr_expect_eq(out.v[3].pos[2], 0.1);
     cr_expect(fabs(out.v[0].rgb[0] - t) < 1e-15, "colour interpolated with t");
-    cr_expect_eq(memcmp(&out.v[0], &st.made[0], sizeof out.v[0]), 0, "the watch saw it");
+    for (int k = 0; k < 3; k++)
+        cr_expect_eq(st.made[0][k], (float)out.v[0].pos[k], "the narration told it");
     /* a vertex on the plane is kept and makes no second vertex */
     struct poly on = { 3, { pv(0, 0, 0.1), pv(1, 0, -1), pv(0, 1, 2) } };
     clip_polygon(&out, &on, &pn, NULL);
@@ -681,7 +694,7 @@ Test(front, the_fan_starts_at_the_first_vertex_and_cull_follows_opengl)
 {
     struct poly p = { 5, { pv(10, 10, 1), pv(20, 10, 1), pv(25, 20, 1), pv(15, 28, 1), pv(5, 20, 1) } };
     struct vertex out[POLY_MAX - 2][3];
-    cr_assert_eq(fan(&p, CULL_NONE, out), 3);
+    cr_assert_eq(fan(&p, CULL_NONE, out, NULL), 3);
     for (int i = 0; i < 3; i++) {
         cr_expect_eq(out[i][0].x, 10.0);
         cr_expect_eq(out[i][1].x, p.v[i + 1].pos[0]);
@@ -689,8 +702,8 @@ Test(front, the_fan_starts_at_the_first_vertex_and_cull_follows_opengl)
     }
     /* (10,10) (20,10) (25,20): x right, y down, clockwise on screen: a back face */
     cr_expect_gt(facing_area(out[0]), 0);
-    cr_expect_eq(fan(&p, CULL_BACK, out), 0, "clockwise as seen: every one is a back face");
-    cr_expect_eq(fan(&p, CULL_FRONT, out), 3);
+    cr_expect_eq(fan(&p, CULL_BACK, out, NULL), 0, "clockwise as seen: every one is a back face");
+    cr_expect_eq(fan(&p, CULL_FRONT, out, NULL), 3);
     /* through the whole pipeline: a triangle counter-clockwise as the
      * viewer sees it (OpenGL's front face) survives cull back */
     struct camera cam = { .eye = { 0, 0, 5 }, .target = { 0, 0, 0 }, .up = { 0, 1, 0 },

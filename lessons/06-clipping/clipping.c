@@ -4,7 +4,8 @@
  * What it shows: the stage every real pipeline runs before the rasterizers of
  * lessons 01-05. A 3-D scene gives world-space triangles and a camera
  * (CONVENTIONS.md, "3-D scenes"); the screen triangles the rasterizer needs
- * are made in six steps, each a function of src/front/front.c:
+ * are made in six steps, front_pipeline() of src/front/front.c, which every
+ * program runs on every 3-D scene and this lesson runs again, narrated:
  *
  *     world --look-at--> view --clip d >= near--> --clip d <= far-->
  *           --project--> screen --guard band--> --fan, cull--> lesson 05
@@ -60,19 +61,21 @@
 #endif
 extern const struct lesson LESSON_05;
 
+/* The front end tells its steps at lines 0-6 (enum front_line); the
+ * rasterizer's at line 7. */
 static const char *const pseudocode[] = {
-    "for each world triangle (A, B, C):",                                  /* 0 */
-    "  world -> view: q = p - eye; x_v = s.q, y_v = u.q, d = f.q",         /* 1 */
-    "  clip against d >= near: keep, drop, or new vertex P0 + t (P1 - P0)", /* 2 */
-    "  clip against d <= far, the same way",                               /* 3 */
-    "  project: x_s = W/2 (1 + g x_v / (a d)), y_s = H/2 (1 - g y_v / d)", /* 4 */
-    "  beyond the guard band [-16384, 16384)? clip x, y against it",       /* 5 */
-    "  fan from the first vertex; cull by facing",                         /* 6 */
-    "  rasterize each triangle: lesson 05, 1/d perspective-correct",       /* 7 */
+    [FRONT_LINE_EACH] = "for each world triangle (A, B, C):",
+    [FRONT_LINE_VIEW] = "  world -> view: q = p - eye; x_v = s.q, y_v = u.q, d = f.q",
+    [FRONT_LINE_NEAR] = "  clip against d >= near: keep, drop, or new vertex P0 + t (P1 - P0)",
+    [FRONT_LINE_FAR] = "  clip against d <= far, the same way",
+    [FRONT_LINE_PROJECT] = "  project: x_s = W/2 (1 + g x_v / (a d)), y_s = H/2 (1 - g y_v / d)",
+    [FRONT_LINE_GUARD] = "  beyond the guard band [-16384, 16384)? clip x, y against it",
+    [FRONT_LINE_FAN] = "  fan from the first vertex; cull by facing",
+    [FRONT_LINES] = "  rasterize each triangle: lesson 05, 1/d perspective-correct",
     NULL,
 };
 
-enum { L_EACH, L_VIEW, L_NEAR, L_FAR, L_PROJECT, L_GUARD, L_FAN, L_RASTER };
+enum { L_RASTER = FRONT_LINES };
 
 /* trace_event.aux[] of this lesson: lesson 05's block events keep their q
  * and level; the depth variants' pixel tests add the exact view depth and
@@ -82,152 +85,55 @@ static const char *const aux_names[] = { "q", "level", "d", "stored as d", "stor
 
 /* --- the pipeline, narrated ------------------------------------------------
  *
- * What front_triangle() in src/front/front.c does for every other program,
- * step by step and told: the explorer steps through it before the
- * rasterizer's own steps. */
+ * Every program has run front_pipeline() on the scene already, silently, for
+ * its screen triangles (front_scene). The lesson runs it again for each
+ * world triangle, told, just before the first screen triangle the world
+ * triangle made: a world triangle that made none (wholly clipped, or
+ * culled) is told before the next screen triangle, or after the last. */
 
-#if NARRATING   /* the telling exists in the narrated build only */
-
-struct narrator {
-    struct trace *tr;
-    int line;
-};
-
-static void narrate_clip(void *ctx, const struct clip_step *s)
-{
-    struct narrator *n = ctx;
-    static const uint8_t what[] = { [CLIP_KEEP] = FRONT_KEEP, [CLIP_DROP] = FRONT_DROP,
-                                    [CLIP_NEW] = FRONT_NEW };
-    const double *c = s->v->pos;
-    NARRATE(n->tr, .kind = TRACE_FRONT, .klass = what[s->what], .line = (uint8_t)n->line,
-            .x = (int32_t)s->plane->id, .aux = { (float)c[0], (float)c[1], (float)c[2], (float)s->t });
-}
-
-static void narrate_plane(struct trace *tr, int line, const struct plane *pl, int n)
-{
-    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PLANE, .line = (uint8_t)line,
-            .x = (int32_t)pl->id, .y = n, .aux = { (float)pl->at });
-}
-
-static void clip_told(struct poly *out, const struct poly *in, const struct plane *pl, int line,
-                      struct trace *tr)
-{
-    struct narrator n = { tr, line };
-    struct clip_watch w = { narrate_clip, &n };
-    narrate_plane(tr, line, pl, in->n);
-    clip_polygon(out, in, pl, &w);
-}
-
-/* Pixel of a screen position, for the explorer to outline (clamped: the
- * position may be far off the screen). */
-static int32_t pixel_of(double v)
-{
-    return (int32_t)fmax(-2e9, fmin(2e9, floor(v)));
-}
-
-static void tell_front_end(const struct scene *s, int w, struct trace *tr)
+/* Tell world triangles first .. last - 1 of the scene. */
+static void tell_front_end(const struct scene *s, int first, int last, struct trace *tr)
 {
     struct frustum fr;
     frustum_init(&fr, &s->world.cam, s->w, s->h);
-    const struct world_tri *t = &s->world.tris[w];
-
-    /* 1. world -> view */
-    struct poly p = { .n = 3 }, q;
-    for (int k = 0; k < 3; k++) {
-        p.v[k] = view_vertex(&fr, t->p[k], t->rgb[k]);
-        const double *c = p.v[k].pos;
-        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_VIEW, .line = L_VIEW, .x = k,
-                .aux = { (float)c[0], (float)c[1], (float)c[2] });
-    }
-    /* 2, 3. near, then far, in view space */
-    struct plane near = depth_plane(&fr, PLANE_NEAR), far = depth_plane(&fr, PLANE_FAR);
-    clip_told(&q, &p, &near, L_NEAR, tr);
-    clip_told(&p, &q, &far, L_FAR, tr);
-    /* 4. projection and viewport */
-    project(&fr, &p);
-    for (int k = 0; k < p.n; k++) {
-        const double *c = p.v[k].pos;
-        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PROJECT, .line = L_PROJECT,
-                .x = pixel_of(c[0]), .y = pixel_of(c[1]),
-                .aux = { (float)c[0], (float)c[1], (float)c[2], (float)k });
-    }
-    /* 5. the guard band: used as it is when inside */
-    bool inside = in_guard_band(&p);
-    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_GUARD, .line = L_GUARD, .y = p.n,
-            .flags = inside ? TRACE_INSIDE : 0);
-    for (int k = 0; k < 4 && !inside && p.n > 0; k++) {
-        clip_told(&q, &p, &guard_planes[k], L_GUARD, tr);
-        p = q;
-    }
-    /* 6. the fan, each triangle facing the viewer or not */
-    for (int i = 1; i + 1 < p.n; i++) {
-        struct vertex v[3];
-        const struct pvert *c[3] = { &p.v[0], &p.v[i], &p.v[i + 1] };
-        for (int k = 0; k < 3; k++)
-            v[k] = (struct vertex){ .x = c[k]->pos[0], .y = c[k]->pos[1], .z = c[k]->pos[2] };
-        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_TRIANGLE, .line = L_FAN, .x = i - 1,
-                .flags = culled(s->world.cull, v) ? 0 : TRACE_INSIDE,
-                .aux = { (float)facing_area(v) / 65536.0f });
+    for (int w = first; w < last; w++) {
+        struct vertex out[POLY_MAX - 2][3];
+        tr->part = w;
+        front_pipeline(&fr, s->world.cull, &s->world.tris[w], NULL, tr, out);
     }
 }
 
-#else
-static void tell_front_end(const struct scene *s, int w, struct trace *tr)
-{
-    (void)s, (void)w, (void)tr;
-}
-#endif
-
-/* The rasterizer's events point at line 7 of this lesson's pseudo-code. */
-struct relay {
-    void (*sink)(void *ctx, const struct trace_event *ev);
-    void *ctx;
-};
-
-static void at_raster_line(void *ctx, const struct trace_event *ev)
-{
-    const struct relay *r = ctx;
-    struct trace_event e = *ev;
-    e.line = L_RASTER;
-    r->sink(r->ctx, &e);
-}
-
-/* Is screen triangle i of the scene the first its world triangle made? */
-static bool first_of_its_world_triangle(const struct scene *s, uint32_t i, int *w)
-{
-    if (!s || !s->world.camera_line || !s->world.from || i >= (uint32_t)s->ntris)
-        return false;
-    *w = s->world.from[i];
-    return i == 0 || s->world.from[i - 1] != *w;
-}
-
-/* Lesson 05 on one screen triangle, its steps on the last line. */
+/* Lesson 05 on one screen triangle, every step of it told at the last line. */
 static void rasterize_05(const struct tri_setup *t, const struct raster_params *p,
                          struct target *fb, struct trace *tr)
 {
-    if (NARRATING && tr && tr->sink) {
-        struct relay r = { tr->sink, tr->ctx };
-        tr->sink = at_raster_line;
-        tr->ctx = &r;
-        LESSON_05.variants[0].rasterize(t, p, fb, tr);
-        tr->sink = r.sink;
-        tr->ctx = r.ctx;
-    } else {
-        LESSON_05.variants[0].rasterize(t, p, fb, tr);
+    if (tr) {
+        tr->one_line = true;
+        tr->line = L_RASTER;
     }
+    LESSON_05.variants[0].rasterize(t, p, fb, tr);
+    if (tr)
+        tr->one_line = false;
 }
 
-/* The lesson: tell the front end of a world triangle with its first screen
- * triangle, then rasterize the screen triangle with lesson 05. (The
- * exhibits that make their triangles another way are not told: their
- * triangles are not what the told pipeline makes.) */
+/* The lesson: the front end of the world triangles up to this screen
+ * triangle's, then lesson 05 on the screen triangle. (The exhibits that
+ * make their triangles another way are not told: their triangles are not
+ * what the lesson's pipeline makes.) */
 static void rasterize(const struct tri_setup *t, const struct raster_params *p,
                       struct target *fb, struct trace *tr)
 {
-    int w;
-    if (NARRATING && tr && first_of_its_world_triangle(p->scene, tr->tri, &w))
-        tell_front_end(p->scene, w, tr);
+    const struct scene *s = p->scene;
+    bool told = NARRATING && tr && s && s->world.camera_line && s->world.from
+                && tr->tri < (uint32_t)s->ntris;
+    int i = told ? (int)tr->tri : 0, w = told ? s->world.from[i] : 0;
+    if (told && (i == 0 || s->world.from[i - 1] != w))
+        tell_front_end(s, i == 0 ? 0 : s->world.from[i - 1] + 1, w + 1, tr);
+    if (told)
+        tr->part = w;
     rasterize_05(t, p, fb, tr);
+    if (told && i == s->ntris - 1)
+        tell_front_end(s, w + 1, s->world.ntris, tr);
 }
 
 /* --- what the depth buffer stores --------------------------------------------
@@ -244,9 +150,10 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
  *                that the float's dense values near 0 go to the far range
  *
  * With a small near plane NDC z crowds almost all its values next to the
- * near plane: 400 units away with n = 0.01 and f = 1000, one step of 24 bits
- * is 0.32 units of depth. The reversed float spends its exponent where NDC z
- * wastes its bits. */
+ * near plane: the window depth grows by fn / ((f - n) d^2) per unit of d,
+ * so 400 units away with n = 0.01 and f = 1000 one step of 24 bits,
+ * 1 / (2^24 - 1), is 0.954 units of depth. The reversed float spends its
+ * exponent where NDC z wastes its bits. */
 enum depth_store { STORE_D, STORE_NDC24, STORE_INVERSE, STORE_REVERSED };
 
 #define NDC24_STEPS 16777215.0      /* 2^24 - 1 */
@@ -353,42 +260,24 @@ static void rasterize_reversed(const struct tri_setup *t, const struct raster_pa
 
 /* --- the classic slips, as front ends of their own ---------------------------- */
 
-/* Step 1 alone: the world triangle in view space. */
-static void view_triangle(const struct frustum *v, const struct world_tri *t, struct poly *p)
+/* Exhibit project-first: divide by d before clipping (no near or far
+ * clipping at all). A vertex behind the eye (d < 0) lands mirrored through
+ * the centre of the screen, so a triangle crossing d = 0 is drawn inside
+ * out, across the screen; triangles wholly behind the eye appear too. (Its
+ * depth is taken as |d|.) */
+static void clip_nothing(struct poly *out, const struct poly *in, const struct plane *pl,
+                         struct trace *tr)
 {
-    p->n = 3;
-    for (int k = 0; k < 3; k++)
-        p->v[k] = view_vertex(v, t->p[k], t->rgb[k]);
+    (void)pl, (void)tr;
+    *out = *in;
 }
 
-/* Steps 1 to 4 as the lesson takes them, for the slips that come after:
- * view space, near, far, projection. */
-static void clipped_and_projected(const struct frustum *v, const struct world_tri *t,
-                                  struct poly *p)
+static void depth_as_abs_then_guard_band(const struct frustum *v, struct poly *p)
 {
-    struct poly q;
-    view_triangle(v, t, p);
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip_polygon(&q, p, &near, NULL);
-    clip_polygon(p, &q, &far, NULL);
-    project(v, p);
-}
-
-/* Exhibit project-first: divide by d before clipping. A vertex behind the
- * eye (d < 0) lands mirrored through the centre of the screen, so a
- * triangle crossing d = 0 is drawn inside out, across the screen; triangles
- * wholly behind the eye appear too. (Its depth is taken as |d|.) */
-static int pipeline_project_first(const struct frustum *v, enum cull cull,
-                                   const struct world_tri *t, struct vertex out[][3])
-{
-    struct poly p;
-    view_triangle(v, t, &p);
-    project(v, &p);                                 /* the slip: before clipping */
-    for (int k = 0; k < 3; k++)
-        p.v[k].pos[2] = fmax(fabs(p.v[k].pos[2]), v->near);
-    if (!in_guard_band(&p))
-        clip_guard_band(&p, NULL);
-    return fan(&p, cull, out);
+    for (int k = 0; k < p->n; k++)
+        p->v[k].pos[2] = fmax(fabs(p->v[k].pos[2]), v->near);
+    if (!in_guard_band(p))
+        clip_guard_band(p, NULL);
 }
 
 /* Exhibit walk-order: near and far clipped as many pipelines clip, in single
@@ -402,14 +291,6 @@ static int pipeline_project_first(const struct frustum *v, enum cull cull,
  * float-canonical is the same float clipper taking the ends in the
  * canonical order: its new vertices are off by as much, but the same in
  * both triangles, and the mesh stays closed. */
-static bool float_before(const struct pvert *a, const struct pvert *b)
-{
-    for (int i = 0; i < 3; i++)
-        if (a->pos[i] != b->pos[i])
-            return a->pos[i] < b->pos[i];
-    return false;
-}
-
 static void clip_float(struct poly *out, const struct poly *in, const struct plane *pl, bool canonical)
 {
     out->n = 0;
@@ -421,7 +302,7 @@ static void clip_float(struct poly *out, const struct poly *in, const struct pla
             out->v[out->n++] = *a;
         if (ina != inb) {
             const struct pvert *p0 = a, *p1 = b;
-            if (canonical && float_before(b, a))
+            if (canonical && pvert_before(b, a))
                 p0 = b, p1 = a;
             float t = (float)((float)pl->at - (float)p0->pos[2]) / ((float)p1->pos[2] - (float)p0->pos[2]);
             struct pvert *nv = &out->v[out->n++];
@@ -435,50 +316,35 @@ static void clip_float(struct poly *out, const struct poly *in, const struct pla
     }
 }
 
-static int pipeline_float(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                          struct vertex out[][3], bool canonical)
+static void clip_float_walk(struct poly *out, const struct poly *in, const struct plane *pl,
+                            struct trace *tr)
 {
-    struct poly p, q;
-    view_triangle(v, t, &p);
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip_float(&q, &p, &near, canonical);
-    clip_float(&p, &q, &far, canonical);
-    project(v, &p);
-    if (!in_guard_band(&p))
-        clip_guard_band(&p, NULL);
-    return fan(&p, cull, out);
+    (void)tr;
+    clip_float(out, in, pl, false);
 }
 
-static int pipeline_walk_order(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                               struct vertex out[][3])
+static void clip_float_canonical(struct poly *out, const struct poly *in, const struct plane *pl,
+                                 struct trace *tr)
 {
-    return pipeline_float(v, cull, t, out, false);
-}
-
-static int pipeline_float_canonical(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                                    struct vertex out[][3])
-{
-    return pipeline_float(v, cull, t, out, true);
+    (void)tr;
+    clip_float(out, in, pl, true);
 }
 
 /* Exhibit viewport: x and y clipped to the framebuffer, [0, W] x [0, H],
  * for every triangle that crosses its border, instead of only beyond the
  * guard band. The picture is the same; the vertices and triangles are not:
  * every triangle over an edge of the screen is cut and fanned. */
-static int pipeline_viewport(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                             struct vertex out[][3])
+static void clip_to_viewport(const struct frustum *v, struct poly *p)
 {
-    struct poly p, q;
-    clipped_and_projected(v, t, &p);
     const struct plane screen[4] = {
         { PLANE_LEFT, "x >= 0", 0, 0, +1, true }, { PLANE_RIGHT, "x <= W", 0, 2 * v->half_w, -1, true },
         { PLANE_TOP, "y >= 0", 1, 0, +1, true }, { PLANE_BOTTOM, "y <= H", 1, 2 * v->half_h, -1, true },
     };
-    for (int k = 0; k < 4 && p.n > 0; k++) {
-        clip_polygon(&q, &p, &screen[k], NULL);
-        p = q;
+    for (int k = 0; k < 4 && p->n > 0; k++) {
+        struct poly q;
+        clip_polygon(&q, p, &screen[k], NULL);
+        *p = q;
     }
-    return fan(&p, cull, out);
 }
 
 /* Exhibit no-guard-32: no x/y clipping at all, and edge values in 32-bit
@@ -490,22 +356,125 @@ static int pipeline_viewport(const struct frustum *v, enum cull cull, const stru
  * vertices where a snapped coordinate still fits 32 bits.) */
 #define NO_GUARD_LIMIT 1048576.0    /* 2^20 px: 2^28 in 1/256 units, inside int32 */
 
-static int pipeline_no_guard(const struct frustum *v, enum cull cull, const struct world_tri *t,
-                             struct vertex out[][3])
+static void no_guard_band(const struct frustum *v, struct poly *p)
 {
-    struct poly p;
-    clipped_and_projected(v, t, &p);
-    for (int k = 0; k < p.n; k++)
+    (void)v;
+    for (int k = 0; k < p->n; k++)
         for (int a = 0; a < 2; a++)
-            p.v[k].pos[a] = fmax(-NO_GUARD_LIMIT, fmin(NO_GUARD_LIMIT, p.v[k].pos[a]));
-    return fan(&p, cull, out);
+            p->v[k].pos[a] = fmax(-NO_GUARD_LIMIT, fmin(NO_GUARD_LIMIT, p->v[k].pos[a]));
 }
 
-static bool front_project_first(struct scene *s) { return front_scene_with(s, pipeline_project_first); }
-static bool front_walk_order(struct scene *s) { return front_scene_with(s, pipeline_walk_order); }
-static bool front_float_canonical(struct scene *s) { return front_scene_with(s, pipeline_float_canonical); }
-static bool front_viewport(struct scene *s) { return front_scene_with(s, pipeline_viewport); }
-static bool front_no_guard(struct scene *s) { return front_scene_with(s, pipeline_no_guard); }
+/* --- the APIs' way: clipping in homogeneous clip space -------------------------
+ *
+ * OpenGL, Vulkan and Direct3D clip after the projection matrix and before
+ * the divide, a vertex being (x_c, y_c, z_c, w) with
+ *
+ *     x_c = (g / a) x_v,   y_c = g y_v,   z_c = A d + B,   w = d
+ *
+ *     OpenGL:      A = (f+n)/(f-n), B = -2fn/(f-n),  kept where -w <= z_c <= w
+ *     Vulkan, D3D: A = f/(f-n),     B = -fn/(f-n),   kept where  0 <= z_c <= w
+ *
+ * z_c = -w (GL) and z_c = 0 (Vulkan) hold where d = n, z_c = w where d = f:
+ * the same planes. A boundary value b = k . (x_c, y_c, z_c, w) is linear in
+ * the four coordinates, so along an edge it is linear in t: the crossing is
+ * at t = b0 / (b0 - b1), (n - d0) / (d1 - d0) again but rounded another
+ * way, and every coordinate is interpolated with it; the divide by w comes
+ * after. */
+struct hvert { double c[4], rgb[3]; };
+struct hpoly { int n; struct hvert v[POLY_MAX]; };
+
+static bool h_before(const struct hvert *a, const struct hvert *b)
+{
+    for (int i = 0; i < 4; i++)
+        if (a->c[i] != b->c[i])
+            return a->c[i] < b->c[i];
+    return false;
+}
+
+/* Sutherland-Hodgman against the boundary kz z_c + kw w >= 0, the edge's
+ * ends in canonical order. */
+static void clip_homogeneous(struct hpoly *out, const struct hpoly *in, double kz, double kw)
+{
+    out->n = 0;
+    for (int i = 0; i < in->n; i++) {
+        const struct hvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
+        double ba = kz * a->c[2] + kw * a->c[3], bb = kz * b->c[2] + kw * b->c[3];
+        if (ba >= 0)
+            out->v[out->n++] = *a;
+        if ((ba >= 0) != (bb >= 0) && (ba >= 0 ? ba : bb) != 0) {
+            const struct hvert *p0 = h_before(b, a) ? b : a, *p1 = p0 == a ? b : a;
+            double b0 = p0 == a ? ba : bb, b1 = p0 == a ? bb : ba, t = b0 / (b0 - b1);
+            struct hvert *n = &out->v[out->n++];
+            for (int k = 0; k < 4; k++)
+                n->c[k] = p0->c[k] + t * (p1->c[k] - p0->c[k]);
+            for (int k = 0; k < 3; k++)
+                n->rgb[k] = fmin(fmax(p0->rgb[k] + t * (p1->rgb[k] - p0->rgb[k]),
+                                      fmin(p0->rgb[k], p1->rgb[k])), fmax(p0->rgb[k], p1->rgb[k]));
+        }
+    }
+}
+
+/* View space -> clip space, near and far, the divide and the viewport. */
+static void clip_space(const struct frustum *v, struct poly *p, bool gl)
+{
+    double n = v->near, f = v->far;
+    double A = gl ? (f + n) / (f - n) : f / (f - n), B = gl ? -2 * f * n / (f - n) : -f * n / (f - n);
+    struct hpoly h = { .n = p->n }, q;
+    for (int k = 0; k < p->n; k++) {
+        const double *c = p->v[k].pos;
+        h.v[k] = (struct hvert){ .c = { v->g / v->aspect * c[0], v->g * c[1], A * c[2] + B, c[2] } };
+        memcpy(h.v[k].rgb, p->v[k].rgb, sizeof h.v[k].rgb);
+    }
+    clip_homogeneous(&q, &h, 1, gl ? 1 : 0);        /* z_c >= -w, or z_c >= 0 */
+    clip_homogeneous(&h, &q, -1, 1);                /* z_c <= w */
+    p->n = h.n;
+    for (int k = 0; k < h.n; k++) {
+        const double *c = h.v[k].c;
+        p->v[k] = (struct pvert){ .pos = { v->half_w * (1 + c[0] / c[3]), v->half_h * (1 - c[1] / c[3]),
+                                           c[3] } };
+        memcpy(p->v[k].rgb, h.v[k].rgb, sizeof p->v[k].rgb);
+    }
+}
+
+static void clip_space_gl(const struct frustum *v, struct poly *p) { clip_space(v, p, true); }
+static void clip_space_vk(const struct frustum *v, struct poly *p) { clip_space(v, p, false); }
+
+/* The slips and the alternatives, each a front end of its own. */
+static bool front_project_first(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip = clip_nothing,
+                                                   .screen = depth_as_abs_then_guard_band });
+}
+
+static bool front_walk_order(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip = clip_float_walk });
+}
+
+static bool front_float_canonical(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip = clip_float_canonical });
+}
+
+static bool front_viewport(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .screen = clip_to_viewport });
+}
+
+static bool front_no_guard(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .screen = no_guard_band });
+}
+
+static bool front_clip_space_gl(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip_project = clip_space_gl });
+}
+
+static bool front_clip_space_vk(struct scene *s)
+{
+    return front_scene_way(s, &(struct front_way){ .clip_project = clip_space_vk });
+}
 
 /* Edge values wrapped to 32 bits, as int32_t arithmetic would leave them
  * (computed in uint32_t, where wrapping is defined, then read back). */
@@ -561,19 +530,24 @@ static const struct lesson_variant variants[] = {
       rasterize_05, true },
     { "no-guard-32", "exhibit: no guard band and 32-bit edge values: lesson 03's overflow",
       rasterize_edges32, true },
+    { "clip-space-gl", "near and far clipped in clip space, -w <= z <= w (OpenGL): the same picture",
+      rasterize_05, false },
+    { "clip-space-vk", "near and far clipped in clip space, 0 <= z <= w (Vulkan, D3D): the same picture",
+      rasterize_05, false },
 };
 
 /* How each variant makes the screen triangles (NULL: the shared front end). */
 static const front_fn fronts[] = {
     NULL, NULL, NULL, NULL, front_project_first, front_walk_order, front_float_canonical, front_viewport,
-    front_no_guard,
+    front_no_guard, front_clip_space_gl, front_clip_space_vk,
 };
 
 _Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof variants[0],
                "one front end per variant");
 
 /* The variants whose depth buffer holds another quantity than d. */
-static const bool other_depth[] = { false, true, true, true, false, false, false, false, false };
+static const bool other_depth[] = { false, true, true, true, false, false, false, false, false,
+                                    false, false };
 _Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
                "one entry per variant");
 

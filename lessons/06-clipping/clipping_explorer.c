@@ -1,14 +1,16 @@
 /* Lesson 06, what the explorer adds (compiled only in the narrated build;
  * the algorithm is clipping.c).
  *
- * Two views draw the front end of the focus triangle's world triangle over
- * the canvas (the cells stay, faded):
+ * Two views draw the front end of the world triangle told (or the focus
+ * triangle's) in place of the canvas:
  *
  *   frustum  seen from above: the eye at the bottom, depth d up the canvas,
  *            x_v across, at one scale for both; the frustum's sides, the
  *            near and far planes, the guard band's sides (dashed, nearly
  *            flat: it is 256 screens wide), the triangle in view space, the
  *            polygon left after near and far, its new vertices with their t;
+ *            when the near plane cuts close to the eye, a second panel
+ *            shows that part magnified;
  *   screen   the screen zoomed out: the framebuffer, the guard band when it
  *            is in reach, the projected polygon before the guard band and
  *            the polygon drawn, with the scale written in the corner.
@@ -27,7 +29,7 @@
 
 extern const struct lesson lesson_06;
 
-/* --- the world triangle behind the focus, through the stages ------------------- */
+/* --- the world triangle told, through the stages -------------------------------- */
 
 struct staged {
     struct frustum fr;
@@ -38,79 +40,89 @@ struct staged {
     struct pvert made[POLY_MAX];/* new vertices of near and far, view space */
     double t[POLY_MAX];
     int nmade;
+    struct poly after[PLANE_BOTTOM + 1];    /* what each plane kept and made */
+    int plane, last_guard;      /* the plane being clipped against; the last guard plane */
+    bool guard_inside;
 };
 
-static void collect(void *ctx, const struct clip_step *s)
+static void add(struct poly *p, const float *pos)
+{
+    if (p->n < POLY_MAX)
+        p->v[p->n++] = (struct pvert){ .pos = { pos[0], pos[1], pos[2] } };
+}
+
+/* The stages, as the pipeline tells them. */
+static void collect(void *ctx, const struct trace_event *ev)
 {
     struct staged *st = ctx;
-    if (s->what == CLIP_NEW && !s->plane->screen && st->nmade < POLY_MAX) {
-        st->made[st->nmade] = *s->v;
-        st->t[st->nmade++] = s->t;
+    if (ev->kind != TRACE_FRONT)
+        return;
+    switch ((enum front_step)ev->klass) {
+    case FRONT_VIEW:
+        add(&st->view, ev->aux);
+        break;
+    case FRONT_PLANE:
+        st->plane = ev->x >= 0 && ev->x <= PLANE_BOTTOM ? ev->x : PLANE_NEAR;
+        st->after[st->plane].n = 0;
+        if (st->plane > PLANE_FAR)
+            st->last_guard = st->plane;
+        break;
+    case FRONT_NEW:
+        if (st->plane <= PLANE_FAR && st->nmade < POLY_MAX) {
+            st->made[st->nmade] = (struct pvert){ .pos = { ev->aux[0], ev->aux[1], ev->aux[2] } };
+            st->t[st->nmade++] = ev->aux[3];
+        }
+        add(&st->after[st->plane], ev->aux);
+        break;
+    case FRONT_KEEP:
+        add(&st->after[st->plane], ev->aux);
+        break;
+    case FRONT_PROJECT:
+        add(&st->projected, ev->aux);
+        break;
+    case FRONT_GUARD:
+        st->guard_inside = (ev->flags & TRACE_INSIDE) != 0;
+        break;
+    case FRONT_DROP:
+    case FRONT_TRIANGLE:
+    case FRONT_WORLD:
+    case FRONT_STEP_COUNT:
+        break;
     }
 }
 
-/* The stages of the world triangle that screen triangle `tri` came from. */
-static bool stage(const struct raster_params *p, uint32_t tri, struct staged *st)
+/* The stages of world triangle w: the lesson's pipeline run on it, told to
+ * collect(). */
+static bool stage(const struct raster_params *p, int w, struct staged *st)
 {
     const struct scene *s = p->scene;
-    if (!s || !s->world.camera_line || !s->world.from || tri >= (uint32_t)s->ntris)
+    if (!s || !s->world.camera_line || w < 0 || w >= s->world.ntris)
         return false;
-    const struct world_tri *t = &s->world.tris[s->world.from[tri]];
     memset(st, 0, sizeof *st);
+    st->last_guard = -1;
     frustum_init(&st->fr, &s->world.cam, s->w, s->h);
-    st->view.n = 3;
-    for (int k = 0; k < 3; k++)
-        st->view.v[k] = view_vertex(&st->fr, t->p[k], t->rgb[k]);
-    struct clip_watch w = { collect, st };
-    struct plane near = depth_plane(&st->fr, PLANE_NEAR), far = depth_plane(&st->fr, PLANE_FAR);
-    struct poly q;
-    clip_polygon(&q, &st->view, &near, &w);
-    clip_polygon(&st->clipped, &q, &far, &w);
-    st->projected = st->clipped;
-    project(&st->fr, &st->projected);
-    st->drawn = st->projected;
-    if (!in_guard_band(&st->drawn))
-        clip_guard_band(&st->drawn, NULL);
+    struct trace tr = { .sink = collect, .ctx = st };
+    trace_begin(&tr, 0, TRACE_UNLIMITED);
+    tr.part = w;
+    struct vertex out[POLY_MAX - 2][3];
+    front_pipeline(&st->fr, s->world.cull, &s->world.tris[w], NULL, &tr, out);
+    st->clipped = st->after[PLANE_FAR];
+    st->drawn = st->guard_inside ? st->projected
+                : st->last_guard >= 0 ? st->after[st->last_guard] : (struct poly){ 0 };
     return true;
 }
 
-/* A polygon of canvas points drawn inside the canvas [0, w] x [0, h] only:
- * cut there by the very clipper of the lesson. */
-static void clipped_polygon(const struct lesson_canvas *c, const double (*xy)[2], int n, double w,
-                            double h, struct pen pen)
-{
-    if (n < 3 || n > POLY_MAX - 4)
-        return;
-    struct poly p = { .n = n }, q;
-    for (int k = 0; k < n; k++)
-        p.v[k] = (struct pvert){ .pos = { xy[k][0], xy[k][1], 1 } };
-    const struct plane edges[4] = { { PLANE_LEFT, "x >= 0", 0, 0, +1, true },
-                                    { PLANE_RIGHT, "x <= w", 0, w, -1, true },
-                                    { PLANE_TOP, "y >= 0", 1, 0, +1, true },
-                                    { PLANE_BOTTOM, "y <= h", 1, h, -1, true } };
-    for (int k = 0; k < 4 && p.n > 0; k++) {
-        clip_polygon(&q, &p, &edges[k], NULL);
-        p = q;
-    }
-    double out[POLY_MAX][2];
-    for (int k = 0; k < p.n; k++)
-        out[k][0] = p.v[k].pos[0], out[k][1] = p.v[k].pos[1];
-    if (p.n >= 3)
-        c->polygon(c, (const double(*)[2])out, p.n, pen);
-}
+/* --- drawing inside a rectangle of the canvas ------------------------------------- */
 
-/* --- frustum: the view from above ------------------------------------------------ */
-
-struct top {
-    double ox, oy, scale;       /* canvas point of the eye; canvas units per unit of view space */
-    double w, h;                /* the canvas: lines stay inside it */
+struct rect {
+    double x0, y0, x1, y1;
 };
 
-/* Liang-Barsky: the part of a -> b inside [0, w] x [0, h], false if none. */
-static bool inside_canvas(double a[2], double b[2], double w, double h)
+/* Liang-Barsky: the part of a -> b inside r, false if none. */
+static bool inside_rect(double a[2], double b[2], const struct rect *r)
 {
     double t0 = 0, t1 = 1, d[2] = { b[0] - a[0], b[1] - a[1] };
-    const double lo[2] = { 0, 0 }, hi[2] = { w, h };
+    const double lo[2] = { r->x0, r->y0 }, hi[2] = { r->x1, r->y1 };
     for (int k = 0; k < 2; k++) {
         double p[2] = { -d[k], d[k] }, q[2] = { a[k] - lo[k], hi[k] - a[k] };
         for (int j = 0; j < 2; j++) {
@@ -119,11 +131,11 @@ static bool inside_canvas(double a[2], double b[2], double w, double h)
                     return false;
                 continue;
             }
-            double r = q[j] / p[j];
+            double t = q[j] / p[j];
             if (p[j] < 0)
-                t0 = fmax(t0, r);
+                t0 = fmax(t0, t);
             else
-                t1 = fmin(t1, r);
+                t1 = fmin(t1, t);
         }
     }
     if (t0 > t1)
@@ -134,6 +146,73 @@ static bool inside_canvas(double a[2], double b[2], double w, double h)
         b[k] = a0[k] + t1 * d[k];
     }
     return true;
+}
+
+static void rect_line(const struct lesson_canvas *c, const struct rect *r, const double a[2],
+                      const double b[2], struct pen pen)
+{
+    double p[2] = { a[0], a[1] }, q[2] = { b[0], b[1] };
+    if (inside_rect(p, q, r))
+        c->line(c, p[0], p[1], q[0], q[1], pen);
+}
+
+/* A polygon of canvas points inside r only: filled where it lies inside
+ * (cut by the very clipper of the lesson), its own edges outlined where
+ * they run inside; no outline along r's border. */
+static void rect_polygon(const struct lesson_canvas *c, const struct rect *r, const double (*xy)[2],
+                         int n, struct pen pen)
+{
+    if (n < 3 || n > POLY_MAX - 4)
+        return;
+    struct poly p = { .n = n }, q;
+    for (int k = 0; k < n; k++)
+        p.v[k] = (struct pvert){ .pos = { xy[k][0], xy[k][1], 1 } };
+    const struct plane edges[4] = { { PLANE_LEFT, "x >= x0", 0, r->x0, +1, true },
+                                    { PLANE_RIGHT, "x <= x1", 0, r->x1, -1, true },
+                                    { PLANE_TOP, "y >= y0", 1, r->y0, +1, true },
+                                    { PLANE_BOTTOM, "y <= y1", 1, r->y1, -1, true } };
+    for (int k = 0; k < 4 && p.n > 0; k++) {
+        clip_polygon(&q, &p, &edges[k], NULL);
+        p = q;
+    }
+    double out[POLY_MAX][2];
+    for (int k = 0; k < p.n; k++)
+        out[k][0] = p.v[k].pos[0], out[k][1] = p.v[k].pos[1];
+    if (p.n >= 3 && pen.fill != INK_NONE)
+        c->polygon(c, (const double(*)[2])out, p.n, (struct pen){ .fill = pen.fill, .alpha = pen.alpha });
+    for (int k = 0; k < n && pen.stroke != INK_NONE; k++)
+        rect_line(c, r, xy[k], xy[(k + 1) % n], (struct pen){ .stroke = pen.stroke, .width = pen.width,
+                                                              .alpha = pen.alpha, .dashed = pen.dashed });
+}
+
+/* The views draw a picture of their own: an opaque backing hides the
+ * canvas, the triangle's edges and its vertices' marks off the canvas. */
+static void backing(const struct lesson_canvas *c, int w, int h)
+{
+    double m = 1e4 * c->unit;   /* past the explorer's whole canvas: it clips */
+    c->polygon(c, (const double[][2]){ { -m, -m }, { w + m, -m }, { w + m, h + m }, { -m, h + m } }, 4,
+               (struct pen){ .fill = INK_BACKING });
+}
+
+/* --- frustum: the view from above ------------------------------------------------ */
+
+/* One panel of the view from above: view space (x_v across, d up) mapped
+ * into the canvas rectangle r at one scale for both axes. */
+struct top {
+    struct rect r;
+    double ox, oy, scale;       /* canvas point of the eye; canvas units per unit of view space */
+};
+
+/* Fit the box [x0, x1] x [d0, d1] of view space into r, with a margin. */
+static struct top top_fit(struct rect r, double x0, double x1, double d0, double d1)
+{
+    double margin = 0.08 * fmin(r.x1 - r.x0, r.y1 - r.y0), top_room = 2 * margin;
+    double sw = (r.x1 - r.x0 - 2 * margin) / fmax(x1 - x0, 1e-12);
+    double sh = (r.y1 - r.y0 - margin - top_room) / fmax(d1 - d0, 1e-12);
+    struct top m = { .r = r, .scale = fmin(sw, sh) };
+    m.ox = (r.x0 + r.x1) / 2 - (x0 + x1) / 2 * m.scale;
+    m.oy = (r.y0 + top_room + r.y1 - margin) / 2 + (d0 + d1) / 2 * m.scale;
+    return m;
 }
 
 static void top_point(const struct top *m, double xv, double d, double out[2])
@@ -148,69 +227,129 @@ static void top_line(const struct lesson_canvas *c, const struct top *m, double 
     double a[2], b[2];
     top_point(m, x0, d0, a);
     top_point(m, x1, d1, b);
-    if (inside_canvas(a, b, m->w, m->h))
-        c->line(c, a[0], a[1], b[0], b[1], pen);
+    rect_line(c, &m->r, a, b, pen);
+}
+
+static bool in_rect(const struct rect *r, const double p[2])
+{
+    return p[0] >= r->x0 && p[0] <= r->x1 && p[1] >= r->y0 && p[1] <= r->y1;
+}
+
+/* One panel: the frustum, near and far, the guard band's sides, the
+ * triangle, the polygon left, the new vertices (with their t when `t_labels`)
+ * and a ring on the vertex of the current step. */
+static void top_panel(const struct lesson_canvas *c, const struct staged *st, const struct top *m,
+                      const struct trace_event *last, bool t_labels, const char *title)
+{
+    const struct frustum *fr = &st->fr;
+    double u = c->unit, reach = (m->r.y1 - m->r.y0 + m->r.x1 - m->r.x0) / m->scale;
+    double side = fr->aspect / fr->g;               /* x_v / d on the frustum's sides */
+    double band = (GUARD_BAND / fr->half_w) * side; /* ... on the guard band's, about */
+    for (int s = -1; s <= 1; s += 2) {
+        top_line(c, m, 0, 0, s * side * reach, reach, (struct pen){ .stroke = INK_TEXT, .width = 1.5 });
+        top_line(c, m, 0, 0, s * band * reach, reach,
+                 (struct pen){ .stroke = INK_PROBE, .width = 1, .dashed = true });
+    }
+    for (int k = 0; k < 2; k++) {                   /* near and far, as wide as the frustum */
+        double d = k ? fr->far : fr->near;
+        top_line(c, m, -side * d, d, side * d, d, (struct pen){ .stroke = INK_MARK, .width = 2 });
+    }
+    double xy[POLY_MAX][2];
+    for (int k = 0; k < st->clipped.n; k++)
+        top_point(m, st->clipped.v[k].pos[0], st->clipped.v[k].pos[2], xy[k]);
+    rect_polygon(c, &m->r, (const double(*)[2])xy, st->clipped.n,
+                 (struct pen){ .fill = INK_UPPER, .alpha = 0.45, .stroke = INK_UPPER, .width = 2 });
+    for (int k = 0; k < 3; k++)
+        top_point(m, st->view.v[k].pos[0], st->view.v[k].pos[2], xy[k]);
+    rect_polygon(c, &m->r, (const double(*)[2])xy, 3, (struct pen){ .stroke = INK_EDGE_AB, .width = 1.5 });
+    static const enum ink vertex_ink[3] = { INK_VERTEX_A, INK_VERTEX_B, INK_VERTEX_C };
+    static const char *const names[3] = { "A", "B", "C" };
+    for (int k = 0; k < 3; k++)
+        if (in_rect(&m->r, xy[k])) {
+            c->disc(c, xy[k][0], xy[k][1], 4, (struct pen){ .fill = vertex_ink[k] });
+            c->label(c, xy[k][0] + 6 * u, xy[k][1] - 8 * u, names[k], 12, INK_TEXT);
+        }
+    for (int k = 0; k < st->nmade; k++) {
+        double q[2];
+        top_point(m, st->made[k].pos[0], st->made[k].pos[2], q);
+        if (!in_rect(&m->r, q))
+            continue;
+        c->disc(c, q[0], q[1], 5, (struct pen){ .fill = INK_PROBE, .stroke = INK_OUTLINE });
+        if (t_labels) {         /* outward: left of a vertex left of the axis, right of one right */
+            char text[32];
+            snprintf(text, sizeof text, "t = %.3f", st->t[k]);
+            bool left = st->made[k].pos[0] < 0;
+            c->label(c, q[0] + (left ? -70 : 9) * u, q[1] + 6 * u, text, 11, INK_PROBE);
+        }
+    }
+    if (last && last->kind == TRACE_FRONT && last->x <= PLANE_FAR
+        && (last->klass == FRONT_NEW || last->klass == FRONT_VIEW || last->klass == FRONT_KEEP
+            || last->klass == FRONT_DROP)) {
+        double q[2];
+        top_point(m, last->aux[0], last->aux[2], q);
+        if (in_rect(&m->r, q))
+            c->disc(c, q[0], q[1], 9, (struct pen){ .stroke = INK_MARK, .width = 2.5 });
+    }
+    double e[2];
+    top_point(m, 0, 0, e);
+    if (in_rect(&m->r, e)) {    /* below the eye, away from the planes above it */
+        c->disc(c, e[0], e[1], 3, (struct pen){ .fill = INK_TEXT });
+        c->label(c, e[0] - 12 * u, e[1] + 6 * u, "eye", 11, INK_TEXT);
+    }
+    c->label(c, m->r.x0 + 6 * u, m->r.y0 + 6 * u, title, 11, INK_TEXT);
 }
 
 static void draw_frustum(const struct lesson_canvas *c, const struct staged *st, int w, int h,
                          const struct trace_event *last)
 {
     const struct frustum *fr = &st->fr;
-    /* depth shown: the triangle's, at least a few near planes, at most far */
-    double dmax = 4 * fr->near;
-    for (int k = 0; k < 3; k++)
-        dmax = fmax(dmax, st->view.v[k].pos[2] * 1.15);
-    dmax = fmin(dmax, fr->far * 1.08);
-    struct top m = { w / 2.0, h * 0.95, h * 0.9 / dmax, w, h };
-    double side = fr->aspect / fr->g;               /* x_v / d on the frustum's sides */
-    double band = (GUARD_BAND / fr->half_w) * side; /* ... on the guard band's, about */
-    c->polygon(c, (const double[][2]){ { 0, 0 }, { w, 0 }, { w, h }, { 0, h } }, 4,
-               (struct pen){ .fill = INK_BACKING, .alpha = 0.8 });
-    for (int s = -1; s <= 1; s += 2) {
-        top_line(c, &m, 0, 0, s * side * dmax, dmax, (struct pen){ .stroke = INK_TEXT, .width = 1.5 });
-        top_line(c, &m, 0, 0, s * band * dmax, dmax,
-                 (struct pen){ .stroke = INK_PROBE, .width = 1, .dashed = true });
-    }
-    top_line(c, &m, -side * fr->near, fr->near, side * fr->near, fr->near,
-             (struct pen){ .stroke = INK_MARK, .width = 2 });
-    if (fr->far <= dmax)
-        top_line(c, &m, -side * fr->far, fr->far, side * fr->far, fr->far,
-                 (struct pen){ .stroke = INK_MARK, .width = 2 });
-    double xy[POLY_MAX][2];
-    for (int k = 0; k < st->clipped.n; k++)
-        top_point(&m, st->clipped.v[k].pos[0], st->clipped.v[k].pos[2], xy[k]);
-    if (st->clipped.n >= 3)
-        clipped_polygon(c, (const double(*)[2])xy, st->clipped.n, w, h,
-                        (struct pen){ .fill = INK_UPPER, .alpha = 0.45, .stroke = INK_UPPER, .width = 2 });
-    for (int k = 0; k < 3; k++)
-        top_point(&m, st->view.v[k].pos[0], st->view.v[k].pos[2], xy[k]);
-    clipped_polygon(c, (const double(*)[2])xy, 3, w, h, (struct pen){ .stroke = INK_EDGE_AB, .width = 1.5 });
-    static const enum ink vertex_ink[3] = { INK_VERTEX_A, INK_VERTEX_B, INK_VERTEX_C };
-    static const char *const names[3] = { "A", "B", "C" };
-    double u = c->unit;
+    /* the whole triangle: its box with the eye, at least a few near planes
+     * deep, at most to far */
+    double x0 = 0, x1 = 0, d0 = 0, d1 = 4 * fr->near;
     for (int k = 0; k < 3; k++) {
-        c->disc(c, xy[k][0], xy[k][1], 4, (struct pen){ .fill = vertex_ink[k] });
-        c->label(c, xy[k][0] + 6 * u, xy[k][1] - 8 * u, names[k], 12, INK_TEXT);
+        const double *v = st->view.v[k].pos;
+        x0 = fmin(x0, v[0]), x1 = fmax(x1, v[0]);
+        d0 = fmin(d0, v[2]), d1 = fmax(d1, v[2]);
     }
-    for (int k = 0; k < st->nmade; k++) {
-        double q[2];
-        top_point(&m, st->made[k].pos[0], st->made[k].pos[2], q);
-        c->disc(c, q[0], q[1], 5, (struct pen){ .fill = INK_PROBE, .stroke = INK_OUTLINE });
-        char text[32];
-        snprintf(text, sizeof text, "t = %.3f", st->t[k]);
-        c->label(c, q[0] + 7 * u, q[1] + 2 * u, text, 11, INK_PROBE);
+    d1 = fmin(d1, fr->far * 1.04);
+    /* near the eye: the new vertices on near, the vertices before it, the eye */
+    double nx0 = -fr->aspect / fr->g * fr->near, nx1 = -nx0, nd0 = 0, nd1 = fr->near;
+    int cut = 0;
+    for (int k = 0; k < st->nmade; k++)
+        if (fabs(st->made[k].pos[2] - fr->near) <= 1e-6 * fr->near) {     /* on near (told as floats) */
+            nx0 = fmin(nx0, st->made[k].pos[0]), nx1 = fmax(nx1, st->made[k].pos[0]);
+            cut++;
+        }
+    for (int k = 0; k < 3; k++) {
+        const double *v = st->view.v[k].pos;
+        if (v[2] < fr->near)
+            nx0 = fmin(nx0, v[0]), nx1 = fmax(nx1, v[0]), nd0 = fmin(nd0, v[2]);
     }
-    if (last && last->kind == TRACE_FRONT && (last->klass == FRONT_NEW || last->klass == FRONT_VIEW
-                                              || last->klass == FRONT_KEEP || last->klass == FRONT_DROP)) {
-        double q[2];
-        top_point(&m, last->aux[0], last->aux[2], q);
-        c->disc(c, q[0], q[1], 9, (struct pen){ .stroke = INK_MARK, .width = 2.5 });
+    double pad = 0.2 * fmax(nx1 - nx0, nd1 - nd0);
+    nx0 -= pad, nx1 += pad, nd0 -= pad, nd1 += pad;
+    backing(c, w, h);
+    struct rect all = { 0, 0, w, h };
+    if (cut == 0 || (nd1 - nd0) * 4 > d1 - d0) {   /* nothing small to see near the eye */
+        struct top one = top_fit(all, x0, x1, d0, d1);
+        top_panel(c, st, &one, last, true,
+                  "from above: d up, x_v across; near and far solid, guard band dashed");
+        return;
     }
-    c->label(c, 6 * u, 6 * u, "from above: d up, x_v across; near and far solid, "
-              "guard band dashed", 11, INK_TEXT);
-    double e[2];
-    top_point(&m, 0, 0, e);
-    c->label(c, e[0] + 6 * u, e[1] - 16 * u, "eye", 11, INK_TEXT);
+    /* two panels: the whole triangle, and near the eye magnified */
+    struct rect left = { 0, 0, w * 0.42, h }, right = { w * 0.42, 0, w, h };
+    struct top whole = top_fit(left, x0, x1, d0, d1), detail = top_fit(right, nx0, nx1, nd0, nd1);
+    top_panel(c, st, &whole, last, false, "from above: d up, x_v across");
+    top_panel(c, st, &detail, last, true, "near the eye, magnified");
+    c->line(c, right.x0, 0, right.x0, h, (struct pen){ .stroke = INK_TEXT, .width = 1, .alpha = 0.5 });
+    char text[64];
+    snprintf(text, sizeof text, "x%.0f", detail.scale / whole.scale);
+    c->label(c, right.x0 + 6 * c->unit, 22 * c->unit, text, 11, INK_TEXT);
+    /* where the detail lies in the whole: its box */
+    double b[4][2];
+    top_point(&whole, nx0, nd0, b[0]), top_point(&whole, nx1, nd0, b[1]);
+    top_point(&whole, nx1, nd1, b[2]), top_point(&whole, nx0, nd1, b[3]);
+    rect_polygon(c, &left, (const double(*)[2])b, 4,
+                 (struct pen){ .stroke = INK_MARK, .width = 1, .dashed = true });
 }
 
 /* --- screen: zoomed out ------------------------------------------------------------ */
@@ -226,13 +365,18 @@ static void draw_screen(const struct lesson_canvas *c, const struct staged *st, 
     reach = fmin(reach, GUARD_BAND * 1.15);
     double zoom = fmin(w, h) / 2.0 / reach;         /* canvas units per screen pixel */
     double cx = w / 2.0, cy = h / 2.0;
+    struct rect all = { 0, 0, w, h };
 #define MAP(px, py) { cx + ((px) - w / 2.0) * zoom, cy + ((py) - h / 2.0) * zoom }
-    c->polygon(c, (const double[][2]){ { 0, 0 }, { w, 0 }, { w, h }, { 0, h } }, 4,
-               (struct pen){ .fill = INK_BACKING, .alpha = 0.8 });
+    backing(c, w, h);
     double band[4][2] = { MAP(-GUARD_BAND, -GUARD_BAND), MAP(GUARD_BAND, -GUARD_BAND),
                           MAP(GUARD_BAND, GUARD_BAND), MAP(-GUARD_BAND, GUARD_BAND) };
-    clipped_polygon(c, (const double(*)[2])band, 4, w, h,
-                    (struct pen){ .stroke = INK_PROBE, .dashed = true, .width = 1.5 });
+    bool band_seen = false;     /* a side of the band inside the canvas */
+    for (int k = 0; k < 4; k++) {
+        double a[2] = { band[k][0], band[k][1] }, b[2] = { band[(k + 1) % 4][0], band[(k + 1) % 4][1] };
+        band_seen = band_seen || inside_rect(a, b, &all);
+    }
+    rect_polygon(c, &all, (const double(*)[2])band, 4,
+                 (struct pen){ .stroke = INK_PROBE, .dashed = true, .width = 1.5 });
     double fb[4][2] = { MAP(0, 0), MAP(w, 0), MAP(w, h), MAP(0, h) };
     c->polygon(c, (const double(*)[2])fb, 4, (struct pen){ .stroke = INK_MARK, .width = 2 });
     double xy[POLY_MAX][2];
@@ -240,20 +384,18 @@ static void draw_screen(const struct lesson_canvas *c, const struct staged *st, 
         double q[2] = MAP(st->projected.v[k].pos[0], st->projected.v[k].pos[1]);
         xy[k][0] = q[0], xy[k][1] = q[1];
     }
-    if (st->projected.n >= 3)
-        clipped_polygon(c, (const double(*)[2])xy, st->projected.n, w, h,
-                        (struct pen){ .stroke = INK_EDGE_AB, .width = 1.5 });
+    rect_polygon(c, &all, (const double(*)[2])xy, st->projected.n,
+                 (struct pen){ .stroke = INK_EDGE_AB, .width = 1.5 });
     for (int k = 0; k < st->drawn.n; k++) {
         double q[2] = MAP(st->drawn.v[k].pos[0], st->drawn.v[k].pos[1]);
         xy[k][0] = q[0], xy[k][1] = q[1];
     }
-    if (st->drawn.n >= 3)
-        clipped_polygon(c, (const double(*)[2])xy, st->drawn.n, w, h,
-                        (struct pen){ .fill = INK_UPPER, .alpha = 0.4, .stroke = INK_UPPER, .width = 2 });
+    rect_polygon(c, &all, (const double(*)[2])xy, st->drawn.n,
+                 (struct pen){ .fill = INK_UPPER, .alpha = 0.4, .stroke = INK_UPPER, .width = 2 });
 #undef MAP
     char text[128];
-    snprintf(text, sizeof text, "the screen zoomed out 1:%.0f: framebuffer solid, guard band "
-             "[-16384, 16384) dashed", 1 / zoom);
+    snprintf(text, sizeof text, "the screen zoomed out 1:%.0f: framebuffer solid, %s", 1 / zoom,
+             band_seen ? "guard band [-16384, 16384) dashed" : "the guard band lies beyond the canvas");
     c->label(c, 6 * c->unit, 6 * c->unit, text, 11, INK_TEXT);
 }
 
@@ -263,8 +405,12 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     bool top = strcmp(c->view, "frustum") == 0, screen = strcmp(c->view, "screen") == 0;
     if ((!top && !screen) || !last || !p->scene)
         return;
+    /* the world triangle told (a front-end step), or the focus's */
+    const struct world *wd = &p->scene->world;
+    int w = last->kind == TRACE_FRONT ? last->part
+            : wd->from && last->tri < (uint32_t)p->scene->ntris ? wd->from[last->tri] : -1;
     struct staged st;
-    if (!stage(p, last->tri, &st))
+    if (!stage(p, w, &st))
         return;
     (void)t;
     if (top)
@@ -308,9 +454,12 @@ static bool depth_error_cell(const struct tri_setup *t, const struct trace_event
     return true;
 }
 
-/* The stored value between near (white) and far (black), linearly: what
- * the storage spends on each depth shows as it is (NDC z of a far wall is
- * all but black, reversed float depth all but white). */
+/* The stored value between what near (white) and far (black) store,
+ * linearly: what the storage spends on each depth shows as it is. NDC z,
+ * 1/d and reversed depth are each a + b/d, so all three show
+ * (1/n - 1/d) / (1/n - 1/f) of the way to black: all but black a few near
+ * planes from the eye. On builtin:room even the wall beside the eye, the
+ * nearest surface, comes out dark. */
 static bool stored_cell(const struct tri_setup *t, const struct trace_event *test,
                         const struct trace_event *write, double rgb[3])
 {
@@ -328,7 +477,8 @@ static const struct lesson_view views[] = {
     { "screen", "the screen zoomed out: the framebuffer, the guard band, the projected "
                 "polygon and the polygon drawn", no_cell },
     { "stored", "the depth buffer's value between near (white) and far (black), linear: "
-                "NDC z crowds into the black end; a depth variant's pixels only", stored_cell },
+                "NDC z, 1/d and reversed depth alike crowd into the black end; a depth variant's "
+                "pixels only", stored_cell },
     { "depth-error", "stored depth against the exact d: black below 1e-9, blue 1e-7, "
                      "green 1e-5, red 1e-2 and more (relative)", depth_error_cell },
 };
@@ -345,12 +495,15 @@ static const char *plane_name(int id)
 static void watch(const struct tri_setup *t, const struct raster_params *p,
                   const struct trace_event *ev, char *buf, size_t n)
 {
-    (void)t, (void)p;
+    (void)t;
     buf[0] = '\0';
     if (ev->kind != TRACE_FRONT)
         return;
     const float *a = ev->aux;
     switch ((enum front_step)ev->klass) {
+    case FRONT_WORLD:
+        snprintf(buf, n, "world triangle %d of %d\n", ev->part + 1, p->scene ? p->scene->world.ntris : 0);
+        break;
     case FRONT_VIEW:
         snprintf(buf, n, "vertex %c in view space:\nx_v %.5g, y_v %.5g, d %.5g%s\n", 'A' + ev->x,
                  a[0], a[1], a[2], a[2] <= 0 ? "  (behind the eye)" : "");

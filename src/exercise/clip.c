@@ -147,7 +147,7 @@ static int clip_pipeline(const struct frustum *v, enum cull cull, const struct w
     project(v, &p);
     if (!in_guard_band(&p))
         clip_guard_band(&p, NULL);
-    return fan(&p, cull, out);
+    return fan(&p, cull, out, NULL);
 }
 
 bool exercise_front(struct scene *s)

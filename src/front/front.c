@@ -1,6 +1,7 @@
 /* front.c - the 3-D front end, stage by stage (see front.h). */
 #include "front.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,8 +82,7 @@ static bool inside(const struct plane *pl, const struct pvert *v)
     return pl->keep > 0 ? c >= pl->at : c <= pl->at;
 }
 
-/* The canonical order of an edge's ends: lexicographic on the position. */
-static bool before(const struct pvert *a, const struct pvert *b)
+bool pvert_before(const struct pvert *a, const struct pvert *b)
 {
     for (int i = 0; i < 3; i++)
         if (a->pos[i] != b->pos[i])
@@ -136,35 +136,40 @@ static struct pvert edge_point(const struct plane *pl, const struct pvert *p0,
     return n;
 }
 
-static void watch(const struct clip_watch *w, struct clip_step s)
+/* A value as the narration carries it: a float (a position projected from
+ * just beyond near may lie beyond the float's range: held at its end). */
+static float aux(double v)
 {
-    if (w && w->step)
-        w->step(w->ctx, &s);
+    return (float)fmax(-FLT_MAX, fmin(FLT_MAX, v));
 }
 
+#define AUX_POS(v) aux((v)->pos[0]), aux((v)->pos[1]), aux((v)->pos[2])
+
 void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
-                  const struct clip_watch *w)
+                  struct trace *tr)
 {
+    uint8_t line = pl->id == PLANE_NEAR ? FRONT_LINE_NEAR
+                   : pl->id == PLANE_FAR ? FRONT_LINE_FAR : FRONT_LINE_GUARD;
+    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PLANE, .line = line, .x = (int32_t)pl->id,
+            .y = in->n, .aux = { (float)pl->at });
     out->n = 0;
     for (int i = 0; i < in->n; i++) {
         const struct pvert *a = &in->v[i], *b = &in->v[(i + 1) % in->n];
         bool ina = inside(pl, a), inb = inside(pl, b);
-        if (ina) {
+        if (ina)
             out->v[out->n++] = *a;
-            watch(w, (struct clip_step){ .what = CLIP_KEEP, .plane = pl, .v = a });
-        } else {
-            watch(w, (struct clip_step){ .what = CLIP_DROP, .plane = pl, .v = a });
-        }
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = ina ? FRONT_KEEP : FRONT_DROP, .line = line,
+                .x = (int32_t)pl->id, .aux = { AUX_POS(a) });
         /* a new vertex only where the edge really crosses: an end lying on
          * the plane is itself the crossing, and is kept as it is */
         const struct pvert *in_end = ina ? a : b;
         if (ina != inb && in_end->pos[pl->axis] != pl->at) {
-            const struct pvert *p0 = before(b, a) ? b : a, *p1 = p0 == a ? b : a;
+            const struct pvert *p0 = pvert_before(b, a) ? b : a, *p1 = p0 == a ? b : a;
             double t;
-            out->v[out->n] = edge_point(pl, p0, p1, &t);
-            watch(w, (struct clip_step){ .what = CLIP_NEW, .plane = pl, .v = &out->v[out->n],
-                                         .p0 = p0, .p1 = p1, .t = t });
-            out->n++;
+            struct pvert *n = &out->v[out->n++];
+            *n = edge_point(pl, p0, p1, &t);
+            NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_NEW, .line = line,
+                    .x = (int32_t)pl->id, .aux = { AUX_POS(n), (float)t });
         }
     }
 }
@@ -191,11 +196,11 @@ bool in_guard_band(const struct poly *p)
     return true;
 }
 
-void clip_guard_band(struct poly *p, const struct clip_watch *w)
+void clip_guard_band(struct poly *p, struct trace *tr)
 {
     for (int k = 0; k < 4 && p->n > 0; k++) {
         struct poly out;
-        clip_polygon(&out, p, &guard_planes[k], w);
+        clip_polygon(&out, p, &guard_planes[k], tr);
         *p = out;
     }
 }
@@ -227,13 +232,16 @@ static struct vertex screen_vertex(const struct pvert *p)
                             .s = p->st[0], .t = p->st[1] };
 }
 
-int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
+int fan(const struct poly *p, enum cull cull, struct vertex out[][3], struct trace *tr)
 {
     int n = 0;
     for (int i = 1; i + 1 < p->n; i++) {
         struct vertex t[3] = { screen_vertex(&p->v[0]), screen_vertex(&p->v[i]),
                                screen_vertex(&p->v[i + 1]) };
-        if (!culled(cull, t))
+        bool drawn = !culled(cull, t);
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_TRIANGLE, .line = FRONT_LINE_FAN, .x = i - 1,
+                .flags = drawn ? TRACE_INSIDE : 0, .aux = { (float)facing_area(t) / 65536.0f });
+        if (drawn)
             memcpy(out[n++], t, sizeof t);
     }
     return n;
@@ -241,31 +249,66 @@ int fan(const struct poly *p, enum cull cull, struct vertex out[][3])
 
 /* --- the pipeline ------------------------------------------------------------------ */
 
+/* Pixel of a screen position, for the explorer to outline (clamped: the
+ * position may be far off the screen). */
+static int32_t pixel_of(double v)
+{
+    return (int32_t)fmax(-2e9, fmin(2e9, floor(v)));
+}
+
+int front_pipeline(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                   const struct front_way *way, struct trace *tr, struct vertex out[][3])
+{
+    NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_WORLD, .line = FRONT_LINE_EACH);
+    struct poly p = { .n = 3 }, q;
+    for (int k = 0; k < 3; k++) {                               /* world -> view */
+        p.v[k] = view_vertex(v, t->p[k], t->rgb[k]);
+        memcpy(p.v[k].st, t->st[k], sizeof p.v[k].st);          /* (s, t) ride along */
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_VIEW, .line = FRONT_LINE_VIEW, .x = k,
+                .aux = { AUX_POS(&p.v[k]) });
+    }
+    if (way && way->clip_project) {
+        way->clip_project(v, &p);                               /* an alternative's */
+        if (p.n == 0)
+            return 0;
+    } else {
+        void (*clip)(struct poly *, const struct poly *, const struct plane *, struct trace *) =
+            way && way->clip ? way->clip : clip_polygon;
+        struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
+        clip(&q, &p, &near, tr);                                /* d >= near */
+        if (q.n == 0)
+            return 0;                                           /* wholly behind near */
+        clip(&p, &q, &far, tr);                                 /* d <= far */
+        if (p.n == 0)
+            return 0;                                           /* wholly beyond far */
+        project(v, &p);                                         /* view -> screen */
+    }
+    for (int k = 0; k < p.n; k++) {
+        const double *c = p.v[k].pos;
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_PROJECT, .line = FRONT_LINE_PROJECT,
+                .x = pixel_of(c[0]), .y = pixel_of(c[1]), .aux = { AUX_POS(&p.v[k]), (float)k });
+    }
+    if (way && way->screen) {
+        way->screen(v, &p);                                     /* an exhibit's x, y */
+    } else {
+        bool inside = in_guard_band(&p);
+        NARRATE(tr, .kind = TRACE_FRONT, .klass = FRONT_GUARD, .line = FRONT_LINE_GUARD, .y = p.n,
+                .flags = inside ? TRACE_INSIDE : 0);
+        if (!inside)
+            clip_guard_band(&p, tr);                            /* only beyond the band */
+    }
+    return fan(&p, cull, out, tr);                              /* triangles, culled */
+}
+
 int front_triangle(const struct frustum *v, enum cull cull, const struct world_tri *t,
                    struct vertex out[][3])
 {
-    struct poly world = { .n = 3 }, near_clipped, clipped;
-    for (int i = 0; i < 3; i++) {
-        world.v[i] = view_vertex(v, t->p[i], t->rgb[i]);        /* world -> view */
-        memcpy(world.v[i].st, t->st[i], sizeof world.v[i].st);
-    }
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    clip_polygon(&near_clipped, &world, &near, NULL);           /* d >= near */
-    if (near_clipped.n == 0)
-        return 0;                                               /* wholly behind near */
-    clip_polygon(&clipped, &near_clipped, &far, NULL);          /* d <= far */
-    project(v, &clipped);                                       /* view -> screen */
-    if (!in_guard_band(&clipped))
-        clip_guard_band(&clipped, NULL);                        /* only beyond the band */
-    return fan(&clipped, cull, out);                            /* triangles, culled */
+    return front_pipeline(v, cull, t, NULL, NULL, out);
 }
 
-bool front_scene(struct scene *s)
-{
-    return front_scene_with(s, front_triangle);
-}
-
-bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+/* Every world triangle through pipeline, or (pipeline NULL) through
+ * front_pipeline() the way `way` says. */
+static bool scene_through(struct scene *s, pipeline_fn pipeline, const struct front_way *way)
 {
     struct world *w = &s->world;
     if (!w->camera_line)
@@ -276,7 +319,8 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
     int from_cap = 0;
     for (int i = 0; i < w->ntris; i++) {
         struct vertex tris[POLY_MAX - 2][3];
-        int n = pipeline(&v, w->cull, &w->tris[i], tris);
+        int n = pipeline ? pipeline(&v, w->cull, &w->tris[i], tris)
+                         : front_pipeline(&v, w->cull, &w->tris[i], way, NULL, tris);
         for (int k = 0; k < n; k++) {
             if (!scene_add_textured(s, tris[k], w->tris[i].texture))
                 return false;
@@ -292,6 +336,21 @@ bool front_scene_with(struct scene *s, pipeline_fn pipeline)
         }
     }
     return true;
+}
+
+bool front_scene(struct scene *s)
+{
+    return scene_through(s, NULL, NULL);
+}
+
+bool front_scene_with(struct scene *s, pipeline_fn pipeline)
+{
+    return scene_through(s, pipeline, NULL);
+}
+
+bool front_scene_way(struct scene *s, const struct front_way *way)
+{
+    return scene_through(s, NULL, way);
 }
 
 bool front_move_vertex(struct scene *s, int i, double ox, double oy, double x, double y)

@@ -4,8 +4,11 @@
  *   world --look-at--> view --clip d >= near, d <= far--> --project--> screen
  *         --guard band (only what reaches beyond [-16384, 16384))--> --fan, cull--> 2-D triangles
  *
- * Every stage is a function of its own, so lesson 06 can run them one by one
- * and narrate them; front_scene() runs them all for every other program.
+ * Lesson 06's algorithm. Every stage is a function of its own, and
+ * front_pipeline() runs them in that order, once for every program:
+ * front_scene() silently for the screen triangles every lesson draws,
+ * lesson 06 again, narrated, for the explorer's steps (at the lines of
+ * enum front_line of its pseudo-code).
  */
 #ifndef TRISTEP_FRONT_H
 #define TRISTEP_FRONT_H
@@ -14,6 +17,20 @@
 
 #include "raster/raster.h"
 #include "scene/scene.h"
+#include "trace/trace.h"
+
+/* The lines of lesson 06's pseudo-code that the front end's steps are told
+ * at (TRACE_FRONT events; lesson 06 adds the rasterizer's line after them). */
+enum front_line {
+    FRONT_LINE_EACH,        /* for each world triangle */
+    FRONT_LINE_VIEW,        /* world -> view */
+    FRONT_LINE_NEAR,        /* clip against d >= near */
+    FRONT_LINE_FAR,         /* clip against d <= far */
+    FRONT_LINE_PROJECT,     /* project */
+    FRONT_LINE_GUARD,       /* the guard band */
+    FRONT_LINE_FAN,         /* fan and cull */
+    FRONT_LINES
+};
 
 /* A vertex of a polygon on its way through the pipeline. In view space pos
  * is (x_v, y_v, d), in screen space (x_s, y_s, d): d, the positive view
@@ -69,32 +86,21 @@ struct plane depth_plane(const struct frustum *v, enum plane_id id);   /* PLANE_
 #define GUARD_BAND COORD_LIMIT
 extern const struct plane guard_planes[4];
 
-/* What the clipper does, for a narrator (every pointer valid during the call):
- * a vertex kept or dropped, or a new vertex made on the edge p0 -> p1 (in
- * canonical order) at p0 + t (p1 - p0). */
-enum clip_event { CLIP_KEEP, CLIP_DROP, CLIP_NEW };
-
-struct clip_step {
-    enum clip_event what;
-    const struct plane *plane;
-    const struct pvert *v;       /* the vertex kept, dropped or made */
-    const struct pvert *p0, *p1; /* CLIP_NEW: the edge, canonical order */
-    double t;                    /* CLIP_NEW */
-};
-
-struct clip_watch {
-    void (*step)(void *ctx, const struct clip_step *s);
-    void *ctx;
-};
+/* The canonical order of an edge's ends: is a before b, lexicographically
+ * on the position? */
+bool pvert_before(const struct pvert *a, const struct pvert *b);
 
 /* Sutherland-Hodgman against one plane: walks the edges v[0] -> v[1], ...,
  * v[n-1] -> v[0]; a vertex inside is kept; an edge with one end strictly
  * inside and the other outside gets a new vertex, computed from the edge's
- * ends in canonical (lexicographic) order, so that two triangles sharing the
- * edge make the very same vertex; its clipped coordinate is set to the plane
- * exactly. w may be NULL. */
+ * ends in canonical order, so that two triangles sharing the edge make the
+ * very same vertex; its clipped coordinate is set to the plane exactly.
+ * Told on tr (NULL: silent): the plane (FRONT_PLANE, x the plane's id, y the
+ * vertices in), then each vertex kept or dropped and each vertex made
+ * (FRONT_KEEP, FRONT_DROP, FRONT_NEW: x the plane's id, aux its position and,
+ * for a new one, t). */
 void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
-                  const struct clip_watch *w);
+                  struct trace *tr);
 
 /* View to screen: x_s = W/2 (1 + g x_v / (a d)), y_s = H/2 (1 - g y_v / d). */
 void project(const struct frustum *v, struct poly *p);
@@ -102,7 +108,7 @@ void project(const struct frustum *v, struct poly *p);
 /* Does every vertex lie in [-16384, 16384) on both axes (then it is used as
  * it is)? If not, clip_guard_band clips against the four guard planes. */
 bool in_guard_band(const struct poly *p);
-void clip_guard_band(struct poly *p, const struct clip_watch *w);
+void clip_guard_band(struct poly *p, struct trace *tr);
 
 /* Snapped twice the signed area of a screen triangle, as the facing rule
  * reads it: (x1-x0)(y2-y0) - (x2-x0)(y1-y0) on the 1/256 grid; negative means
@@ -111,10 +117,32 @@ int64_t facing_area(const struct vertex v[3]);
 bool culled(enum cull cull, const struct vertex v[3]);
 
 /* The polygon as a fan from its first vertex, culled: writes at most
- * POLY_MAX - 2 triangles into out and returns how many. */
-int fan(const struct poly *p, enum cull cull, struct vertex out[][3]);
+ * POLY_MAX - 2 triangles into out and returns how many (each told on tr:
+ * FRONT_TRIANGLE, drawn or culled). */
+int fan(const struct poly *p, enum cull cull, struct vertex out[][3], struct trace *tr);
 
-/* The whole pipeline for one world triangle. */
+/* A stage done another way: lesson 06's exhibits of the classic slips, and
+ * its clipping in clip space, run the same pipeline with one stage
+ * replaced. NULL members: the lesson's. */
+struct front_way {
+    /* clipping against d >= near, then d <= far (clip_polygon) */
+    void (*clip)(struct poly *out, const struct poly *in, const struct plane *pl, struct trace *tr);
+    /* near, far and the projection at once, from view space to the screen
+     * (clipping in homogeneous clip space, as the APIs do) */
+    void (*clip_project)(const struct frustum *v, struct poly *p);
+    /* x and y after projection (the guard band) */
+    void (*screen)(const struct frustum *v, struct poly *p);
+};
+
+/* The whole pipeline for one world triangle, in its order: view, near, far,
+ * project, guard band, fan and cull. Writes at most POLY_MAX - 2 triangles
+ * and returns how many. way NULL: the lesson's. tr NULL: silent; else every
+ * step is told (TRACE_FRONT, at the lines of enum front_line), the first
+ * being FRONT_WORLD, about world triangle tr->part. */
+int front_pipeline(const struct frustum *v, enum cull cull, const struct world_tri *t,
+                   const struct front_way *way, struct trace *tr, struct vertex out[][3]);
+
+/* The lesson's pipeline, silent. */
 int front_triangle(const struct frustum *v, enum cull cull, const struct world_tri *t,
                    struct vertex out[][3]);
 
@@ -123,8 +151,12 @@ int front_triangle(const struct frustum *v, enum cull cull, const struct world_t
  * False only when out of memory. */
 bool front_scene(struct scene *s);
 
-/* The same with another pipeline for each world triangle (lesson 06's
- * exhibits of the classic slips), writing at most POLY_MAX - 2 triangles. */
+/* The same with a stage done another way (lesson 06's exhibits of the
+ * classic slips and its alternatives). */
+bool front_scene_way(struct scene *s, const struct front_way *way);
+
+/* The same with another pipeline for each world triangle (the exercise's,
+ * around the student's clipper), writing at most POLY_MAX - 2 triangles. */
 typedef int (*pipeline_fn)(const struct frustum *v, enum cull cull, const struct world_tri *t,
                            struct vertex out[][3]);
 bool front_scene_with(struct scene *s, pipeline_fn pipeline);

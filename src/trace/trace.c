@@ -9,6 +9,7 @@ void trace_begin(struct trace *tr, uint32_t tri, uint64_t limit)
     tr->count = 0;
     tr->limit = limit;
     tr->frozen = false;
+    tr->part = 0;
     memset(&tr->c, 0, sizeof tr->c);
 }
 
@@ -67,6 +68,9 @@ void trace_emit(struct trace *tr, struct trace_event *ev)
         return;
     }
     ev->tri = tr->tri;
+    ev->part = tr->part;
+    if (tr->one_line)
+        ev->line = tr->line;
     ev->index = (uint32_t)index;
     ev->mul = tr->c.mul;
     ev->add = tr->c.add;

@@ -38,9 +38,10 @@ enum trace_kind {
     TRACE_BLOCK,        /* a q x q block at (x, y), size x1 - x + 1, class in klass */
     TRACE_PIXEL_TEST,   /* pixel (x, y) tested: edge values e, flags & TRACE_INSIDE */
     TRACE_PIXEL_WRITE,  /* pixel (x, y) written: z, rgba, flags & TRACE_DEPTH_PASS */
-    TRACE_FRONT,        /* a step of the 3-D front end (lesson 06): klass = what
-                           (enum front_step), (x, y) the pixel of a projected
-                           vertex, aux[] its values */
+    TRACE_FRONT,        /* a step of the 3-D front end (src/front/, lesson 06):
+                           klass = what (enum front_step), part = the world
+                           triangle, (x, y) the pixel of a projected vertex,
+                           aux[] its values */
     TRACE_KIND_COUNT
 };
 
@@ -62,6 +63,7 @@ enum front_step {
     FRONT_PROJECT,      /* a vertex projected: (x, y) its pixel, aux x_s, y_s, d */
     FRONT_GUARD,        /* the guard band test: flags & TRACE_INSIDE when inside */
     FRONT_TRIANGLE,     /* a triangle of the fan: flags & TRACE_INSIDE when drawn (not culled) */
+    FRONT_WORLD,        /* a world triangle enters the front end: y the scene's count */
     FRONT_STEP_COUNT
 };
 
@@ -101,6 +103,7 @@ struct trace_event {
     float aux[6];       /* lesson-specific values, named by lesson->aux_names */
     /* filled in by trace_emit: */
     uint32_t tri;       /* index of the triangle in the scene */
+    int32_t part;       /* what the triangle's steps are about (trace.part) */
     uint32_t index;     /* event number within the triangle */
     uint64_t mul, add;  /* arithmetic so far in this triangle */
 };
@@ -111,6 +114,15 @@ struct trace {
     uint64_t limit;                 /* events numbered >= limit have not happened */
     bool frozen;                    /* an event at or past the limit was emitted */
     struct trace_counters c;        /* counts over the events that happened */
+    /* What the steps are about, when a triangle's run tells of more than
+     * the triangle (lesson 06: the world triangle whose front end is told),
+     * copied into each event; 0 from trace_begin. */
+    int32_t part;
+    /* A lesson that runs another lesson's rasterizer as one line of its own
+     * pseudo-code (lesson 06 runs lesson 05's) tells every event at that
+     * line while one_line is set. */
+    bool one_line;
+    uint8_t line;
     void (*sink)(void *ctx, const struct trace_event *ev);   /* may be NULL */
     void *ctx;
 };
