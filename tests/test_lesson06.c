@@ -553,8 +553,8 @@ static void compare_fronts(const struct scene *world, const struct camera *c, co
  * step of the grid, where the two may snap apart; nothing guarantees it
  * never does. What the test holds, on every built-in 3-D scene from its own
  * camera and from 250 random cameras around it (near from 10^-3 to 1, far
- * up to 100 near planes away, fovy 20-150 degrees; a third of the vertices
- * made on near or far): the same screen triangles, in the same order, with
+ * up to 100 near planes away, fovy 20-150 degrees; one vertex in seven
+ * made on near or far, every scene cut): the same screen triangles, in the same order, with
  * the same snapped vertices; the same coverage and colour in every pixel;
  * and no screen coordinate more than 10^-4 px (1/39 of a grid step) from
  * the lesson's. */
@@ -569,11 +569,14 @@ Test(lesson06, clipping_in_clip_space_gives_the_same_pixels, .timeout = 120)
             char err[256];
             cr_assert(scene_builtin(&s, builtin_scenes[i].name, err, sizeof err), "%s", err);
             if (s.world.camera_line) {
+                int cut_before = m.cut;
                 compare_fronts(&s, &s.world.cam, names[n], &m);
                 for (int k = 0; k < 250; k++) {
                     struct camera c = nearby_camera(&r, &s.world.cam);
                     compare_fronts(&s, &c, names[n], &m);
                 }
+                cr_expect_gt(m.cut, cut_before, "%s: no camera made near or far cut %s", names[n],
+                             builtin_scenes[i].name);
             }
             scene_free(&s);
         }
@@ -582,7 +585,9 @@ Test(lesson06, clipping_in_clip_space_gives_the_same_pixels, .timeout = 120)
                     "kept", names[n], m.cameras, m.tris, m.vertices, m.cut, m.count_differs,
                     m.snapped_differs, m.pixels_differ, m.colours_differ, m.most, m.most_kept);
         cr_expect_geq(m.cameras, 4 * 251, "%s: every built-in 3-D scene", names[n]);
-        cr_expect_gt(m.cut, m.vertices / 5, "%s: the cameras must make near and far cut", names[n]);
+        /* every scene cut (above), and one vertex in ten of all made on near
+         * or far (lesson 09's sheet of small triangles cuts fewer) */
+        cr_expect_gt(m.cut, m.vertices / 10, "%s: the cameras must make near and far cut", names[n]);
         cr_expect_eq(m.count_differs, 0, "%s: %d cameras made other numbers of triangles", names[n],
                      m.count_differs);
         cr_expect_eq(m.snapped_differs, 0, "%s: %d vertices snapped elsewhere", names[n], m.snapped_differs);
