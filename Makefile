@@ -98,7 +98,7 @@ $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) 
 
 # Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
 # does not run under TSan), run by tests/test_lesson07.c.
-TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c)) src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c
+TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c)) src/raster/raster.c $(wildcard src/scene/*.c) src/util/file.c src/shade/quad.c src/trace/trace.c
 $(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h) | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 

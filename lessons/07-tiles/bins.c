@@ -14,8 +14,7 @@
  *
  * One corner per edge per test, where lesson 05 evaluated four. */
 
-#define _POSIX_C_SOURCE 200809L     /* pthreads */
-#include <pthread.h>
+#define _POSIX_C_SOURCE 200809L     /* aligned_alloc */
 #include <stdlib.h>
 
 #include "tiles.h"
@@ -61,101 +60,112 @@ enum block_class classify_rect(const struct tri *t, struct rect r, enum corners 
     return full ? BLOCK_FULL : BLOCK_PARTIAL;
 }
 
-/* Blocks are kept from one run to the next, as llvmpipe keeps its scenes:
- * fresh memory from the system costs a page fault per 4 KB, about as much
- * as drawing the small triangles it holds. The pool is shared by every run
- * and every worker, under a lock taken once per block. */
-#define POOL_MAX 16384          /* blocks kept: 64 MB */
-static pthread_mutex_t pool_lock = PTHREAD_MUTEX_INITIALIZER;
-static struct bin_block *pool;
-static int pool_size;
+/* --- where the bins live: each worker's own memory ------------------------
+ *
+ * A worker bins its shares of the scene into blocks of its own arena: no
+ * lock, no line written by two cores. The arena's chunks are kept from one
+ * run to the next, as llvmpipe keeps its scenes: fresh memory from the
+ * system costs a page fault per 4 KB, about as much as drawing the small
+ * triangles it holds. */
+#define CHUNK_BYTES ((size_t)1 << 20)
 
-static struct bin_block *block_get(void)
-{
-    pthread_mutex_lock(&pool_lock);
-    struct bin_block *b = pool;
-    if (b) {
-        pool = b->next;
-        pool_size--;
-    }
-    pthread_mutex_unlock(&pool_lock);
-    if (!b && !(b = malloc(sizeof *b)))
-        return NULL;
-    b->next = NULL;
-    b->n = 0;
-    return b;
-}
+struct chunk {
+    struct chunk *next;
+    size_t used;
+    _Alignas(CACHE_LINE) unsigned char data[];
+};
 
-/* Give a bin's blocks back to the pool (beyond POOL_MAX, to the system). */
-void bin_free(struct bin *bin)
+void *arena_alloc(struct arena *a, size_t n)
 {
-    struct bin_block *b = bin->first;
-    if (!b)
-        return;
-    pthread_mutex_lock(&pool_lock);
-    while (b) {
-        struct bin_block *next = b->next;
-        if (pool_size < POOL_MAX) {
-            b->next = pool;
-            pool = b;
-            pool_size++;
-        } else {
-            free(b);
+    n = (n + CACHE_LINE - 1) & ~(size_t)(CACHE_LINE - 1);
+    while (a->cur && a->cur->used + n > CHUNK_BYTES)
+        a->cur = a->cur->next;          /* kept from an earlier run, or NULL */
+    if (!a->cur) {
+        struct chunk *c = aligned_alloc(CACHE_LINE, sizeof *c + CHUNK_BYTES);
+        if (!c || n > CHUNK_BYTES) {
+            free(c);
+            return NULL;
         }
-        b = next;
+        c->next = NULL;
+        c->used = 0;
+        if (a->last)
+            a->last->next = c;
+        else
+            a->first = c;
+        a->last = a->cur = c;
     }
-    pthread_mutex_unlock(&pool_lock);
-    bin->first = bin->last = NULL;
+    void *p = a->cur->data + a->cur->used;
+    a->cur->used += n;
+    return p;
 }
 
-/* Ask the cache for the lines of [p, p + n), to be written soon. */
-static void prefetch_for_write(const void *p, size_t n)
+/* Every chunk empty again, kept for the next run. */
+void arena_reset(struct arena *a)
 {
-    const char *c = p;
-    for (size_t o = 0; o < n; o += CACHE_LINE)
-        __builtin_prefetch(c + o, 1);
-    __builtin_prefetch(c + n - 1, 1);
+    for (struct chunk *c = a->first; c; c = c->next)
+        c->used = 0;
+    a->cur = a->first;
 }
 
-static bool bin_push(struct bin *bin, const struct tri *t, bool full)
+/* Ask the cache for the line of p, to be written soon. */
+static void prefetch_for_write(const void *p)
+{
+    __builtin_prefetch(p, 1);
+}
+
+static bool bin_push(struct bin *bin, struct arena *a, uint32_t entry)
 {
     struct bin_block *b = bin->last;
     if (!b || b->n == BIN_BLOCK) {
-        struct bin_block *fresh = block_get();
+        struct bin_block *fresh = arena_alloc(a, sizeof *fresh);
         if (!fresh)
             return false;
+        fresh->next = NULL;
+        fresh->n = 0;
         if (b)
             b->next = fresh;
         else
             bin->first = fresh;
         bin->last = b = fresh;
     }
-    b->rec[b->n] = *t;
-    b->rec[b->n++].full = full;
+    b->entry[b->n++] = entry;
     /* This bin's next triangle comes hundreds of triangles later, after
-     * the other bins': its slot, asked for now, is in the cache by then.
-     * Otherwise every record written waits for its lines from memory
+     * the other bins': its slot, asked for now, is in the cache by then
      * (hundreds of bins filled at once are more streams than the hardware
      * prefetcher follows). */
     if (b->n < BIN_BLOCK)
-        prefetch_for_write(&b->rec[b->n], sizeof *t);
+        prefetch_for_write(&b->entry[b->n]);
     return true;
 }
 
-/* Put a triangle into the bins of the tiles it may touch. A box within one
- * tile needs no test: the tile's blocks will sort it out. */
-bool bin_triangle(const struct tri *t, const struct grid *g, struct bin *bins, enum corners rule)
+/* Put triangle number `index` (record t) into the bins of the tiles it may
+ * touch, memory from arena a. A box within one tile needs no test: the
+ * tile's blocks will sort it out. */
+bool bin_triangle(const struct tri *t, uint32_t index, const struct grid *g, struct bin *bins,
+                  struct arena *a, enum corners rule, struct trace *tr)
 {
     int tx0 = t->minx / TILE, tx1 = t->maxx / TILE, ty0 = t->miny / TILE, ty1 = t->maxy / TILE;
+    NARRATE(tr, .kind = TRACE_BLOCK, .line = L_BIN, .x = tx0 * TILE, .y = ty0 * TILE,
+            .x1 = tx1 * TILE + TILE - 1 < g->w ? tx1 * TILE + TILE - 1 : g->w - 1,
+            .y1 = ty1 * TILE + TILE - 1 < g->h ? ty1 * TILE + TILE - 1 : g->h - 1,
+            .klass = BLOCK_CLASS_COUNT, .aux = { TILE, 0 });
     if (tx0 == tx1 && ty0 == ty1)
-        return bin_push(&bins[ty0 * g->nx + tx0], t, false);
+        return bin_push(&bins[ty0 * g->nx + tx0], a, bin_entry_of(index, false));
     for (int ty = ty0; ty <= ty1; ty++)
         for (int tx = tx0; tx <= tx1; tx++) {
             int tile = ty * g->nx + tx;
-            enum block_class k = classify_rect(t, tile_rect(g, tile), rule);
-            if (k != BLOCK_EMPTY && !bin_push(&bins[tile], t, k == BLOCK_FULL))
+            struct rect r = tile_rect(g, tile);
+            enum block_class k = classify_rect(t, r, rule);
+            NARRATE(tr, .kind = TRACE_BLOCK,
+                    .line = k == BLOCK_EMPTY ? L_REJECT : k == BLOCK_FULL ? L_ACCEPT : L_PARTIAL_TILE,
+                    .x = r.x0, .y = r.y0, .x1 = r.x0 + r.w - 1, .y1 = r.y0 + r.h - 1,
+                    /* FULL is said by the tile's own step, when it is filled */
+            .klass = k == BLOCK_FULL ? BLOCK_CLASS_COUNT : (uint8_t)k, .aux = { TILE, 0 },
+                    .mask = { corner_bits(t, 0, r.x0, r.y0, r.x0 + r.w - 1, r.y0 + r.h - 1),
+                              corner_bits(t, 1, r.x0, r.y0, r.x0 + r.w - 1, r.y0 + r.h - 1),
+                              corner_bits(t, 2, r.x0, r.y0, r.x0 + r.w - 1, r.y0 + r.h - 1) });
+            if (k != BLOCK_EMPTY && !bin_push(&bins[tile], a, bin_entry_of(index, k == BLOCK_FULL)))
                 return false;
         }
     return true;
 }
-

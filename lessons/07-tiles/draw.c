@@ -11,31 +11,30 @@
 
 /* --- where the pixels go: the tile buffer, or the target itself ---------- */
 
-/* Colour, depth and coverage counts of a w x h rectangle of pixels, rows
- * `stride` apart. Eight lanes may be read and written at once from column i
- * when i + 8 <= wide (the tile buffer has room past its last column; the
- * target, where another thread may own the next tile, has none). */
-struct dst tile_load(struct tile_buf *b, const struct target *fb, struct rect r)
+/* Load the part `part` of tile r (the rectangle its bin's triangles may
+ * touch: what is outside it is never read) into the tile buffer; the
+ * pixels of r are then written through the result. */
+struct dst tile_load(struct tile_buf *b, const struct target *fb, struct rect r, struct rect part)
 {
-    for (int j = 0; j < r.h; j++) {
-        size_t row = (size_t)(r.y0 + j) * (size_t)fb->w + (size_t)r.x0;
-        memcpy(b->color + j * TILE, fb->color + row, (size_t)r.w * sizeof *b->color);
-        memcpy(b->depth + j * TILE, fb->depth + row, (size_t)r.w * sizeof *b->depth);
-        if (fb->count)
-            memcpy(b->count + j * TILE, fb->count + row, (size_t)r.w);
+    size_t at = (size_t)(part.y0 - r.y0) * TILE + (size_t)(part.x0 - r.x0);
+    for (int j = 0; j < part.h; j++) {
+        size_t row = (size_t)(part.y0 + j) * (size_t)fb->w + (size_t)part.x0, o = at + (size_t)j * TILE;
+        memcpy(b->color + o, fb->color + row, (size_t)part.w * sizeof *b->color);
+        memcpy(b->depth + o, fb->depth + row, (size_t)part.w * sizeof *b->depth);
     }
-    return (struct dst){ b->color, b->depth, fb->count ? b->count : NULL, TILE, r.w, r.h,
-                         TILE + LANES };
+    size_t first = (size_t)r.y0 * (size_t)fb->w + (size_t)r.x0;
+    return (struct dst){ b->color, b->depth, fb->count ? fb->count + first : NULL, TILE, r.w, r.h,
+                         TILE + LANES, fb->w };
 }
 
-void tile_store(const struct tile_buf *b, struct target *fb, struct rect r)
+/* Store that part back: once per tile. */
+void tile_store(const struct tile_buf *b, struct target *fb, struct rect r, struct rect part)
 {
-    for (int j = 0; j < r.h; j++) {
-        size_t row = (size_t)(r.y0 + j) * (size_t)fb->w + (size_t)r.x0;
-        memcpy(fb->color + row, b->color + j * TILE, (size_t)r.w * sizeof *b->color);
-        memcpy(fb->depth + row, b->depth + j * TILE, (size_t)r.w * sizeof *b->depth);
-        if (fb->count)
-            memcpy(fb->count + row, b->count + j * TILE, (size_t)r.w);
+    size_t at = (size_t)(part.y0 - r.y0) * TILE + (size_t)(part.x0 - r.x0);
+    for (int j = 0; j < part.h; j++) {
+        size_t row = (size_t)(part.y0 + j) * (size_t)fb->w + (size_t)part.x0, o = at + (size_t)j * TILE;
+        memcpy(fb->color + row, b->color + o, (size_t)part.w * sizeof *b->color);
+        memcpy(fb->depth + row, b->depth + o, (size_t)part.w * sizeof *b->depth);
     }
 }
 
@@ -44,7 +43,7 @@ struct dst target_dst(struct target *fb, struct rect r)
 {
     size_t o = (size_t)r.y0 * (size_t)fb->w + (size_t)r.x0;
     return (struct dst){ fb->color + o, fb->depth + o, fb->count ? fb->count + o : NULL,
-                         fb->w, r.w, r.h, r.w };
+                         fb->w, r.w, r.h, r.w, fb->w };
 }
 
 
@@ -100,8 +99,9 @@ static void narrate_pixels(const struct tri_in_tile *c, const struct dst *d, con
         if (tr && tr->frozen)
             return;
         size_t o = (size_t)j * (size_t)d->stride + (size_t)i;
-        if (d->count && d->count[o] < 255)
-            d->count[o]++;
+        size_t oc = (size_t)j * (size_t)d->count_stride + (size_t)i;
+        if (d->count && d->count[oc] < 255)
+            d->count[oc]++;
         if (pass) {
             d->depth[o] = z;
             d->color[o] = rgba;

@@ -14,7 +14,6 @@
 void tri_record(struct tri *r, const struct tri_setup *t, int checker)
 {
     r->textured = checker > 0;
-    r->full = false;
     for (int k = 0; k < 3; k++) {
         r->c[k] = edge_value(t, k, 0, 0) + t->bias[k];
         r->di[k] = (int32_t)t->I[k];
@@ -35,3 +34,15 @@ void tri_record(struct tri *r, const struct tri_setup *t, int checker)
     }
 }
 
+
+/* Set-up of one triangle, narrated: its record, or false when it covers
+ * nothing (zero area, or no pixel centre of the target in its box). */
+bool tri_set_up(struct tri *r, const struct tri_setup *t, int checker, struct trace *tr)
+{
+    NARRATE(tr, .kind = TRACE_SETUP, .line = L_SETUP, .x = t->minx, .y = t->miny, .x1 = t->maxx,
+            .y1 = t->maxy, .e = { t->area2, 0, 0 });
+    if (t->empty)
+        return false;
+    tri_record(r, t, checker);
+    return true;
+}

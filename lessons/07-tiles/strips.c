@@ -34,7 +34,7 @@ static void count_lanes(const struct dst *d, int i, int j, unsigned mask)
 {
     if (!d->count)
         return;
-    uint8_t *c = d->count + (size_t)j * (size_t)d->stride + (size_t)i;
+    uint8_t *c = d->count + (size_t)j * (size_t)d->count_stride + (size_t)i;
     for (int l = 0; l < LANES; l++)
         if (mask >> l & 1 && c[l] < 255)
             c[l]++;

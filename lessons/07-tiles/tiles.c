@@ -62,172 +62,129 @@ static const char *const pseudocode[] = {
     NULL,
 };
 
-/* trace_event.aux[] of this lesson: for a tile or block event its size and
- * level (0 tile, 1 block), the tile's bin size, the triangle's place in the
- * bin, and the worker thread that drew the tile in the real run. */
-static const char *const aux_names[] = { "q", "level", "bin", "entry", "thread", NULL };
-
-/* --- the narrated order ------------------------------------------------------ */
-
-/* The exhibit `unordered` draws a tile's bin starting with the share of the
- * scene its worker binned (draw_tile): the same order for the units of a
- * tile drawn by `worker`, with the triangles cut into `shares` shares of a
- * scene of n as bin_chunk cuts them. */
-static bool rotate_shares(struct lesson_unit *u, long m, size_t n, int shares, int worker)
-{
-    struct lesson_unit *tmp = malloc((size_t)(m ? m : 1) * sizeof *tmp);
-    if (!tmp)
-        return false;
-    long k = 0;
-    for (int step = 0; step < shares; step++) {
-        int c = (step + worker * SHARES_PER_THREAD) % shares;
-        size_t lo = n * (size_t)c / (size_t)shares, hi = n * (size_t)(c + 1) / (size_t)shares;
-        for (long e = 0; e < m; e++)
-            if (u[e].tri >= lo && u[e].tri < hi)
-                tmp[k++] = u[e];
-    }
-    memcpy(u, tmp, (size_t)m * sizeof *u);
-    free(tmp);
-    return true;
-}
-
-/* The explorer steps through the run tile after tile, in row-major order,
- * and inside a tile through its bin in scene order: one unit per (tile,
- * triangle) pair that binning keeps. The tiles go to the workers as the
- * pool hands them out: each tile to the first worker free, in that order,
- * if a tile took as long as the pixels of its triangles' boxes in it (the
- * real run's assignment depends on the machine's timing; this one is the
- * same on every run, so that figures can be reproduced). */
-static long narration_units(const struct scene *s, const struct lesson_variant *v,
-                            const struct raster_params *p, struct lesson_unit *out, long cap)
-{
-    bool unordered = strcmp(v->name, "unordered") == 0;
-    struct grid g = grid_of(s->w, s->h);
-    size_t n = (size_t)s->ntris;
-    long *count = calloc((size_t)g.n + 1, sizeof *count);
-    double *work = calloc((size_t)g.n, sizeof *work);
-    long total = -1;
-    if (!count || !work)
-        goto done;
-    /* bin sizes: the tiles that do not reject each triangle (set up twice
-     * rather than kept: a scene may have millions of triangles) */
-    for (int pass = 0; pass < 2; pass++) {
-        long *next = count;     /* pass 1: where each tile's next unit goes */
-        for (size_t i = 0; i < n; i++) {
-            struct tri_setup ts;
-            struct tri rec, *t = &rec;
-            bool live = tri_setup_bits(&ts, s->tris[i].v, s->w, s->h, p->subpixel_bits);
-            if (live)
-                tri_record(t, &ts, p->checker);
-            for (int ty = t->miny / TILE; live && ty <= t->maxy / TILE; ty++)
-                for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++) {
-                    int tile = ty * g.nx + tx;
-                    struct rect r = tile_rect(&g, tile);
-                    if (classify_rect(t, r, CORNERS_ONE) == BLOCK_EMPTY)
-                        continue;
-                    if (pass == 0) {
-                        count[tile + 1]++;
-                        int w = (t->maxx < r.x0 + r.w - 1 ? t->maxx : r.x0 + r.w - 1)
-                              - (t->minx > r.x0 ? t->minx : r.x0) + 1;
-                        int h = (t->maxy < r.y0 + r.h - 1 ? t->maxy : r.y0 + r.h - 1)
-                              - (t->miny > r.y0 ? t->miny : r.y0) + 1;
-                        work[tile] += (double)w * h;
-                    } else if (next[tile] < cap) {
-                        out[next[tile]++] = (struct lesson_unit){ .tri = (uint32_t)i, .tile = tile };
-                    } else {
-                        next[tile]++;
-                    }
-                }
-        }
-        if (pass == 0) {
-            for (int tile = 0; tile < g.n; tile++)
-                count[tile + 1] += count[tile];     /* count[tile]: the tile's first unit */
-            total = count[g.n];
-            if (cap < total)
-                goto done;
-        }
-    }
-    /* count[tile] now points past the tile's last unit; the pool hands out
-     * the tiles with triangles in order, each to the worker free first */
-    int threads = p->threads > 0 ? p->threads : default_threads();
-    threads = threads > MAX_THREADS ? MAX_THREADS : threads;
-    double busy[MAX_THREADS] = { 0 };
-    int worker = 0;
-    for (long u = 0, first = 0; u < total; u++) {
-        int tile = out[u].tile;
-        if (u == 0 || tile != out[u - 1].tile) {
-            first = u;
-            worker = 0;
-            for (int w = 1; w < threads; w++)
-                worker = busy[w] < busy[worker] ? w : worker;
-            busy[worker] += work[tile];
-            if (unordered && !rotate_shares(out + first, count[tile] - first, n, shares(threads),
-                                            worker)) {
-                total = -1;
-                goto done;
-            }
-        }
-        out[u].bin_entry = (int32_t)(u - first);
-        out[u].bin_size = (int32_t)(count[tile] - first);
-        out[u].thread = worker;
-    }
-done:
-    free(count);
-    free(work);
-    return total;
-}
+/* trace_event.aux[] of this lesson, for a tile or block event: its size
+ * and level (0 tile, 1 block), and for the steps of a tile the bin's size,
+ * the entry's place in it and the worker drawing it. Not named for the
+ * panel: the explorer's watch (tiles_explorer.c) says where a step stands,
+ * for every event of the step. */
 
 /* --- the variants ------------------------------------------------------------- */
 
-/* Each variant twice: one triangle (`rasterize`), the whole scene (its
- * scene-level twin), both with the same options; the names written out. */
-#define VARIANT(rasterize_name, scene_name, ...)                                           \
-    static void rasterize_name(const struct tri_setup *t, const struct raster_params *p,  \
-                               struct target *fb, struct trace *tr)                       \
-    {                                                                                      \
-        rasterize_one_tri(t, p, fb, tr, (struct tiles_options){ __VA_ARGS__ });            \
-    }                                                                                      \
-    static bool scene_name(const struct scene *s, const struct raster_params *p,          \
-                           struct target *fb)                                              \
-    {                                                                                      \
-        return draw_scene(s, p, fb, (struct tiles_options){ __VA_ARGS__ }, NULL);          \
+enum { V_TILES, V_ONE_THREAD, V_IN_PLACE, V_FOUR_CORNERS, V_SSE2, V_SCALAR, V_NO_BINS,
+       V_WRONG_CORNER, V_UNORDERED, V_COUNT };
+
+static const struct tiles_options options[V_COUNT] = {
+    [V_TILES] = { .twin = TWIN_BEST, .tile_buffers = true },
+    [V_ONE_THREAD] = { .twin = TWIN_BEST, .tile_buffers = true, .threads = 1 },
+    [V_IN_PLACE] = { .twin = TWIN_BEST, .threads = 1 },
+    [V_FOUR_CORNERS] = { .twin = TWIN_BEST, .tile_buffers = true, .threads = 1,
+                         .corners = CORNERS_FOUR },
+    [V_SSE2] = { .twin = TWIN_SSE2, .tile_buffers = true, .threads = 1 },
+    [V_SCALAR] = { .twin = TWIN_C, .tile_buffers = true, .threads = 1 },
+    [V_NO_BINS] = { .twin = TWIN_BEST, .threads = 1, .no_bins = true },
+    [V_WRONG_CORNER] = { .twin = TWIN_BEST, .tile_buffers = true, .corners = CORNERS_WRONG },
+    [V_UNORDERED] = { .twin = TWIN_BEST, .tile_buffers = true, .unordered = true },
+};
+
+/* Each variant twice: one triangle (`rasterize`) and the whole scene (its
+ * scene-level twin), both through the stages with its options. */
+#define VARIANT(rasterize_name, scene_name, v)                                            \
+    static void rasterize_name(const struct tri_setup *t, const struct raster_params *p, \
+                               struct target *fb, struct trace *tr)                      \
+    {                                                                                     \
+        rasterize_one_tri(t, p, fb, tr, options[v]);                                      \
+    }                                                                                     \
+    static bool scene_name(const struct scene *s, const struct raster_params *p,         \
+                           struct target *fb)                                             \
+    {                                                                                     \
+        return draw_scene(s, p, fb, options[v], NULL);                                    \
     }
 
-VARIANT(rasterize_tiles, scene_tiles, .twin = TWIN_BEST, .tile_buffers = true)
-VARIANT(rasterize_one_thread, scene_one_thread, .twin = TWIN_BEST, .tile_buffers = true, .threads = 1)
-VARIANT(rasterize_in_place, scene_in_place, .twin = TWIN_BEST, .threads = 1)
-VARIANT(rasterize_four_corners, scene_four_corners, .twin = TWIN_BEST, .tile_buffers = true,
-        .threads = 1, .corners = CORNERS_FOUR)
-VARIANT(rasterize_sse2, scene_sse2, .twin = TWIN_SSE2, .tile_buffers = true, .threads = 1)
-VARIANT(rasterize_scalar, scene_scalar, .twin = TWIN_C, .tile_buffers = true, .threads = 1)
-VARIANT(rasterize_no_bins, scene_no_bins, .twin = TWIN_BEST, .threads = 1, .no_bins = true)
-VARIANT(rasterize_wrong_corner, scene_wrong_corner, .twin = TWIN_BEST, .tile_buffers = true,
-        .corners = CORNERS_WRONG)
-VARIANT(rasterize_unordered, scene_unordered, .twin = TWIN_BEST, .tile_buffers = true,
-        .unordered = true)
+VARIANT(rasterize_tiles, scene_tiles, V_TILES)
+VARIANT(rasterize_one_thread, scene_one_thread, V_ONE_THREAD)
+VARIANT(rasterize_in_place, scene_in_place, V_IN_PLACE)
+VARIANT(rasterize_four_corners, scene_four_corners, V_FOUR_CORNERS)
+VARIANT(rasterize_sse2, scene_sse2, V_SSE2)
+VARIANT(rasterize_scalar, scene_scalar, V_SCALAR)
+VARIANT(rasterize_no_bins, scene_no_bins, V_NO_BINS)
+VARIANT(rasterize_wrong_corner, scene_wrong_corner, V_WRONG_CORNER)
+VARIANT(rasterize_unordered, scene_unordered, V_UNORDERED)
 
-static const struct lesson_variant variants[] = {
-    { "tiles", "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 where the CPU "
-      "has it), one worker per core (or --threads N)", rasterize_tiles, false },
-    { "1-thread", "the same on one thread", rasterize_one_thread, false },
-    { "in-place", "one thread, no tile buffers: each tile drawn straight into the framebuffer",
-      rasterize_in_place, false },
-    { "four-corners", "one thread, every corner of every edge tested, as in lesson 05",
-      rasterize_four_corners, false },
-    { "sse2", "one thread, the SSE2 twin: two registers of four pixels", rasterize_sse2, false },
-    { "scalar", "one thread, the plain C twin: one pixel at a time", rasterize_scalar, false },
-    { "no-bins", "one thread, no bins: triangle after triangle through the tiles of its box",
-      rasterize_no_bins, false },
-    { "wrong-corner", "exhibit: tiles rejected with the accept corner of each edge",
-      rasterize_wrong_corner, true },
-    { "unordered", "exhibit: each worker draws its own share of a bin first, so the order "
-      "within a tile depends on which thread took it", rasterize_unordered, true },
+static const struct lesson_variant variants[V_COUNT] = {
+    [V_TILES] = { "tiles", "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 "
+                  "where the CPU has it), one worker per core (or --threads N)", rasterize_tiles,
+                  false },
+    [V_ONE_THREAD] = { "1-thread", "the same on one thread", rasterize_one_thread, false },
+    [V_IN_PLACE] = { "in-place", "one thread, no tile buffers: each tile drawn straight into "
+                     "the framebuffer", rasterize_in_place, false },
+    [V_FOUR_CORNERS] = { "four-corners", "one thread, every corner of every edge tested, as in "
+                         "lesson 05", rasterize_four_corners, false },
+    [V_SSE2] = { "sse2", "one thread, the SSE2 twin: two registers of four pixels",
+                 rasterize_sse2, false },
+    [V_SCALAR] = { "scalar", "one thread, the plain C twin: one pixel at a time",
+                   rasterize_scalar, false },
+    [V_NO_BINS] = { "no-bins", "one thread, no bins: triangle after triangle through the tiles "
+                    "of its box", rasterize_no_bins, false },
+    [V_WRONG_CORNER] = { "wrong-corner", "exhibit: tiles rejected with the accept corner of "
+                         "each edge", rasterize_wrong_corner, true },
+    [V_UNORDERED] = { "unordered", "exhibit: each worker draws its own share of a bin first, so "
+                      "the order within a tile depends on which thread took it",
+                      rasterize_unordered, true },
 };
 
-static const rasterize_scene_fn scenes[] = {
-    scene_tiles, scene_one_thread, scene_in_place, scene_four_corners, scene_sse2, scene_scalar,
-    scene_no_bins, scene_wrong_corner, scene_unordered,
+static const rasterize_scene_fn scenes[V_COUNT] = {
+    [V_TILES] = scene_tiles, [V_ONE_THREAD] = scene_one_thread, [V_IN_PLACE] = scene_in_place,
+    [V_FOUR_CORNERS] = scene_four_corners, [V_SSE2] = scene_sse2, [V_SCALAR] = scene_scalar,
+    [V_NO_BINS] = scene_no_bins, [V_WRONG_CORNER] = scene_wrong_corner,
+    [V_UNORDERED] = scene_unordered,
 };
+
+/* --- the narrated order ------------------------------------------------------ */
+
+/* The explorer steps through the scene's own run, narrated: its workers
+ * taking turns (threads.c), the steps written down as the run makes them.
+ * One step per triangle set up and binned, in scene order (tile -1, entry
+ * -1), then one per entry of a bin drawn: the tiles in the order the
+ * workers took them, each bin in the order its worker drew it, with that
+ * worker. */
+struct recorder {
+    struct lesson_unit *out;
+    long cap, n;
+    int nx;
+};
+
+static void record(void *ctx, const struct trace_event *ev)
+{
+    struct recorder *rec = ctx;
+    struct lesson_unit u;
+    if (ev->kind == TRACE_SETUP)
+        u = (struct lesson_unit){ .tri = ev->tri, .tile = -1, .bin_entry = -1 };
+    else if (ev->kind == TRACE_BLOCK && (ev->line == L_BIN_LOOP || ev->line == L_FULL_TILE))
+        u = (struct lesson_unit){ .tri = ev->tri, .tile = ev->y / TILE * rec->nx + ev->x / TILE,
+                                  .bin_size = (int32_t)ev->aux[2], .bin_entry = (int32_t)ev->aux[3],
+                                  .thread = (int32_t)ev->aux[4] };
+    else
+        return;
+    if (rec->n < rec->cap)
+        rec->out[rec->n] = u;
+    rec->n++;
+}
+
+static long narration_units(const struct scene *s, const struct lesson_variant *v,
+                            const struct raster_params *p, struct lesson_unit *out, long cap)
+{
+    if (v < variants || v >= variants + V_COUNT)
+        return -1;
+    struct target fb;
+    if (!target_init(&fb, s->w, s->h, scene_background(s)))
+        return -1;
+    struct recorder rec = { out, cap, 0, grid_of(s->w, s->h).nx };
+    struct trace tr = { .sink = record, .ctx = &rec };
+    trace_begin(&tr, 0, TRACE_UNLIMITED);
+    bool ok = draw_scene(s, p, &fb, options[v - variants], &tr);
+    target_free(&fb);
+    return ok ? rec.n : -1;
+}
 
 static const char *const compare[] = { "05-block-classification", NULL };
 
@@ -240,7 +197,6 @@ const struct lesson lesson_07 = {
     .perspective = true,
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
-    .aux_names = aux_names,
     .compare = compare,
     .rasterize_scene = scenes,
     .narration_units = narration_units,
@@ -250,8 +206,10 @@ const struct lesson lesson_07 = {
         COST_TERM(1, COLOUR_TIMES_Z_COST), { 0 } },
     /* exercise.c: one triangle through the tiles; every tile and block
      * called FULL covered in full and the other way round (the box of the
-     * small-triangle path is tested, not classified) */
+     * small-triangle path is tested, not classified; a tile is called FULL
+     * by its own step, when it is filled, not by the binning) */
     .exercise = { .write_line = L_BLOCK_PARTIAL, .full_blocks = true, .tiles = true,
-                  .class_lines = (const int[]){ L_REJECT, L_FULL_TILE, L_PARTIAL_TILE, L_BLOCK_REJECT,
-                                                L_BLOCK_ACCEPT, L_BLOCK_PARTIAL, -1 } },
+                  .class_lines = (const int[]){ L_REJECT, L_PARTIAL_TILE, L_FULL_TILE,
+                                                L_BLOCK_REJECT, L_BLOCK_ACCEPT, L_BLOCK_PARTIAL,
+                                                -1 } },
 };

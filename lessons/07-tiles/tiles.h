@@ -33,8 +33,10 @@
  * name: the fast build's ends in _fast. */
 #ifndef TRISTEP_NARRATE
 #define tri_record tri_record_fast
+#define tri_set_up tri_set_up_fast
 #define classify_rect classify_rect_fast
-#define bin_free bin_free_fast
+#define arena_alloc arena_alloc_fast
+#define arena_reset arena_reset_fast
 #define bin_triangle bin_triangle_fast
 #define tile_load tile_load_fast
 #define tile_store tile_store_fast
@@ -72,21 +74,20 @@ static inline bool frozen(const struct trace *tr)
 
 enum { ST_S, ST_T, ST_COUNT };      /* texture planes, N s / z and N t / z, apart */
 
-/* One triangle after set-up: 136 bytes, what the tiles read. The bins hold
- * copies of it, so that a worker reads its tile's triangles one after
- * another instead of all over memory. */
+/* One triangle after set-up: 136 bytes, what the tiles read, stored once;
+ * the bins hold its number. */
 struct tri {
     int64_t c[3];               /* F_k + bias_k at the centre of pixel (0, 0) */
     int32_t di[3], dj[3];       /* I_k, J_k: F_k grows by 256 I_k per pixel right, 256 J_k per row */
     int16_t minx, miny, maxx, maxy; /* pixels whose centre may be covered, on the target */
     uint8_t bias_neg;           /* bit k: bias_k = -1 (edge k neither top nor left) */
     bool textured;              /* st holds the planes of N s / z and N t / z */
-    bool full;                  /* in a bin: the tile lies wholly inside */
     float p0[QUAD_PLANES], px[QUAD_PLANES], py[QUAD_PLANES];
     float st[3 * ST_COUNT];     /* P0, Px, Py of s, then of t */
 };
 
 void tri_record(struct tri *r, const struct tri_setup *t, int checker);
+bool tri_set_up(struct tri *r, const struct tri_setup *t, int checker, struct trace *tr);
 
 /* F_k + bias_k at the centre of pixel (x, y): exact, 64 bits. */
 static inline int64_t edge_at(const struct tri *t, int k, int x, int y)
@@ -138,47 +139,63 @@ static inline struct rect tile_rect(const struct grid *g, int tile)
     return r;
 }
 
-/* A bin: copies of the records of the triangles that may touch a tile, in
- * scene order, each marked `full` when it covers the whole tile, in a chain
- * of blocks of BIN_BLOCK records (4 KB): read one after another, written
- * without ever moving. */
-#define BIN_BLOCK 30
+/* A bin: the triangles that may touch a tile, in scene order, each entry
+ * the number of the triangle's one stored record (as llvmpipe's bins point
+ * at its triangles) times two, plus one when the tile lies wholly inside
+ * it (FULL). Blocks of BIN_BLOCK entries (256 bytes) in a chain: read one
+ * after another, written without ever moving. */
+#define BIN_BLOCK 62
 #define CACHE_LINE 64
 
 struct bin_block {
     struct bin_block *next;
     uint32_t n;
-    struct tri rec[BIN_BLOCK];
+    uint32_t entry[BIN_BLOCK];
 };
 
 struct bin {
     struct bin_block *first, *last;
 };
 
-void bin_free(struct bin *bin);
-bool bin_triangle(const struct tri *t, const struct grid *g, struct bin *bins, enum corners rule);
+static inline uint32_t bin_entry_of(uint32_t index, bool full)
+{
+    return index << 1 | (full ? 1u : 0u);
+}
+
+/* One worker's memory for bins: chunks kept from run to run. */
+struct chunk;
+struct arena {
+    struct chunk *first, *last, *cur;
+};
+
+void *arena_alloc(struct arena *a, size_t n);
+void arena_reset(struct arena *a);
+bool bin_triangle(const struct tri *t, uint32_t index, const struct grid *g, struct bin *bins,
+                  struct arena *a, enum corners rule, struct trace *tr);
 
 /* --- drawing (draw.c, strips.c) ------------------------------------------- */
 
-/* Colour, depth and coverage counts of a w x h rectangle of pixels, rows
- * `stride` apart. Eight lanes may be read and written at once from column i
- * when i + 8 <= wide (the tile buffer has room past its last column; the
- * target, where another thread may own the next tile, has none). */
+/* Colour and depth of a w x h rectangle of pixels, rows `stride` apart,
+ * and the coverage counts of the same pixels (what the checks read, not
+ * the picture: always on the target, rows `count_stride` apart). Eight
+ * lanes may be read and written at once from column i when i + 8 <= wide
+ * (the tile buffer has room past its last column; the target, where
+ * another thread may own the next tile, has none). */
 struct dst {
     uint32_t *color;
     float *depth;
     uint8_t *count;             /* NULL: nobody counts coverage */
-    int stride, w, h, wide;
+    int stride, w, h, wide, count_stride;
 };
 
+/* A tile's colour and depth in the worker's cache: 32 KB. */
 struct tile_buf {
     _Alignas(32) uint32_t color[TILE * TILE + LANES];
     _Alignas(32) float depth[TILE * TILE + LANES];
-    uint8_t count[TILE * TILE + LANES];
 };
 
-struct dst tile_load(struct tile_buf *b, const struct target *fb, struct rect r);
-void tile_store(const struct tile_buf *b, struct target *fb, struct rect r);
+struct dst tile_load(struct tile_buf *b, const struct target *fb, struct rect r, struct rect part);
+void tile_store(const struct tile_buf *b, struct target *fb, struct rect r, struct rect part);
 struct dst target_dst(struct target *fb, struct rect r);
 
 /* What every pixel test and every shaded pixel of a triangle in a tile
@@ -258,8 +275,8 @@ static inline int shares(int threads)
 
 int default_threads(void);
 bool draw_scene(const struct scene *s, const struct raster_params *p, struct target *fb,
-                struct tiles_options o, uint8_t *thread_of);
-void rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
+                struct tiles_options o, struct trace *tr);
+bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
                        struct target *fb, struct trace *tr, struct tiles_options o);
 
 #endif
