@@ -15,6 +15,7 @@
  * One corner per edge per test, where lesson 05 evaluated four. */
 
 #define _POSIX_C_SOURCE 200809L     /* aligned_alloc */
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "tiles.h"
@@ -71,23 +72,24 @@ enum block_class classify_rect(const struct tri *t, struct rect r, enum corners 
 
 struct chunk {
     struct chunk *next;
-    size_t used;
+    size_t used, size;
     _Alignas(CACHE_LINE) unsigned char data[];
 };
 
 void *arena_alloc(struct arena *a, size_t n)
 {
     n = (n + CACHE_LINE - 1) & ~(size_t)(CACHE_LINE - 1);
-    while (a->cur && a->cur->used + n > CHUNK_BYTES)
+    while (a->cur && a->cur->used + n > a->cur->size)
         a->cur = a->cur->next;          /* kept from an earlier run, or NULL */
     if (!a->cur) {
-        struct chunk *c = aligned_alloc(CACHE_LINE, sizeof *c + CHUNK_BYTES);
-        if (!c || n > CHUNK_BYTES) {
-            free(c);
+        size_t size = n > CHUNK_BYTES ? n : CHUNK_BYTES;
+        struct chunk *c = size <= SIZE_MAX - sizeof *c ? aligned_alloc(CACHE_LINE, sizeof *c + size)
+                                                       : NULL;
+        if (!c)
             return NULL;
-        }
         c->next = NULL;
         c->used = 0;
+        c->size = size;
         if (a->last)
             a->last->next = c;
         else

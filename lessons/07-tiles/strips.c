@@ -17,17 +17,6 @@
 #if TILES_AVX2
 #include <immintrin.h>          /* AVX2: eight lanes a register, where the CPU has it */
 #endif
-/* Row terms P0 + Py (y - miny) of every plane, for row j of the tile. */
-void plane_rows(const struct tri_in_tile *c, int j, struct rows *rw)
-{
-    const struct tri *t = c->t;
-    float dyf = (float)(c->ty + j - t->miny);
-    for (int q = 0; q < QUAD_PLANES; q++)
-        rw->p[q] = t->p0[q] + t->py[q] * dyf;
-    if (c->st)
-        for (int q = 0; q < ST_COUNT; q++)
-            rw->st[q] = c->st[3 * q] + c->st[3 * q + 2] * dyf;
-}
 
 /* Saturating coverage counts of the lanes in `mask` (bit l = column i + l). */
 static void count_lanes(const struct dst *d, int i, int j, unsigned mask)

@@ -11,6 +11,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -19,10 +20,9 @@
 
 /* --- memory kept from one run to the next ---------------------------------
  *
- * The records of the scene's triangles, the bins, and each worker's arena
- * and tile buffer, reused by every run: fresh memory costs a page fault per
- * 4 KB. One run at a time per build (the frame lock); each worker's part on
- * lines of its own. */
+ * Each worker's arena and tile buffer, and the run's table of shares, reused
+ * by every run: fresh memory costs a page fault per 4 KB. One run at a time
+ * per build (the frame lock); each worker's part on lines of its own. */
 static pthread_mutex_t frame_lock = PTHREAD_MUTEX_INITIALIZER;
 
 struct worker_mem {
@@ -30,33 +30,39 @@ struct worker_mem {
     struct tile_buf *buf;
 };
 
+/* A share of the scene once set up and binned: its triangles' records and
+ * one bin per tile, whose entries number those records. Written by one
+ * worker, then published whole; never changed after. */
+struct share_out {
+    int lo, hi;                 /* the triangles lo .. hi - 1 of the scene */
+    struct tri *records;        /* hi - lo */
+    struct bin *bins;           /* one per tile */
+};
+
+/* A share's place in the run: its result, once some worker published it. */
+struct share {
+    _Alignas(CACHE_LINE) _Atomic(struct share_out *) out;
+};
+
 static struct {
-    struct tri *records;
-    size_t nrecords;
-    struct bin *bins;
-    size_t nbins;
+    struct share *shares;
+    int nshares;
     struct worker_mem mem[MAX_THREADS];
 } kept;
 
-/* Room for n records, nbins bins (emptied) and `workers` arenas (emptied)
+/* Room for nshares shares (none published) and `workers` arenas (emptied)
  * and tile buffers; false when out of memory. Under the frame lock. */
-static bool keep_room(size_t n, size_t nbins, int workers, bool buffers)
+static bool keep_room(int nshares, int workers, bool buffers)
 {
-    if (n > kept.nrecords) {
-        free(kept.records);
-        kept.nrecords = 0;
-        if (!(kept.records = malloc(n * sizeof *kept.records)))
+    if (nshares > kept.nshares) {
+        free(kept.shares);
+        kept.nshares = 0;
+        if (!(kept.shares = aligned_alloc(CACHE_LINE, (size_t)nshares * sizeof *kept.shares)))
             return false;
-        kept.nrecords = n;
+        kept.nshares = nshares;
     }
-    if (nbins > kept.nbins) {
-        free(kept.bins);
-        kept.nbins = 0;
-        if (!(kept.bins = malloc(nbins * sizeof *kept.bins)))
-            return false;
-        kept.nbins = nbins;
-    }
-    memset(kept.bins, 0, nbins * sizeof *kept.bins);
+    for (int c = 0; c < nshares; c++)
+        atomic_init(&kept.shares[c].out, NULL);
     for (int w = 0; w < workers; w++) {
         arena_reset(&kept.mem[w].arena);
         if (buffers && !kept.mem[w].buf
@@ -69,52 +75,74 @@ static bool keep_room(size_t n, size_t nbins, int workers, bool buffers)
 /* --- a run ----------------------------------------------------------------- */
 
 struct run {
-    const struct scene *s;      /* NULL: one triangle, records[0] */
+    const struct scene *s;      /* the scene, or one triangle: */
+    const struct tri_setup *one;
     const struct raster_params *p;
     struct target *fb;
     struct tiles_options o;
     draw_fn draw;
     struct grid g;
     int threads, nshares;
-    struct tri *records;        /* one per triangle of the scene */
-    struct bin *bins;           /* nshares x g.n, share-major */
+    struct share *shares;
     struct trace *tr;           /* narrated: the workers take turns */
     /* the narration of part of a bin (a step of the replay): its first
      * entry's place in the whole bin, and the whole bin's size; -1: all */
     int first_entry, bin_size;
     /* what the workers share, each counter on a line of its own */
     _Alignas(CACHE_LINE) atomic_int next_share;
-    _Alignas(CACHE_LINE) atomic_int shares_done;
     _Alignas(CACHE_LINE) atomic_int next_tile;
     _Alignas(CACHE_LINE) atomic_bool failed;
 };
 
-/* Set-up and binning of share c: a contiguous part of the scene, so that
- * share 0's bins then share 1's hold every tile's triangles in scene order. */
-static void bin_share(struct run *r, int c, int worker)
+/* Set-up and binning of share c, a contiguous part of the scene (so that
+ * share 0's bins then share 1's hold every tile's triangles in scene
+ * order), into the memory of worker `worker`; then published, unless
+ * another worker published it first. The share's result, or NULL when out
+ * of memory. */
+static const struct share_out *bin_share(struct run *r, int c, int worker)
 {
-    int n = r->s->ntris;
-    int lo = (int)((int64_t)n * c / r->nshares), hi = (int)((int64_t)n * (c + 1) / r->nshares);
-    struct bin *bins = r->bins + (size_t)c * (size_t)r->g.n;
-    for (int i = lo; i < hi; i++) {
-        struct tri_setup t;
-        if (NARRATING && r->tr)
-            r->tr->tri = (uint32_t)i;
-        tri_setup_bits(&t, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
-        if (!tri_set_up(&r->records[i], &t, r->p->checker, r->tr))
-            continue;
-        if (!bin_triangle(&r->records[i], (uint32_t)i, &r->g, bins, &kept.mem[worker].arena,
-                          r->o.corners, r->tr)) {
-            atomic_store(&r->failed, true);
-            return;
+    struct arena *a = &kept.mem[worker].arena;
+    int n = r->s ? r->s->ntris : 1;
+    struct share_out *out = arena_alloc(a, sizeof *out);
+    if (!out)
+        goto failed;
+    out->lo = (int)((int64_t)n * c / r->nshares), out->hi = (int)((int64_t)n * (c + 1) / r->nshares);
+    out->records = arena_alloc(a, (size_t)(out->hi - out->lo) * sizeof *out->records + 1);
+    out->bins = arena_alloc(a, (size_t)r->g.n * sizeof *out->bins);
+    if (!out->records || !out->bins)
+        goto failed;
+    memset(out->bins, 0, (size_t)r->g.n * sizeof *out->bins);
+    for (int i = out->lo; i < out->hi; i++) {
+        struct tri_setup own;
+        const struct tri_setup *t = r->one;
+        if (r->s) {
+            if (NARRATING && r->tr)
+                r->tr->tri = (uint32_t)i;
+            tri_setup_bits(&own, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
+            t = &own;
         }
+        struct tri *rec = &out->records[i - out->lo];
+        if (tri_set_up(rec, t, r->p->checker, r->tr)
+            && !bin_triangle(rec, (uint32_t)(i - out->lo), &r->g, out->bins, a, r->o.corners, r->tr))
+            goto failed;
     }
+    struct share_out *none = NULL;
+    if (atomic_compare_exchange_strong(&r->shares[c].out, &none, out))
+        return out;
+    return none;        /* someone else's, the same bins */
+failed:
+    atomic_store(&r->failed, true);
+    return NULL;
 }
 
-/* The bin of tile `tile` from share c. */
-static const struct bin *bin_of(const struct run *r, int c, int tile)
+/* Share c's result: published, or made now. A worker never waits for a
+ * share that another worker took and has not finished (it may be asleep,
+ * the system running something else): it bins the share itself, and the
+ * first to finish publishes. */
+static const struct share_out *share_of(struct run *r, int c, int worker)
 {
-    return &r->bins[(size_t)c * (size_t)r->g.n + (size_t)tile];
+    const struct share_out *out = atomic_load(&r->shares[c].out);
+    return out ? out : bin_share(r, c, worker);
 }
 
 /* The shares in the order a tile's worker draws them: scene order, except
@@ -128,16 +156,21 @@ static int share_at(const struct run *r, int k, int worker)
  * order, store it once. */
 static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
 {
+    const struct share_out *outs[MAX_THREADS * SHARES_PER_THREAD];
     struct rect rc = tile_rect(&r->g, tile);
     int x0 = rc.x0 + rc.w, y0 = rc.y0 + rc.h, x1 = rc.x0 - 1, y1 = rc.y0 - 1, size = 0;
-    for (int c = 0; c < r->nshares; c++)
-        for (const struct bin_block *b = bin_of(r, c, tile)->first; b; b = b->next)
+    for (int k = 0; k < r->nshares; k++) {
+        int c = share_at(r, k, worker);
+        if (!(outs[c] = share_of(r, c, worker)))
+            return;
+        for (const struct bin_block *b = outs[c]->bins[tile].first; b; b = b->next)
             for (uint32_t e = 0; e < b->n; e++) {
-                const struct tri *t = &r->records[b->entry[e] >> 1];
+                const struct tri *t = &outs[c]->records[b->entry[e] >> 1];
                 x0 = t->minx < x0 ? t->minx : x0, y0 = t->miny < y0 ? t->miny : y0;
                 x1 = t->maxx > x1 ? t->maxx : x1, y1 = t->maxy > y1 ? t->maxy : y1;
                 size++;
             }
+    }
     if (!size)
         return;
     x0 = x0 < rc.x0 ? rc.x0 : x0, y0 = y0 < rc.y0 ? rc.y0 : y0;
@@ -153,19 +186,21 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 .aux = { TILE, 0, (float)whole, 0, (float)worker });
     struct dst d = r->o.tile_buffers ? tile_load(buf, r->fb, rc, part) : target_dst(r->fb, rc);
     int entry = first;
-    for (int k = 0; k < r->nshares && !frozen(tr); k++)
-        for (const struct bin_block *b = bin_of(r, share_at(r, k, worker), tile)->first; b; b = b->next)
+    for (int k = 0; k < r->nshares && !frozen(tr); k++) {
+        const struct share_out *out = outs[share_at(r, k, worker)];
+        for (const struct bin_block *b = out->bins[tile].first; b; b = b->next)
             for (uint32_t e = 0; e < b->n && !frozen(tr); e++, entry++) {
-                uint32_t index = b->entry[e] >> 1;
+                const struct tri *t = &out->records[b->entry[e] >> 1];
                 bool full = b->entry[e] & 1;
                 if (NARRATING && tr && r->s)
-                    tr->tri = index;
+                    tr->tri = (uint32_t)out->lo + (b->entry[e] >> 1);
                 NARRATE(tr, .kind = TRACE_BLOCK, .line = full ? L_FULL_TILE : L_BIN_LOOP,
                         .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
                         .klass = full ? BLOCK_FULL : BLOCK_CLASS_COUNT,
                         .aux = { TILE, 0, (float)whole, (float)entry, (float)worker });
-                r->draw(&r->records[index], rc, full, &d, tr, r->o.corners == CORNERS_FOUR);
+                r->draw(t, rc, full, &d, tr, r->o.corners == CORNERS_FOUR);
             }
+    }
     if (entry == whole)
         NARRATE(tr, .kind = TRACE_BLOCK, .line = L_STORE, .x = part.x0, .y = part.y0,
                 .x1 = part.x0 + part.w - 1, .y1 = part.y0 + part.h - 1, .klass = BLOCK_CLASS_COUNT,
@@ -176,23 +211,19 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
         tile_store(buf, r->fb, rc, part);
 }
 
-/* One turn of worker `id`: a share to bin, or, once every share is binned,
- * a tile to draw. False when nothing is left. */
+/* One turn of worker `id`: a share to bin while some are left, then a tile
+ * to draw. False when nothing is left. */
 static bool work_step(struct run *r, int id)
 {
-    if (atomic_load(&r->next_share) < r->nshares) {
+    if (atomic_load(&r->failed))
+        return false;
+    if (atomic_load_explicit(&r->next_share, memory_order_relaxed) < r->nshares) {
         int c = atomic_fetch_add(&r->next_share, 1);
         if (c < r->nshares) {
             bin_share(r, c, id);
-            atomic_fetch_add(&r->shares_done, 1);
             return true;
         }
     }
-    /* no tile before every share is binned: its bins are not complete */
-    while (atomic_load(&r->shares_done) < r->nshares)
-        sched_yield();
-    if (atomic_load(&r->failed))
-        return false;
     int tile = atomic_fetch_add(&r->next_tile, 1);
     if (tile >= r->g.n)
         return false;
@@ -200,20 +231,47 @@ static bool work_step(struct run *r, int id)
     return true;
 }
 
-struct worker {
-    struct run *r;
-    int id;
-};
+/* --- the workers: started once, woken for every run ------------------------
+ *
+ * Threads started for every picture cost their creation and, on a busy
+ * machine, a wait until the system first runs them. Here they are started
+ * once and sleep between runs. A run wakes them and the caller works too;
+ * a worker that wakes late finds the run over and sleeps again, and the
+ * caller waits only for workers inside the run (each holding at most one
+ * tile: a share it holds, the others bin themselves). */
+static struct {
+    pthread_mutex_t lock;
+    pthread_cond_t wake;
+    unsigned long generation;   /* runs begun */
+    struct run *job;            /* the run under way, or NULL */
+    int started;                /* workers 1 .. started */
+    _Alignas(CACHE_LINE) atomic_int inside;     /* workers inside the job */
+} pool = { PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER, 0, NULL, 0, 0 };
 
-static void *work(void *arg)
+static void *worker_main(void *arg)
 {
-    struct worker *w = arg;
-    while (work_step(w->r, w->id))
-        ;
+    int id = (int)(intptr_t)arg;
+    unsigned long seen = 0;
+    pthread_mutex_lock(&pool.lock);
+    for (;;) {
+        while (pool.generation == seen)
+            pthread_cond_wait(&pool.wake, &pool.lock);
+        seen = pool.generation;
+        struct run *r = pool.job;
+        if (!r || id >= r->threads)
+            continue;
+        atomic_fetch_add(&pool.inside, 1);
+        pthread_mutex_unlock(&pool.lock);
+        while (work_step(r, id))
+            ;
+        atomic_fetch_sub(&pool.inside, 1);
+        pthread_mutex_lock(&pool.lock);
+    }
     return NULL;
 }
 
-/* The workers, the caller among them; narrated, one turn at a time. */
+/* The workers, the caller among them (worker 0); narrated, one turn at a
+ * time in a fixed order. */
 static void run_workers(struct run *r)
 {
     if (NARRATING && r->tr) {
@@ -224,19 +282,28 @@ static void run_workers(struct run *r)
         }
         return;
     }
-    pthread_t tid[MAX_THREADS];
-    struct worker w[MAX_THREADS];
-    int started = 1;
-    for (int i = 0; i < r->threads; i++)
-        w[i] = (struct worker){ r, i };
+    pthread_mutex_lock(&pool.lock);
     /* a worker that cannot be started is no harm: the others take its
      * shares and tiles */
-    for (; started < r->threads; started++)
-        if (pthread_create(&tid[started], NULL, work, &w[started]) != 0)
+    for (pthread_t tid; pool.started < r->threads - 1; pool.started++)
+        if (pthread_create(&tid, NULL, worker_main, (void *)(intptr_t)(pool.started + 1)) != 0
+            || pthread_detach(tid) != 0)
             break;
-    work(&w[0]);
-    for (int i = 1; i < started; i++)
-        pthread_join(tid[i], NULL);
+    if (r->threads > 1) {
+        pool.job = r;
+        pool.generation++;
+        pthread_cond_broadcast(&pool.wake);
+    }
+    pthread_mutex_unlock(&pool.lock);
+    while (work_step(r, 0))
+        ;
+    if (r->threads > 1) {
+        pthread_mutex_lock(&pool.lock);
+        pool.job = NULL;        /* no worker joins from here on */
+        pthread_mutex_unlock(&pool.lock);
+        while (atomic_load(&pool.inside) > 0)
+            sched_yield();
+    }
 }
 
 int default_threads(void)
@@ -250,10 +317,8 @@ static void run_init(struct run *r, const struct raster_params *p, struct target
 {
     *r = (struct run){ .p = p, .fb = fb, .o = *o, .draw = pick_twin(o->twin),
                        .g = grid_of(fb->w, fb->h), .threads = threads, .nshares = shares(threads),
-                       .records = kept.records, .bins = kept.bins, .tr = tr,
-                       .first_entry = -1, .bin_size = -1 };
+                       .shares = kept.shares, .tr = tr, .first_entry = -1, .bin_size = -1 };
     atomic_init(&r->next_share, 0);
-    atomic_init(&r->shares_done, 0);
     atomic_init(&r->next_tile, 0);
     atomic_init(&r->failed, false);
 }
@@ -276,10 +341,8 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
     }
     int threads = o.threads > 0 ? o.threads : p->threads > 0 ? p->threads : default_threads();
     threads = threads > MAX_THREADS ? MAX_THREADS : threads;
-    struct grid g = grid_of(fb->w, fb->h);
     pthread_mutex_lock(&frame_lock);
-    bool ok = keep_room(s->ntris > 0 ? (size_t)s->ntris : 1,
-                        (size_t)shares(threads) * (size_t)g.n, threads, o.tile_buffers);
+    bool ok = keep_room(shares(threads), threads, o.tile_buffers);
     if (ok) {
         struct run r;
         run_init(&r, p, fb, &o, threads, tr);
@@ -302,14 +365,13 @@ bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p
                        struct target *fb, struct trace *tr, struct tiles_options o)
 {
     bool bin_step = p->tile == 0 && p->bin_entry < 0, tile_step = p->tile > 0;
-    struct grid g = grid_of(fb->w, fb->h);
     pthread_mutex_lock(&frame_lock);
-    bool ok = keep_room(1, (size_t)g.n, 1, o.tile_buffers);
+    bool ok = keep_room(1, 1, o.tile_buffers);
     struct run r;
     run_init(&r, p, fb, &o, 1, tile_step ? NULL : tr);
-    struct tri *t = &r.records[0];
-    if (ok && tri_set_up(t, ts, p->checker, r.tr))
-        ok = bin_triangle(t, 0, &g, r.bins, &kept.mem[0].arena, o.corners, r.tr);
+    r.one = ts;
+    const struct share_out *out = ok ? bin_share(&r, 0, 0) : NULL;
+    ok = ok && out;
     if (ok && !ts->empty && !bin_step) {
         int worker = 0;
         if (tile_step) {
@@ -317,11 +379,11 @@ bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p
             r.first_entry = p->bin_entry, r.bin_size = p->bin_size;
             worker = p->thread;
         }
-        struct tile_buf *buf = kept.mem[0].buf;
+        const struct tri *t = &out->records[0];
         for (int ty = t->miny / TILE; ty <= t->maxy / TILE; ty++)
             for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++)
-                if (!tile_step || ty * g.nx + tx == p->tile - 1)
-                    draw_tile(&r, ty * g.nx + tx, worker, buf);
+                if (!tile_step || ty * r.g.nx + tx == p->tile - 1)
+                    draw_tile(&r, ty * r.g.nx + tx, worker, kept.mem[0].buf);
     }
     pthread_mutex_unlock(&frame_lock);
     return ok;

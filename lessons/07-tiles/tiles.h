@@ -42,7 +42,6 @@
 #define tile_store tile_store_fast
 #define target_dst target_dst_fast
 #define tri_in_tile_make tri_in_tile_make_fast
-#define plane_rows plane_rows_fast
 #define shade1_c shade1_c_fast
 #define strip_c strip_c_fast
 #define strip_sse2 strip_sse2_fast
@@ -215,7 +214,17 @@ struct rows {
     float p[QUAD_PLANES], st[ST_COUNT];
 };
 
-void plane_rows(const struct tri_in_tile *c, int j, struct rows *rw);
+/* Row terms P0 + Py (y - miny) of every plane, for row j of the tile
+ * (inline: the twins call it once a row). */
+static inline void plane_rows(const struct tri_in_tile *c, int j, struct rows *rw)
+{
+    const struct tri *t = c->t;
+    float dyf = (float)(c->ty + j - t->miny);
+    for (int q = 0; q < QUAD_PLANES; q++)
+        rw->p[q] = t->p0[q] + t->py[q] * dyf;
+    for (int q = 0; q < ST_COUNT; q++)
+        rw->st[q] = c->st ? c->st[3 * q] + c->st[3 * q + 2] * dyf : 0.0f;
+}
 bool shade1_c(const struct tri_in_tile *c, const struct dst *d, const struct rows *rw, int i,
               int j, float *z_out, uint32_t *rgba_out);
 
