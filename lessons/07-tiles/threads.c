@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "tiles.h"
@@ -39,10 +40,16 @@ struct share_out {
     struct bin *bins;           /* one per tile */
 };
 
-/* A share's place in the run: its result, once some worker published it. */
+/* A share's place in the run: its result, once some worker published it,
+ * and how far the worker binning it has come (every SHARE_PROGRESS
+ * triangles). */
 struct share {
     _Alignas(CACHE_LINE) _Atomic(struct share_out *) out;
+    atomic_int progress;
 };
+
+#define SHARE_PROGRESS 64
+#define STALL_NS 50000      /* no progress for 50 us: its worker is not running */
 
 static struct {
     struct share *shares;
@@ -61,8 +68,10 @@ static bool keep_room(int nshares, int workers, bool buffers)
             return false;
         kept.nshares = nshares;
     }
-    for (int c = 0; c < nshares; c++)
+    for (int c = 0; c < nshares; c++) {
         atomic_init(&kept.shares[c].out, NULL);
+        atomic_init(&kept.shares[c].progress, 0);
+    }
     for (int w = 0; w < workers; w++) {
         arena_reset(&kept.mem[w].arena);
         if (buffers && !kept.mem[w].buf
@@ -121,6 +130,8 @@ static const struct share_out *bin_share(struct run *r, int c, int worker)
             tri_setup_bits(&own, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
             t = &own;
         }
+        if ((i - out->lo) % SHARE_PROGRESS == SHARE_PROGRESS - 1)
+            atomic_fetch_add_explicit(&r->shares[c].progress, 1, memory_order_relaxed);
         struct tri *rec = &out->records[i - out->lo];
         if (tri_set_up(rec, t, r->p->checker, r->tr)
             && !bin_triangle(rec, (uint32_t)(i - out->lo), &r->g, out->bins, a, r->o.corners, r->tr))
@@ -135,14 +146,30 @@ failed:
     return NULL;
 }
 
-/* Share c's result: published, or made now. A worker never waits for a
- * share that another worker took and has not finished (it may be asleep,
- * the system running something else): it bins the share itself, and the
- * first to finish publishes. */
+static long long nanoseconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (long long)t.tv_sec * 1000000000 + t.tv_nsec;
+}
+
+/* Share c's result: published, or made now. A worker waits for a share
+ * that another worker is binning only while that one makes progress: when
+ * it stops (the system has put it aside to run something else), the
+ * worker bins the share itself, and the first to finish publishes. */
 static const struct share_out *share_of(struct run *r, int c, int worker)
 {
-    const struct share_out *out = atomic_load(&r->shares[c].out);
-    return out ? out : bin_share(r, c, worker);
+    const struct share_out *out;
+    int seen = -1;
+    long long since = 0;
+    while (!(out = atomic_load(&r->shares[c].out)) && !atomic_load(&r->failed)) {
+        int now = atomic_load_explicit(&r->shares[c].progress, memory_order_relaxed);
+        if (now != seen)
+            seen = now, since = nanoseconds();
+        else if (nanoseconds() - since > STALL_NS)
+            return bin_share(r, c, worker);
+    }
+    return out;
 }
 
 /* The shares in the order a tile's worker draws them: scene order, except
@@ -152,30 +179,32 @@ static int share_at(const struct run *r, int k, int worker)
     return r->o.unordered ? (k + worker * SHARES_PER_THREAD) % r->nshares : k;
 }
 
-/* Draw one tile: load the part its bins may touch, every share's bin in
+/* Draw one tile: load it into the tile buffer, every share's bin in
  * order, store it once. */
 static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
 {
     const struct share_out *outs[MAX_THREADS * SHARES_PER_THREAD];
     struct rect rc = tile_rect(&r->g, tile);
-    int x0 = rc.x0 + rc.w, y0 = rc.y0 + rc.h, x1 = rc.x0 - 1, y1 = rc.y0 - 1, size = 0;
+    int size = 0;
     for (int k = 0; k < r->nshares; k++) {
         int c = share_at(r, k, worker);
         if (!(outs[c] = share_of(r, c, worker)))
             return;
         for (const struct bin_block *b = outs[c]->bins[tile].first; b; b = b->next)
-            for (uint32_t e = 0; e < b->n; e++) {
-                const struct tri *t = &outs[c]->records[b->entry[e] >> 1];
-                x0 = t->minx < x0 ? t->minx : x0, y0 = t->miny < y0 ? t->miny : y0;
-                x1 = t->maxx > x1 ? t->maxx : x1, y1 = t->maxy > y1 ? t->maxy : y1;
-                size++;
-            }
+            size += (int)b->n;
     }
     if (!size)
         return;
-    x0 = x0 < rc.x0 ? rc.x0 : x0, y0 = y0 < rc.y0 ? rc.y0 : y0;
-    x1 = x1 > rc.x0 + rc.w - 1 ? rc.x0 + rc.w - 1 : x1, y1 = y1 > rc.y0 + rc.h - 1 ? rc.y0 + rc.h - 1 : y1;
-    struct rect part = { x0, y0, x1 - x0 + 1, y1 - y0 + 1 };
+    /* the part of the tile loaded and stored: all of it, or for one
+     * triangle (a step of the replay) its box in the tile */
+    struct rect part = rc;
+    if (!r->s) {
+        const struct tri *t = &outs[0]->records[0];
+        int x0 = t->minx > rc.x0 ? t->minx : rc.x0, y0 = t->miny > rc.y0 ? t->miny : rc.y0;
+        int x1 = t->maxx < rc.x0 + rc.w - 1 ? t->maxx : rc.x0 + rc.w - 1;
+        int y1 = t->maxy < rc.y0 + rc.h - 1 ? t->maxy : rc.y0 + rc.h - 1;
+        part = (struct rect){ x0, y0, x1 - x0 + 1, y1 - y0 + 1 };
+    }
     int first = r->first_entry >= 0 ? r->first_entry : 0;
     int whole = r->bin_size >= 0 ? r->bin_size : size;
     struct trace *tr = r->tr;
@@ -191,6 +220,12 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
         for (const struct bin_block *b = out->bins[tile].first; b; b = b->next)
             for (uint32_t e = 0; e < b->n && !frozen(tr); e++, entry++) {
                 const struct tri *t = &out->records[b->entry[e] >> 1];
+                if (e + 4 < b->n) {     /* a record read a few triangles ahead */
+                    const char *ahead = (const char *)&out->records[b->entry[e + 4] >> 1];
+                    __builtin_prefetch(ahead);
+                    __builtin_prefetch(ahead + CACHE_LINE);
+                    __builtin_prefetch(ahead + sizeof *t - 1);
+                }
                 bool full = b->entry[e] & 1;
                 if (NARRATING && tr && r->s)
                     tr->tri = (uint32_t)out->lo + (b->entry[e] >> 1);
