@@ -407,6 +407,17 @@ Test(lesson07, threaded_path_is_clean_under_threadsanitizer)
               "%s/tsan-tiles failed (status 0x%x)", test_build_dir(), status);
 }
 
+/* Unit i of the n units u, as replay_params hands it to `rasterize`. */
+static struct raster_params unit_params(const struct raster_params *p, const struct lesson_unit *u,
+                                        long i, long n)
+{
+    struct raster_params up = *p;
+    up.tile = u[i].tile + 1;
+    up.bin_size = u[i].bin_size, up.bin_entry = u[i].bin_entry, up.thread = u[i].thread;
+    up.units = u, up.nunits = (int)n;
+    return up;
+}
+
 /* The narrated run of variant `name` on `threads` workers: its units, one
  * after another, as the explorer replays them (the oracle is the lesson's
  * own list of units and its per-triangle rasterize). */
@@ -424,8 +435,7 @@ static void draw_units(const char *name, const struct scene *s, int threads, str
     for (long i = 0; i < n; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[u[i].tri].v, s->w, s->h);
-        struct raster_params up = p;
-        up.tile = u[i].tile + 1;
+        struct raster_params up = unit_params(&p, u, i, n);
         v->rasterize(&t, &up, fb, NULL);
     }
     free(u);
@@ -580,4 +590,142 @@ Test(lesson07, program_covers_3d_scenes_as_lesson_05_does, .timeout = 60)
     }
     rmdir(dir);
     cr_assert_geq(scenes, 4, "only %d built-in 3-D scenes", scenes);
+}
+
+/* --- the explorer steps through the timed run ---------------------------------------- */
+
+/* What a narrated step wrote, seen from its events: every PIXEL_WRITE inside
+ * the step's tile (its whole picture for a set-up and binning step: none). */
+struct writes {
+    int x0, y0, x1, y1;         /* the tile; x1 < x0: no write allowed */
+    int outside, writes;
+    bool lit[32];               /* pseudo-code lines lit */
+};
+
+static void on_write(void *ctx, const struct trace_event *ev)
+{
+    struct writes *w = ctx;
+    if (ev->line < 32)
+        w->lit[ev->line] = true;
+    if (ev->kind != TRACE_PIXEL_WRITE)
+        return;
+    w->writes++;
+    w->outside += ev->x < w->x0 || ev->x > w->x1 || ev->y < w->y0 || ev->y > w->y1;
+}
+
+/* The explorer's steps of the scene run, as replay_params hands them to
+ * `rasterize`, narrated and fast side by side: after every step both
+ * pictures are the same bytes, the narrated step writes only inside its
+ * tile, each tile's bin is drawn in scene order with its entries numbered
+ * 0, 1, ... by one worker of the run, and the last picture is the fast
+ * build's timed scene run. So the narrated build writes the pixels of the
+ * fast build, in the same order per tile. */
+Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
+{
+    struct rng rng = rng_for(0x07e7);
+    for (int rep = 0; rep < 4; rep++) {
+        struct scene s;
+        random_scene(&s, &rng, 200 + 31 * rep, 150 - 17 * rep, 150, true, rep == 3 ? 5 : 0);
+        struct raster_params p = default_params();
+        p.checker = s.checker;
+        p.threads = 1 + rep % 3;
+        const struct lesson_variant *vn = variant(&lesson_07, "tiles");
+        const struct lesson_variant *vf = variant(&lesson_07_fast, "tiles");
+        long n = lesson_07.narration_units(&s, vn, &p, NULL, 0);
+        cr_assert_gt(n, s.ntris);
+        struct lesson_unit *u = malloc((size_t)n * sizeof *u);
+        cr_assert_not_null(u);
+        cr_assert_eq(lesson_07.narration_units(&s, vn, &p, u, n), n);
+        struct target a, b, whole;
+        cr_assert(target_init(&a, s.w, s.h, scene_background(&s)));
+        cr_assert(target_init(&b, s.w, s.h, scene_background(&s)));
+        int nx = (s.w + 63) / 64, tiles = nx * ((s.h + 63) / 64);
+        int *next_entry = calloc((size_t)tiles, sizeof *next_entry);
+        int *worker = malloc((size_t)tiles * sizeof *worker);
+        uint32_t *last_tri = calloc((size_t)tiles, sizeof *last_tri);
+        cr_assert(next_entry && worker && last_tri);
+        int writes = 0;
+        for (long i = 0; i < n; i++) {
+            struct raster_params up = unit_params(&p, u, i, n);
+            struct writes w = { 0, 0, -1, -1, 0, 0, { false } };
+            int tile = u[i].tile;
+            if (tile >= 0) {
+                w.x0 = tile % nx * 64, w.y0 = tile / nx * 64, w.x1 = w.x0 + 63, w.y1 = w.y0 + 63;
+                cr_assert_eq(u[i].bin_entry, next_entry[tile], "step %ld: tile %d's entries "
+                             "out of order", i, tile);
+                if (u[i].bin_entry == 0)
+                    worker[tile] = u[i].thread;
+                cr_assert_eq(u[i].thread, worker[tile], "tile %d: two workers", tile);
+                cr_assert(u[i].thread >= 0 && u[i].thread < p.threads);
+                cr_assert(u[i].bin_entry == 0 || u[i].tri > last_tri[tile],
+                          "tile %d: its bin is not drawn in scene order", tile);
+                next_entry[tile]++;
+                last_tri[tile] = u[i].tri;
+            }
+            struct tri_setup t;
+            tri_setup(&t, s.tris[u[i].tri].v, s.w, s.h);
+            struct trace tr = { .sink = on_write, .ctx = &w };
+            trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+            vn->rasterize(&t, &up, &a, &tr);
+            vf->rasterize(&t, &up, &b, NULL);
+            cr_assert_eq(w.outside, 0, "step %ld wrote outside its tile", i);
+            writes += w.writes;
+            cr_assert(same_bytes(&a, &b), "scene %d, step %ld: the narrated and the fast build "
+                      "differ", rep, i);
+        }
+        for (int tile = 0; tile < tiles; tile++)    /* every bin drawn to its end */
+            for (long i = 0; i < n; i++)
+                if (u[i].tile == tile)
+                    cr_assert_eq(next_entry[tile], u[i].bin_size, "tile %d: bin not finished", tile);
+        cr_assert_gt(writes, 0);
+        draw_whole(&lesson_07_fast, "tiles", &s, &p, &whole);
+        cr_assert(same_bytes(&a, &whole), "scene %d: the narrated steps differ from the timed run", rep);
+        free(next_entry);
+        free(worker);
+        free(last_tri);
+        free(u);
+        target_free(&a);
+        target_free(&b);
+        target_free(&whole);
+        scene_free(&s);
+    }
+}
+
+/* Every line of the pseudo-code is lit by some event of the explorer's
+ * steps, on the lesson's built-in scenes and its variants. */
+Test(lesson07, every_pseudocode_line_is_lit)
+{
+    struct writes w = { 0, 0, INT32_MAX, INT32_MAX, 0, 0, { false } };
+    const char *scenes[] = { lesson_07.builtin_scene, lesson_07.exhibit_scene };
+    for (int k = 0; k < 2; k++) {
+        struct scene s;
+        char err[256];
+        cr_assert(scene_builtin(&s, scenes[k], err, sizeof err), "%s", err);
+        for (int vi = 0; vi < lesson_07.nvariants; vi++) {
+            const struct lesson_variant *v = &lesson_07.variants[vi];
+            struct raster_params p = default_params();
+            p.checker = s.checker;
+            long n = lesson_07.narration_units(&s, v, &p, NULL, 0);
+            cr_assert_geq(n, 0);
+            struct lesson_unit *u = malloc((size_t)(n ? n : 1) * sizeof *u);
+            cr_assert_not_null(u);
+            cr_assert_eq(lesson_07.narration_units(&s, v, &p, u, n), n);
+            struct target fb;
+            cr_assert(target_init(&fb, s.w, s.h, scene_background(&s)));
+            for (long i = 0; i < n; i++) {
+                struct raster_params up = unit_params(&p, u, i, n);
+                struct tri_setup t;
+                tri_setup(&t, s.tris[u[i].tri].v, s.w, s.h);
+                struct trace tr = { .sink = on_write, .ctx = &w };
+                trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+                v->rasterize(&t, &up, &fb, &tr);
+            }
+            target_free(&fb);
+            free(u);
+        }
+        scene_free(&s);
+    }
+    for (int line = 0; lesson_07.pseudocode[line]; line++)
+        cr_expect(w.lit[line], "pseudo-code line %d (\"%s\") is lit by no event", line,
+                  lesson_07.pseudocode[line]);
 }

@@ -1,7 +1,7 @@
 /* Exercise 07: write lesson 07's trivial-reject and trivial-accept corners,
  * and the class of a tile or block they give.
  *
- * One triangle goes through the tiles as tiles.c's rasterize_one_tri takes
+ * One triangle goes through the tiles as threads.c's rasterize_one_tri takes
  * it, and all of that is here: every 64 x 64 tile of the box classified
  * (the screen's right and bottom edges cut the last ones), a FULL tile
  * shaded without a single test, a PARTIAL one cut into 8 x 8 blocks, each
@@ -148,7 +148,7 @@ static void pixels(const struct tri_setup *t, const struct raster_params *p, con
         }
 }
 
-/* One triangle through the tiles, as tiles.c's rasterize_one_tri takes it:
+/* One triangle through the tiles, as threads.c's rasterize_one_tri takes it:
  * every 64 x 64 tile of the box (cut by the screen's edges) classified; a
  * FULL tile shaded without a test; a PARTIAL one cut into the 8 x 8 blocks
  * of the tile's grid, each cut to the box (a small triangle's box is then

@@ -3,8 +3,8 @@
  *
  * The tiles view: the 64 x 64 tile grid over the picture, each tile tinted by
  * how many triangles its bin holds and labelled with its bin size and the
- * worker thread that drew it in the real run; the current tile outlined, its
- * bin listed with the current triangle in brackets.
+ * worker that drew it in the run the explorer steps through; the current
+ * tile outlined, its bin listed with the current triangle in brackets.
  *
  * In the tiles, blocks and coverage views, for the tile or 8 x 8 block just
  * classified, each edge's two corners (Greene's test): a ring in the edge's
@@ -19,7 +19,7 @@
 
 extern const struct lesson lesson_07;
 
-#define TILE 64     /* as tiles.c */
+#include "tiles.h"     /* TILE */
 
 static const enum ink edge_ink[3] = { INK_EDGE_AB, INK_EDGE_BC, INK_EDGE_CA };
 
@@ -30,7 +30,7 @@ static void rect(const struct lesson_canvas *c, double x0, double y0, double x1,
 }
 
 /* The reject and accept corners of each edge on the rectangle of pixel
- * centres x0..x1, y0..y1: picked by the signs of I and J, as tiles.c picks them. */
+ * centres x0..x1, y0..y1: picked by the signs of I and J, as bins.c picks them. */
 static void corners(const struct lesson_canvas *c, const struct tri_setup *t, int x0, int y0,
                     int x1, int y1)
 {
@@ -47,20 +47,21 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     const struct raster_params *p, const struct trace_event *last)
 {
     bool tiles = strcmp(c->view, "tiles") == 0;
-    if (last && last->kind == TRACE_BLOCK && t->area2 > 0
+    if (last && last->kind == TRACE_BLOCK && last->klass < BLOCK_CLASS_COUNT && t->area2 > 0
         && (tiles || !strcmp(c->view, "blocks") || !strcmp(c->view, "coverage")))
         corners(c, t, last->x, last->y, last->x1, last->y1);
     if (!tiles || !p->units || t->target_w <= 0)
         return;
 
-    /* bin sizes and threads per tile, from the narrated order */
+    /* bin sizes and workers per tile, from the run's steps: each tile's
+     * first entry drawn says both */
     int nx = (t->target_w + TILE - 1) / TILE, ny = (t->target_h + TILE - 1) / TILE;
     int most = 1;
     for (int u = 0; u < p->nunits; u++)
         most = p->units[u].bin_size > most ? p->units[u].bin_size : most;
     for (int u = 0; u < p->nunits; u++) {
         const struct lesson_unit *un = &p->units[u];
-        if (un->bin_entry != 0)
+        if (un->tile < 0 || un->bin_entry != 0)
             continue;
         double x0 = (un->tile % nx) * TILE, y0 = (double)(un->tile / nx) * TILE;
         double x1 = x0 + TILE < t->target_w ? x0 + TILE : t->target_w;
@@ -68,7 +69,7 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
         rect(c, x0, y0, x1, y1, (struct pen){ .fill = INK_BRIGHTER,
                                               .alpha = 0.06 + 0.3 * un->bin_size / most });
         char text[64];
-        snprintf(text, sizeof text, "bin %d, thread %d", un->bin_size, un->thread);
+        snprintf(text, sizeof text, "bin %d, worker %d", un->bin_size, un->thread);
         c->label(c, x0 + 1, y0 + 1, text, 11, INK_TEXT);
     }
     for (int i = 1; i < nx; i++)
@@ -76,7 +77,8 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     for (int j = 1; j < ny; j++)
         c->line(c, 0, j * TILE, t->target_w, j * TILE, (struct pen){ .stroke = INK_MARK, .alpha = 0.6 });
 
-    /* the current tile and its bin */
+    /* the current tile and its bin, triangles numbered as the scene
+     * numbers them from 1 */
     if (p->tile <= 0)
         return;
     int tile = p->tile - 1;
@@ -85,11 +87,12 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     double y1 = y0 + TILE < t->target_h ? y0 + TILE : t->target_h;
     rect(c, x0, y0, x1, y1, (struct pen){ .stroke = INK_MARK, .width = 2.5, .dashed = true });
     char list[256];
-    int at = snprintf(list, sizeof list, "tile %d's bin:", tile);
+    int at = snprintf(list, sizeof list, "tile %d's bin, triangles:", tile);
     for (int u = 0; u < p->nunits && at < (int)sizeof list - 16; u++)
         if (p->units[u].tile == tile)
             at += snprintf(list + at, sizeof list - (size_t)at,
-                           p->units[u].bin_entry == p->bin_entry ? " [%u]" : " %u", p->units[u].tri);
+                           p->units[u].bin_entry == p->bin_entry ? " [%u]" : " %u",
+                           p->units[u].tri + 1);
     c->label(c, x0 + 1, y1 - 14 * c->unit * 1.4, list, 12, INK_TEXT);
 }
 
@@ -108,20 +111,24 @@ static bool tiles_cell(const struct tri_setup *t, const struct trace_event *test
 }
 
 static const struct lesson_view views[] = {
-    { "tiles", "64 x 64 tiles tinted by bin size; bin and worker thread per tile; the current "
+    { "tiles", "64 x 64 tiles tinted by bin size; bin and worker per tile; the current "
       "tile dashed, its bin listed; rings: reject corners, discs: accept corners", tiles_cell },
 };
 
-/* The watch panel: where the unit stands. */
+/* The watch panel: where the step stands in the run. */
 static void watch(const struct tri_setup *t, const struct raster_params *p,
                   const struct trace_event *ev, char *buf, size_t n)
 {
     (void)t, (void)ev;
-    if (p->tile <= 0) {
+    if (!p->units) {
         buf[0] = '\0';
         return;
     }
-    snprintf(buf, n, "tile = %d\nbin entry = %d of %d\ndrawn by thread %d", p->tile - 1,
+    if (p->tile <= 0) {
+        snprintf(buf, n, "set-up and binning");
+        return;
+    }
+    snprintf(buf, n, "tile = %d\nbin entry = %d of %d\ndrawn by worker %d", p->tile - 1,
              p->bin_entry + 1, p->bin_size, p->thread);
 }
 

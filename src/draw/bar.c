@@ -46,9 +46,19 @@ void paint_bar(struct painter *p)
     if (!replay_counted(&ex->replay))   /* a large scene: its steps are counted a part at a time */
         snprintf(counting, sizeof counting, " so far (counting: %.0f%%)",
                  100.0 * ex->replay.counted / n);
-    snprintf(buf, sizeof buf, "%s  step %llu / %llu%s   triangle %d / %d   event %llu / %llu   %s%.4g/s",
+    /* a lesson that runs in parts of its own (lesson 07: set-up and
+     * binning, then tile by tile): the part, and the scene's triangle in it */
+    char unit[64];
+    if (ex->replay.units && ex->cur >= 0)
+        snprintf(unit, sizeof unit, "part %d / %d, triangle %d / %d", ex->cur + 1, n,
+                 replay_unit_tri(&ex->replay, ex->cur) + 1, ex->scene.ntris);
+    else if (ex->replay.units)
+        snprintf(unit, sizeof unit, "part 0 / %d", n);
+    else
+        snprintf(unit, sizeof unit, "triangle %d / %d", ex->cur + 1, n);
+    snprintf(buf, sizeof buf, "%s  step %llu / %llu%s   %s   event %llu / %llu   %s%.4g/s",
              ex->playing ? "\u25b6" : "\u275a\u275a", (unsigned long long)ex->step,
-             (unsigned long long)total, counting, ex->cur + 1, n, (unsigned long long)ev,
+             (unsigned long long)total, counting, unit, (unsigned long long)ev,
              (unsigned long long)evn, "speed ", e);
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
     draw_text(p, tx, ty + th + 7 * s, tw, buf, 12, p->pal->text, false);

@@ -122,8 +122,12 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
         at = cat(buf, n, at, "span y = %d, x %d..%d\n", ev->y, ev->x, ev->x1);
         break;
     case TRACE_BLOCK:
+        if (ev->klass >= BLOCK_CLASS_COUNT) {   /* a rectangle, no class (lesson 07's tiles) */
+            at = cat(buf, n, at, "pixels (%d, %d)..(%d, %d)\n", ev->x, ev->y, ev->x1, ev->y1);
+            break;
+        }
         at = cat(buf, n, at, "block (%d, %d)..(%d, %d): %s\n", ev->x, ev->y, ev->x1, ev->y1,
-                 ev->klass < BLOCK_CLASS_COUNT ? class_names[ev->klass] : "?");
+                 class_names[ev->klass]);
         at = cat(buf, n, at, "corner masks %x %x %x\n", ev->mask[0], ev->mask[1], ev->mask[2]);
         break;
     case TRACE_PIXEL_TEST:
@@ -177,7 +181,7 @@ static double watch(struct painter *p, double x, double y, double w)
     } else {
         at = cat(buf, n, at, "%s, line %d, triangle %d\n",
                  ex->last.kind < TRACE_KIND_COUNT ? kind_names[ex->last.kind] : "?",
-                 ex->last.line + 1, ex->cur + 1);
+                 ex->last.line + 1, replay_unit_tri(&ex->replay, ex->cur) + 1);  /* the scene's */
         at = watch_values(ex, buf, n, at, &ex->last);
     }
     if (ex->pinned) {
@@ -274,7 +278,13 @@ static double counters(struct painter *p, double x, double y, double w)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
     if (ex->lesson->variants[ex->variant].exhibit) {
         char e[256];
-        int at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
+        int at;
+        if (ex->replay.units)   /* a run in parts of its own (lesson 07) */
+            at = snprintf(e, sizeof e, "vs %s, %d of %d parts done:\nextra %llu   missing (cracks) %llu",
+                          ex->lesson->variants[0].name, ex->diff_done, ex->replay.ntris,
+                          (unsigned long long)ex->extra, (unsigned long long)ex->missing);
+        else
+            at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
                           ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
                           (unsigned long long)ex->extra, (unsigned long long)ex->missing);
         if (ex->wrong_colour && at > 0 && (size_t)at < sizeof e)

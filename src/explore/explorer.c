@@ -59,8 +59,12 @@ static void take_event(void *ctx, const struct trace_event *ev)
         mark_rect(ex, ev->x, ev->y, ev->x1, ev->y, CELL_SPAN | CELL_INSIDE, -1);
         break;
     case TRACE_BLOCK:
-        mark_rect(ex, ev->x, ev->y, ev->x1, ev->y1,
-                  CELL_BLOCK | (ev->klass == BLOCK_FULL ? CELL_INSIDE : 0), ev->klass);
+        /* a step on a rectangle that classifies nothing (lesson 07's
+         * binning, take, store) marks no cell: its blocks are not yet
+         * classified */
+        if (ev->klass < BLOCK_CLASS_COUNT)
+            mark_rect(ex, ev->x, ev->y, ev->x1, ev->y1,
+                      CELL_BLOCK | (ev->klass == BLOCK_FULL ? CELL_INSIDE : 0), ev->klass);
         break;
     case TRACE_PIXEL_TEST:
         if ((c = explorer_cell_mut(ex, ev->x, ev->y))) {

@@ -20,11 +20,13 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <signal.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <sys/utsname.h>
 #include <time.h>
 #include <unistd.h>
@@ -44,11 +46,13 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define SCENE_MIXED 2
 
 /* Targets, medians of the same run. Lesson 07 against llvmpipe (issue 15): */
-#define TARGET_L07_LARGE_X 2.0  /* lesson 07 vs llvmpipe, both on every core, Mpix/s on large */
-#define TARGET_L07_SMALL_X 5.0  /* ... Mtri/s on small */
-#define TARGET_L07_MIXED_X 2.0  /* ... Mtri/s on mixed */
+#define TARGET_L07_LARGE_X 2.5  /* lesson 07 vs llvmpipe, both on every core, Mpix/s on large */
+#define TARGET_L07_SMALL_X 2.5  /* ... Mtri/s on small */
+#define TARGET_L07_MIXED_X 2.5  /* ... Mtri/s on mixed */
 #define TARGET_L07_ONE_X 2.0    /* lesson 07 --threads 1 vs LP_NUM_THREADS=0, every scene */
 #define TARGET_L07_SCALE_X 1.8  /* lesson 07 from 1 to 2 threads, large and mixed */
+#define TARGET_L07_SCALE_SMALL_X 1.6    /* ... on small */
+#define TARGET_L07_LOADED_X 0.9 /* with one core kept busy: every core vs 1 thread, every scene */
 #define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
 /* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
  * 2015: their best speed-up of block classification over the bounding box is
@@ -92,6 +96,11 @@ static struct big_result big[MAX_BIG];
 static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
 static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
+/* The same machine with one core kept busy by a spinning child process:
+ * lesson 07 on every core and on 1 thread, llvmpipe on its default threads
+ * and on 1 thread (LOADED_*), interleaved; runs == 0: not measured. */
+enum { LOADED_L07, LOADED_L07_1, LOADED_LP, LOADED_LP_1, LOADED_ROWS };
+static struct bench_timing loaded[LOADED_ROWS][NSCENES];
 
 /* The targets as printed, kept for bench.csv. */
 struct target_line {
@@ -99,7 +108,7 @@ struct target_line {
     double got, goal;
     bool under, met, measured;
 };
-static struct target_line targets[24];
+static struct target_line targets[40];
 static int ntargets;
 
 static double now(void)
@@ -735,7 +744,7 @@ static bool write_chart(const char *dir, const struct bench_scene *sc, double li
 static void print_target(const char *id, const char *what, double got, double goal,
                          const char *unit, bool under)
 {
-    struct target_line *t = ntargets < 24 ? &targets[ntargets++] : &targets[23];
+    struct target_line *t = ntargets < 40 ? &targets[ntargets++] : &targets[39];
     snprintf(t->id, sizeof t->id, "%s", id);
     snprintf(t->what, sizeof t->what, "%s", what);
     snprintf(t->unit, sizeof t->unit, "%s", unit);
@@ -781,10 +790,22 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
         snprintf(id, sizeof id, "l07-1-thread-vs-llvmpipe-1-thread-%s", scene_id[i]);
         print_target(id, what, speedup(l07_1, lp1, i), TARGET_L07_ONE_X, "x", false);
     }
-    for (int i = 0; i < NSCENES; i += 2) {     /* large and mixed */
+    for (int i = 0; i < NSCENES; i++) {
         snprintf(what, sizeof what, "lesson 07 from 1 to %ld threads on %s", cores, scene_id[i]);
         snprintf(id, sizeof id, "l07-1-to-%ld-threads-%s", cores, scene_id[i]);
-        print_target(id, what, speedup(l07, l07_1, i), TARGET_L07_SCALE_X, "x", false);
+        print_target(id, what, speedup(l07, l07_1, i),
+                     i == SCENE_SMALL ? TARGET_L07_SCALE_SMALL_X : TARGET_L07_SCALE_X, "x", false);
+    }
+    for (int i = 0; i < NSCENES; i++) {     /* one core kept busy by another process */
+        const struct bench_timing *all = &loaded[LOADED_L07][i], *one = &loaded[LOADED_L07_1][i];
+        snprintf(what, sizeof what, "one core busy: lesson 07, %ld threads vs 1, on %s", cores,
+                 scene_id[i]);
+        snprintf(id, sizeof id, "l07-loaded-%s", scene_id[i]);
+        print_target(id, what, all->runs && one->runs ? one->median / all->median : 0,
+                     TARGET_L07_LOADED_X, "x", false);
+        const struct bench_timing *lp = &loaded[LOADED_LP][i], *lp1 = &loaded[LOADED_LP_1][i];
+        if (lp->runs && lp1->runs)
+            printf("  %-60s %6.2fx\n", "  ... llvmpipe there, default threads vs 1", lp1->median / lp->median);
     }
     double rate = l07 ? mpix(&sc[SCENE_LARGE], &l07->t[SCENE_LARGE]) : 0;
     print_target("l07-large-vs-memory-limit", "lesson 07 on large, times the memory limit",
@@ -828,6 +849,63 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
 }
 
 /* --- main ------------------------------------------------------------------- */
+
+/* Lesson 07 and llvmpipe on every core and on one, again, while a child
+ * process keeps one core busy: a worker that waits for another one the
+ * system has put aside loses more than the second core gives. */
+static void measure_loaded(const struct bench_scene *sc, struct target *fb[NSCENES], int runs,
+                           bool peer, int lp_one, int lp_all)
+{
+    struct row *all = NULL, *one = NULL;
+    for (int k = 0; k < nrows; k++) {
+        if (rows[k].peer || strncmp(rows[k].program, "07-", 3) != 0)
+            continue;
+        all = strcmp(rows[k].variant, "tiles") == 0 ? &rows[k] : all;
+        one = strcmp(rows[k].variant, "1-thread") == 0 ? &rows[k] : one;
+    }
+    if (!all || !one)
+        return;
+    fflush(stdout);
+    pid_t child = fork();
+    if (child == 0)
+        for (volatile unsigned long spin = 0;; spin++)
+            ;
+    if (child < 0)
+        return;
+    struct row *mine[2] = { all, one };
+    struct bench_timing scratch[NSCENES];
+    for (int r = 0; r < runs; r++) {
+        fprintf(stderr, "one core busy: round %d of %d...\n", r + 1, runs);
+        for (int m = 0; m < 2; m++)
+            for (int i = 0; i < NSCENES; i++) {
+                struct bench_timing keep = mine[m]->t[i];
+                time_once(mine[m], i, &sc[i].s, fb[i], r);
+                loaded[m ? LOADED_L07_1 : LOADED_L07][i].t[r] = mine[m]->t[i].t[r];
+                loaded[m ? LOADED_L07_1 : LOADED_L07][i].runs = r + 1;
+                mine[m]->t[i] = keep;
+            }
+        for (int c = 0; peer && c < 2; c++) {
+            uint8_t *cov[NSCENES];
+            for (int i = 0; i < NSCENES; i++)
+                cov[i] = fb[i]->count;
+            char why[256];
+            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, scratch, cov, why, sizeof why))
+                continue;
+            for (int i = 0; i < NSCENES; i++) {
+                loaded[c ? LOADED_LP : LOADED_LP_1][i].t[r] = scratch[i].t[0];
+                loaded[c ? LOADED_LP : LOADED_LP_1][i].runs = r + 1;
+            }
+        }
+    }
+    kill(child, SIGKILL);
+    waitpid(child, NULL, 0);
+    for (int k = 0; k < LOADED_ROWS; k++)
+        for (int i = 0; i < NSCENES; i++)
+            if (loaded[k][i].runs == runs)
+                bench_timing_stats(&loaded[k][i]);
+            else
+                loaded[k][i].runs = 0;
+}
 
 static int usage(FILE *f, int status)
 {
@@ -1077,6 +1155,7 @@ int main(int argc, char **argv)
                                npeers > 2 && peer_ok[2] ? peer_cov4 : NULL, row_target(fbs[i], &rows[k]));
         }
     }
+    measure_loaded(sc, fb, o.runs, have_peer, cfg[0].threads, cfg[1].threads);
     for (int i = 0; i < NSCENES; i++)
         for (int n = 0; n <= SAMPLES_MAX; n++)
             target_free(&fbs[i][n]);
