@@ -889,7 +889,7 @@ static void measure_loaded(const struct bench_scene *sc, struct target *fb[NSCEN
             for (int i = 0; i < NSCENES; i++)
                 cov[i] = fb[i]->count;
             char why[256];
-            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, scratch, cov, why, sizeof why))
+            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, 1, scratch, cov, why, sizeof why))
                 continue;
             for (int i = 0; i < NSCENES; i++) {
                 loaded[c ? LOADED_LP : LOADED_LP_1][i].t[r] = scratch[i].t[0];
