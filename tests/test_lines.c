@@ -78,9 +78,6 @@ static const struct {
     { "04", 2 }, { "04", 4 }, { "04", 6 }, { "04", 8 }, { "04", 9 }, { "04", 10 }, { "04", 12 },
     { "04", 13 },
     { "05", 1 }, { "05", 3 }, { "05", 4 }, { "05", 8 },
-    /* lesson 07: bin, take and store (the narrated replay draws one
-     * triangle per tile, not the binned run) */
-    { "07", 2 }, { "07", 4 }, { "07", 6 }, { "07", 7 }, { "07", 13 },
     /* lesson 08: the setup of the sample offsets, the blocks' sample extent */
     { "08", 1 }, { "08", 3 },
 };
