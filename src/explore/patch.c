@@ -1,0 +1,224 @@
+/* patch.c - the changed pixels of a picture (see patch.h). */
+#include "patch.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Unchanged pixels between two runs that join them: a run costs its
+ * 8 bytes and a copy more, a pixel its 9 bytes. */
+#define JOIN_GAP 2
+
+static int samples_of(const struct target *t)
+{
+    return t->samples ? t->samples->n : 0;
+}
+
+/* One block for runs and values (every part 4-byte aligned, count last). */
+static bool patch_alloc(struct patch *p, int nruns, size_t npix, int samples)
+{
+    memset(p, 0, sizeof *p);
+    size_t s = (size_t)samples;
+    size_t bytes = npix * (4 + 4 + 1) + npix * s * (4 + 4) + (size_t)nruns * 2 * sizeof *p->runs;
+    unsigned char *b = malloc(bytes ? bytes : 1);
+    if (!b)
+        return false;
+    p->nruns = nruns;
+    p->npix = npix;
+    p->samples = samples;
+    p->bytes = bytes;
+    p->color = (uint32_t *)b;
+    p->depth = (float *)(b + 4 * npix);
+    p->scolor = (uint32_t *)(b + 8 * npix);
+    p->sdepth = (float *)(b + 8 * npix + 4 * npix * s);
+    p->runs = (uint32_t *)(b + 8 * npix + 8 * npix * s);
+    p->count = b + 8 * npix + 8 * npix * s + (size_t)nruns * 2 * sizeof *p->runs;
+    return true;
+}
+
+void patch_free(struct patch *p)
+{
+    free(p->color);             /* the start of the block */
+    memset(p, 0, sizeof *p);
+}
+
+/* n pixels' colour, depth and count from one place to another: most runs
+ * are a few pixels long, where a loop beats three calls to memcpy. */
+static inline void copy_pixels(uint32_t *restrict color, float *restrict depth,
+                               uint8_t *restrict count, const uint32_t *from_color,
+                               const float *from_depth, const uint8_t *from_count, size_t n)
+{
+    if (n > 8) {
+        memcpy(color, from_color, 4 * n);
+        memcpy(depth, from_depth, 4 * n);
+        memcpy(count, from_count, n);
+        return;
+    }
+    for (size_t i = 0; i < n; i++) {
+        color[i] = from_color[i];
+        depth[i] = from_depth[i];
+        count[i] = from_count[i];
+    }
+}
+
+/* The samples of n pixels (s a pixel). */
+static void copy_samples(uint32_t *color, float *depth, const uint32_t *from_color,
+                         const float *from_depth, size_t n, size_t s)
+{
+    memcpy(color, from_color, 4 * n * s);
+    memcpy(depth, from_depth, 4 * n * s);
+}
+
+static void gather(struct patch *p, const struct target *t)
+{
+    size_t k = 0, s = (size_t)p->samples;
+    for (int r = 0; r < p->nruns; r++) {
+        size_t at = p->runs[2 * r], n = p->runs[2 * r + 1];
+        copy_pixels(p->color + k, p->depth + k, p->count + k, t->color + at, t->depth + at,
+                    t->count + at, n);
+        if (s)
+            copy_samples(p->scolor + k * s, p->sdepth + k * s, t->samples->color + at * s,
+                         t->samples->depth + at * s, n, s);
+        k += n;
+    }
+}
+
+void patch_apply(const struct patch *p, struct target *t)
+{
+    size_t k = 0, s = (size_t)p->samples;
+    for (int r = 0; r < p->nruns; r++) {
+        size_t at = p->runs[2 * r], n = p->runs[2 * r + 1];
+        copy_pixels(t->color + at, t->depth + at, t->count + at, p->color + k, p->depth + k,
+                    p->count + k, n);
+        if (s)
+            copy_samples(t->samples->color + at * s, t->samples->depth + at * s,
+                         p->scolor + k * s, p->sdepth + k * s, n, s);
+        k += n;
+    }
+}
+
+bool patch_whole(struct patch *p, const struct target *t)
+{
+    size_t n = (size_t)t->w * (size_t)t->h;
+    if (!patch_alloc(p, 1, n, samples_of(t)))
+        return false;
+    p->runs[0] = 0;
+    p->runs[1] = (uint32_t)n;
+    gather(p, t);
+    return true;
+}
+
+bool patch_is_whole(const struct patch *p, size_t n)
+{
+    return p->nruns == 1 && p->runs[0] == 0 && p->npix == n;
+}
+
+/* Runs being collected: pairs, grown as needed. */
+struct runs {
+    uint32_t *r;
+    int n, cap;
+    size_t npix;
+    size_t join;            /* pixels between two runs that may join them */
+};
+
+static bool runs_add(struct runs *rs, size_t at, size_t n)
+{
+    if (rs->n > 0) {
+        uint32_t *last = &rs->r[2 * (rs->n - 1)];
+        size_t end = (size_t)last[0] + last[1];
+        if (at <= end + rs->join) {        /* touching, overlapping or nearly: one run */
+            if (at + n > end) {
+                rs->npix += at + n - end;
+                last[1] = (uint32_t)(at + n - last[0]);
+            }
+            return true;
+        }
+    }
+    if (rs->n == rs->cap) {
+        int cap = rs->cap ? 2 * rs->cap : 1024;
+        uint32_t *r = realloc(rs->r, (size_t)cap * 2 * sizeof *r);
+        if (!r)
+            return false;
+        rs->r = r;
+        rs->cap = cap;
+    }
+    rs->r[2 * rs->n] = (uint32_t)at;
+    rs->r[2 * rs->n + 1] = (uint32_t)n;
+    rs->n++;
+    rs->npix += n;
+    return true;
+}
+
+static bool patch_from_runs(struct patch *p, struct runs *rs, int samples)
+{
+    bool ok = patch_alloc(p, rs->n, rs->npix, samples);
+    if (ok)
+        memcpy(p->runs, rs->r, (size_t)rs->n * 2 * sizeof *rs->r);
+    free(rs->r);
+    return ok;
+}
+
+static bool pixel_differs(const struct target *a, const struct target *b, size_t i, size_t s)
+{
+    uint32_t da, db;
+    memcpy(&da, &a->depth[i], sizeof da);       /* depth by its bits: -0 is not 0 */
+    memcpy(&db, &b->depth[i], sizeof db);
+    if (a->color[i] != b->color[i] || da != db || a->count[i] != b->count[i])
+        return true;
+    return s && (memcmp(a->samples->color + i * s, b->samples->color + i * s, 4 * s) != 0
+                 || memcmp(a->samples->depth + i * s, b->samples->depth + i * s, 4 * s) != 0);
+}
+
+bool patch_diff(struct patch *p, const struct target *now, const struct target *before)
+{
+    size_t n = (size_t)now->w * (size_t)now->h, s = (size_t)samples_of(now);
+    struct runs rs = { .join = JOIN_GAP };  /* the pixels joined keep their value */
+    for (size_t i = 0; i < n; i++)
+        if (pixel_differs(now, before, i, s) && !runs_add(&rs, i, 1)) {
+            free(rs.r);
+            return false;
+        }
+    if (!patch_from_runs(p, &rs, (int)s))
+        return false;
+    gather(p, now);
+    return true;
+}
+
+/* Copy the values of q's runs into p, whose runs cover them. */
+static void copy_runs(struct patch *p, const struct patch *q)
+{
+    size_t s = (size_t)p->samples, k = 0, pk = 0;
+    int u = 0;
+    for (int r = 0; r < q->nruns; r++) {
+        size_t at = q->runs[2 * r], n = q->runs[2 * r + 1];
+        while ((size_t)p->runs[2 * u] + p->runs[2 * u + 1] <= at)
+            pk += p->runs[2 * u + 1], u++;
+        size_t to = pk + (at - p->runs[2 * u]);
+        copy_pixels(p->color + to, p->depth + to, p->count + to, q->color + k, q->depth + k,
+                    q->count + k, n);
+        copy_samples(p->scolor + to * s, p->sdepth + to * s, q->scolor + k * s,
+                     q->sdepth + k * s, n, s);
+        k += n;
+    }
+}
+
+bool patch_merge(struct patch *p, const struct patch *older, const struct patch *newer)
+{
+    if (older->samples != newer->samples)
+        return false;
+    struct runs rs = { .join = 0 };     /* a pixel in neither has no value to give */
+    int i = 0, j = 0;
+    while (i < older->nruns || j < newer->nruns) {     /* the union, in order */
+        bool from_older = j == newer->nruns
+                          || (i < older->nruns && older->runs[2 * i] < newer->runs[2 * j]);
+        const uint32_t *r = from_older ? &older->runs[2 * i++] : &newer->runs[2 * j++];
+        if (!runs_add(&rs, r[0], r[1])) {
+            free(rs.r);
+            return false;
+        }
+    }
+    if (!patch_from_runs(p, &rs, older->samples))
+        return false;
+    copy_runs(p, older);
+    copy_runs(p, newer);
+    return true;
+}
