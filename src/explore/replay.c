@@ -52,6 +52,17 @@ static bool list_units(struct replay *r)
 
 static void undo_clear(struct replay *r);
 
+/* A picture of the scene's size and background, with the run's samples
+ * (lesson 08); t is left empty when memory runs out. */
+static bool blank_picture(const struct replay *r, struct target *t)
+{
+    if (target_init(t, r->scene->w, r->scene->h, scene_background(r->scene))
+        && target_multisample(t, r->params.samples))
+        return true;
+    target_free(t);
+    return false;
+}
+
 /* --- checkpoints ---------------------------------------------------------- */
 
 static size_t target_bytes(const struct target *t)
@@ -203,12 +214,8 @@ bool replay_restart(struct replay *r)
 
 bool replay_count(struct replay *r, int n)
 {
-    if (r->counted < r->ntris && !r->counting.color
-        && (!target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene))
-            || !target_multisample(&r->counting, r->params.samples))) {   /* lesson 08's samples */
-        target_free(&r->counting);
+    if (r->counted < r->ntris && !r->counting.color && !blank_picture(r, &r->counting))
         return false;
-    }
     struct trace tr = { 0 };
     for (; n > 0 && r->counted < r->ntris; n--) {
         int i = r->counted;
@@ -437,10 +444,8 @@ static bool restore_checkpoint(struct replay *r, int j)
             at = k;
     if (at >= 0) {
         from = at + 1;
-    } else if (!r->base.color) {
-        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
-            || !target_multisample(&r->base, r->params.samples))
-            return false;
+    } else if (!r->base.color && !blank_picture(r, &r->base)) {
+        return false;
     }
     for (int k = from; k <= j; k++)
         patch_apply(&r->checks[k].p, &r->base);
@@ -466,13 +471,10 @@ static bool advance_base(struct replay *r, int upto)
         if (!restore_checkpoint(r, from))
             return false;
     } else if (!base_ok) {
-        if (r->base.color) {
+        if (r->base.color)
             target_clear(&r->base);     /* its memory again: no fresh pages to fault in */
-        } else if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
-                   || !target_multisample(&r->base, r->params.samples)) {
-            target_free(&r->base);
+        else if (!blank_picture(r, &r->base))
             return false;
-        }
         r->base_upto = 0;
         undo_clear(r);
     }

@@ -80,10 +80,11 @@ struct replay_undo {
 #define REPLAY_UNDO_TRIANGLES 1024
 
 /* Checkpoints: at most this much memory, and this many events apart when
- * it allows (about 25 ms of redrawing a scene of small triangles; kept as
- * patches, the checkpoints of 2,000,000 of them at 1920 x 1080 fit). */
+ * it allows (about 6,500 small triangles, 5 ms of redrawing). Kept as
+ * patches, they cost about twice the pixels a scene writes, whatever the
+ * gap: 2,000,000 triangles at 1920 x 1080 fit 300 of them in 520 MB. */
 #define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
-#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 19)
+#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 18)
 /* One more checkpoint this many triangles before the end (an eighth of a
  * small scene): End redraws them and keeps what they overwrote, so that
  * steps back from the end are quick too. */
