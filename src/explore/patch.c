@@ -72,40 +72,64 @@ static inline void copy_pixels(uint32_t *restrict color, float *restrict depth,
     count[0] = from_count[0], count[mid] = from_count[mid], count[last] = from_count[last];
 }
 
-/* The samples of n pixels (s a pixel). */
-static void copy_samples(uint32_t *color, float *depth, const uint32_t *from_color,
-                         const float *from_depth, size_t n, size_t s)
+/* Where the values of pixels start, in a target or in a patch. */
+struct pixels {
+    uint32_t *color;
+    float *depth;
+    uint8_t *count;
+    uint32_t *scolor;       /* NULL without samples */
+    float *sdepth;
+};
+
+static struct pixels in_target(const struct target *t, size_t at)
 {
-    memcpy(color, from_color, 4 * n * s);
-    memcpy(depth, from_depth, 4 * n * s);
+    size_t s = t->samples ? (size_t)t->samples->n : 0;
+    return (struct pixels){ t->color + at, t->depth + at, t->count + at,
+                            s ? t->samples->color + at * s : NULL,
+                            s ? t->samples->depth + at * s : NULL };
 }
 
-static void gather(struct patch *p, const struct target *t)
+static struct pixels in_patch(const struct patch *p, size_t k)
+{
+    size_t s = (size_t)p->samples;
+    return (struct pixels){ p->color + k, p->depth + k, p->count + k, p->scolor + k * s,
+                            p->sdepth + k * s };
+}
+
+/* n pixels, s samples each. */
+static void copy(struct pixels to, struct pixels from, size_t n, size_t s)
+{
+    copy_pixels(to.color, to.depth, to.count, from.color, from.depth, from.count, n);
+    if (s) {
+        memcpy(to.scolor, from.scolor, 4 * n * s);
+        memcpy(to.sdepth, from.sdepth, 4 * n * s);
+    }
+}
+
+/* Between t and the patch, run after run: into the patch, or out of it.
+ * (The pixels without samples directly: this is a jump's inner loop.) */
+static void transfer(const struct patch *p, struct target *t, bool into_patch)
 {
     size_t k = 0, s = (size_t)p->samples;
     for (int r = 0; r < p->nruns; r++) {
         size_t at = p->runs[2 * r], n = p->runs[2 * r + 1];
-        copy_pixels(p->color + k, p->depth + k, p->count + k, t->color + at, t->depth + at,
-                    t->count + at, n);
-        if (s)
-            copy_samples(p->scolor + k * s, p->sdepth + k * s, t->samples->color + at * s,
-                         t->samples->depth + at * s, n, s);
+        if (s && into_patch)
+            copy(in_patch(p, k), in_target(t, at), n, s);
+        else if (s)
+            copy(in_target(t, at), in_patch(p, k), n, s);
+        else if (into_patch)
+            copy_pixels(p->color + k, p->depth + k, p->count + k, t->color + at, t->depth + at,
+                        t->count + at, n);
+        else
+            copy_pixels(t->color + at, t->depth + at, t->count + at, p->color + k, p->depth + k,
+                        p->count + k, n);
         k += n;
     }
 }
 
 void patch_apply(const struct patch *p, struct target *t)
 {
-    size_t k = 0, s = (size_t)p->samples;
-    for (int r = 0; r < p->nruns; r++) {
-        size_t at = p->runs[2 * r], n = p->runs[2 * r + 1];
-        copy_pixels(t->color + at, t->depth + at, t->count + at, p->color + k, p->depth + k,
-                    p->count + k, n);
-        if (s)
-            copy_samples(t->samples->color + at * s, t->samples->depth + at * s,
-                         p->scolor + k * s, p->sdepth + k * s, n, s);
-        k += n;
-    }
+    transfer(p, t, false);
 }
 
 bool patch_whole(struct patch *p, const struct target *t)
@@ -115,7 +139,7 @@ bool patch_whole(struct patch *p, const struct target *t)
         return false;
     p->runs[0] = 0;
     p->runs[1] = (uint32_t)n;
-    gather(p, t);
+    transfer(p, (struct target *)t, true);     /* read only */
     return true;
 }
 
@@ -221,24 +245,20 @@ bool patch_diff(struct patch *p, const struct target *now, const struct target *
     }
     if (!patch_from_runs(p, &rs, (int)s))
         return false;
-    gather(p, now);
+    transfer(p, (struct target *)now, true);   /* read only */
     return true;
 }
 
 /* Copy the values of q's runs into p, whose runs cover them. */
 static void copy_runs(struct patch *p, const struct patch *q)
 {
-    size_t s = (size_t)p->samples, k = 0, pk = 0;
+    size_t k = 0, pk = 0;
     int u = 0;
     for (int r = 0; r < q->nruns; r++) {
         size_t at = q->runs[2 * r], n = q->runs[2 * r + 1];
         while ((size_t)p->runs[2 * u] + p->runs[2 * u + 1] <= at)
             pk += p->runs[2 * u + 1], u++;
-        size_t to = pk + (at - p->runs[2 * u]);
-        copy_pixels(p->color + to, p->depth + to, p->count + to, q->color + k, q->depth + k,
-                    q->count + k, n);
-        copy_samples(p->scolor + to * s, p->sdepth + to * s, q->scolor + k * s,
-                     q->sdepth + k * s, n, s);
+        copy(in_patch(p, pk + (at - p->runs[2 * u])), in_patch(q, k), n, (size_t)p->samples);
         k += n;
     }
 }
