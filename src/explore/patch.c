@@ -187,7 +187,7 @@ static bool runs_add(struct runs *rs, size_t at, size_t n)
 static bool patch_from_runs(struct patch *p, struct runs *rs, int samples)
 {
     bool ok = patch_alloc(p, rs->n, rs->npix, samples);
-    if (ok)
+    if (ok && rs->n > 0)        /* none: nothing changed, and rs->r is NULL */
         memcpy(p->runs, rs->r, (size_t)rs->n * 2 * sizeof *rs->r);
     free(rs->r);
     return ok;
