@@ -165,7 +165,11 @@ static bool take_checkpoint(struct replay *r, bool force)
         r->checks = c;
         r->checks_cap = cap;
     }
-    if (!target_copy(&r->check_then, &r->counting)) {
+    /* the picture now, for the next patch: p turns the last one into it
+     * (merged with a dropped one or not), far cheaper than a copy */
+    if (r->check_then.color) {
+        patch_apply(&p, &r->check_then);
+    } else if (!target_copy(&r->check_then, &r->counting)) {
         patch_free(&p);
         return false;
     }
