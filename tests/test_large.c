@@ -78,9 +78,7 @@ static struct usage measure(const char *dir, long n)
                 u.ok = explorer_move(&ex, STEP_TRIANGLE, -1);
             u.ok = u.ok && explorer_set_step(&ex, ex.replay.total / 3);
             u.ntris = ex.scene.ntris;
-            for (int k = 0; k < ex.replay.nchecks; k++)
-                u.checkpoints_mib += (double)ex.replay.checks[k].t.w * ex.replay.checks[k].t.h * 9
-                                     / 1048576;
+            u.checkpoints_mib = (double)ex.replay.check_used / 1048576;
             struct rusage ru;
             getrusage(RUSAGE_SELF, &ru);
             u.peak_mib = (double)ru.ru_maxrss / 1024;

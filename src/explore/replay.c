@@ -52,6 +52,17 @@ static bool list_units(struct replay *r)
 
 static void undo_clear(struct replay *r);
 
+/* A picture of the scene's size and background, with the run's samples
+ * (lesson 08); t is left empty when memory runs out. */
+static bool blank_picture(const struct replay *r, struct target *t)
+{
+    if (target_init(t, r->scene->w, r->scene->h, scene_background(r->scene))
+        && target_multisample(t, r->params.samples))
+        return true;
+    target_free(t);
+    return false;
+}
+
 /* --- checkpoints ---------------------------------------------------------- */
 
 static size_t target_bytes(const struct target *t)
@@ -68,53 +79,102 @@ static uint64_t check_step(const struct replay *r, int k)
     return r->start[r->checks[k].upto];
 }
 
-/* A checkpoint at triangle `counted` (the counting picture). When the
- * budget is full, the one whose removal leaves the smallest gap makes room
- * (unless the new one would be the closest: then none is taken, unless
- * forced), and checkpoints are taken no closer than that gap from then on. */
+/* The checkpoint whose removal leaves the smallest gap (the new one, at
+ * r->total, closes the last gap), and that gap in *gap. */
+static int closest_checkpoint(const struct replay *r, uint64_t *gap)
+{
+    int drop = -1;
+    *gap = UINT64_MAX;
+    for (int k = 0; k < r->nchecks; k++) {
+        uint64_t lo = k ? check_step(r, k - 1) : 0;
+        uint64_t hi = k + 1 < r->nchecks ? check_step(r, k + 1) : r->total;
+        if (hi - lo < *gap)
+            *gap = hi - lo, drop = k;
+    }
+    return drop;
+}
+
+/* Remove checkpoint k: the one after it (or the new one, p) takes its
+ * pixels, so that it still applies to the picture before k. */
+static bool drop_checkpoint(struct replay *r, int k, struct patch *p)
+{
+    struct patch *next = k + 1 < r->nchecks ? &r->checks[k + 1].p : p, merged;
+    if (!patch_merge(&merged, &r->checks[k].p, next))
+        return false;
+    r->check_used -= r->checks[k].p.bytes + (next == p ? 0 : next->bytes);
+    r->check_used += next == p ? 0 : merged.bytes;
+    patch_free(&r->checks[k].p);
+    patch_free(next);
+    *next = merged;
+    memmove(&r->checks[k], &r->checks[k + 1], (size_t)(r->nchecks - k - 1) * sizeof *r->checks);
+    r->nchecks--;
+    return true;
+}
+
+/* Bytes of the patches since the last whole checkpoint. */
+static size_t patches_since_whole(const struct replay *r)
+{
+    size_t n = (size_t)r->counting.w * (size_t)r->counting.h, bytes = 0;
+    for (int k = r->nchecks - 1; k >= 0 && !patch_is_whole(&r->checks[k].p, n); k--)
+        bytes += r->checks[k].p.bytes;
+    return bytes;
+}
+
+/* A checkpoint at triangle `counted` (the counting picture): the pixels
+ * changed since the last one, or the whole picture. When the budget is
+ * full, the ones whose removal leaves the smallest gap make room (unless
+ * the new one would be the closest: then none is taken, unless forced),
+ * and checkpoints are taken no closer than that gap from then on. */
 static bool take_checkpoint(struct replay *r, bool force)
 {
-    size_t each = target_bytes(&r->counting);
-    int most = each ? (int)(r->check_bytes / each) : 0;
-    if (most < 1)
+    size_t whole = target_bytes(&r->counting);
+    if (whole + 2 * sizeof *r->checks->p.runs > r->check_bytes)
+        return true;            /* not even one picture fits (its one run included) */
+    struct patch p;
+    if (r->nchecks == 0 ? !patch_whole(&p, &r->counting)
+                        : !patch_diff(&p, &r->counting, &r->check_then))
+        return false;
+    if (r->nchecks > 0 && patches_since_whole(r) + p.bytes > whole) {
+        patch_free(&p);         /* a picture far back would cost more than one picture */
+        if (!patch_whole(&p, &r->counting))
+            return false;
+    }
+    uint64_t gap;
+    if (r->check_used + p.bytes > r->check_bytes && !force
+        && r->total - check_step(r, r->nchecks - 1) < (closest_checkpoint(r, &gap), gap)) {
+        r->check_gap = gap > r->check_gap ? gap : r->check_gap;
+        patch_free(&p);         /* the new one would be the closest pair: not worth it */
         return true;
-    struct target reuse = { 0 };
-    if (r->nchecks >= most) {
-        int drop = -1;
-        uint64_t best = UINT64_MAX;
-        for (int k = 0; k < r->nchecks; k++) {
-            uint64_t lo = k ? check_step(r, k - 1) : 0;
-            uint64_t hi = k + 1 < r->nchecks ? check_step(r, k + 1) : r->total;
-            if (hi - lo < best)
-                best = hi - lo, drop = k;
+    }
+    while (r->check_used + p.bytes > r->check_bytes && r->nchecks > 0) {
+        int drop = closest_checkpoint(r, &gap);
+        if (gap > r->check_gap)
+            r->check_gap = gap;
+        if (!drop_checkpoint(r, drop, &p)) {
+            patch_free(&p);
+            return false;
         }
-        if (best > r->check_gap)
-            r->check_gap = best;
-        if (!force && r->total - check_step(r, r->nchecks - 1) < best)
-            return true;        /* the new one would be the closest pair: not worth it */
-        reuse = r->checks[drop].t;
-        memmove(&r->checks[drop], &r->checks[drop + 1],
-                (size_t)(r->nchecks - drop - 1) * sizeof *r->checks);
-        r->nchecks--;
     }
     if (r->nchecks == r->checks_cap) {
         int cap = r->checks_cap ? 2 * r->checks_cap : 16;
         struct replay_checkpoint *c = realloc(r->checks, (size_t)cap * sizeof *c);
         if (!c) {
-            target_free(&reuse);
+            patch_free(&p);
             return false;
         }
         r->checks = c;
         r->checks_cap = cap;
     }
-    struct replay_checkpoint *c = &r->checks[r->nchecks];
-    c->upto = r->counted;
-    c->t = reuse;
-    if (!target_copy(&c->t, &r->counting)) {
-        target_free(&c->t);
+    /* the picture now, for the next patch: p turns the last one into it
+     * (merged with a dropped one or not), far cheaper than a copy */
+    if (r->check_then.color) {
+        patch_apply(&p, &r->check_then);
+    } else if (!target_copy(&r->check_then, &r->counting)) {
+        patch_free(&p);
         return false;
     }
-    r->nchecks++;
+    r->checks[r->nchecks++] = (struct replay_checkpoint){ .upto = r->counted, .p = p };
+    r->check_used += p.bytes;
     r->check_last = r->total;
     return true;
 }
@@ -122,10 +182,12 @@ static bool take_checkpoint(struct replay *r, bool force)
 static void free_checkpoints(struct replay *r)
 {
     for (int k = 0; k < r->nchecks; k++)
-        target_free(&r->checks[k].t);
+        patch_free(&r->checks[k].p);
     r->nchecks = 0;
+    r->check_used = 0;
     r->check_gap = REPLAY_CHECKPOINT_EVENTS;
     r->check_last = 0;
+    target_free(&r->check_then);
 }
 
 /* --- counting ------------------------------------------------------------- */
@@ -156,12 +218,8 @@ bool replay_restart(struct replay *r)
 
 bool replay_count(struct replay *r, int n)
 {
-    if (r->counted < r->ntris && !r->counting.color
-        && (!target_init(&r->counting, r->scene->w, r->scene->h, scene_background(r->scene))
-            || !target_multisample(&r->counting, r->params.samples))) {   /* lesson 08's samples */
-        target_free(&r->counting);
+    if (r->counted < r->ntris && !r->counting.color && !blank_picture(r, &r->counting))
         return false;
-    }
     struct trace tr = { 0 };
     for (; n > 0 && r->counted < r->ntris; n--) {
         int i = r->counted;
@@ -174,14 +232,18 @@ bool replay_count(struct replay *r, int n)
         r->start[i + 1] = r->total;
         trace_counters_add(&r->sums[i + 1], &r->sums[i], &tr.c);
         r->counted = i + 1;
-        /* one near the end too: End is a step often taken */
-        bool end = r->counted == replay_end_checkpoint(r->ntris);
-        if (r->keep_pictures && r->counted < r->ntris
-            && (r->total - r->check_last >= r->check_gap || end) && !take_checkpoint(r, end))
+        /* one near the end too, and none after it: End is a step often
+         * taken, and steps back from it use what its redraw overwrote */
+        int end = replay_end_checkpoint(r->ntris);
+        if (r->keep_pictures && r->counted <= end
+            && (r->total - r->check_last >= r->check_gap || r->counted == end)
+            && !take_checkpoint(r, r->counted == end))
             return false;
     }
-    if (r->counted == r->ntris)
+    if (r->counted == r->ntris) {
         target_free(&r->counting);  /* every step is known: its picture is not needed */
+        target_free(&r->check_then);
+    }
     return true;
 }
 
@@ -371,6 +433,31 @@ static void undo_last(struct replay *r)
 /* Events worth redrawing rather than copying a whole picture. */
 #define REDRAW_RATHER_THAN_COPY ((uint64_t)1 << 17)
 
+/* Bring base to checkpoint j: from the last whole one at or before it, or
+ * from base itself when it is at a checkpoint since then, the patches up
+ * to j applied in turn. */
+static bool restore_checkpoint(struct replay *r, int j)
+{
+    size_t n = (size_t)r->scene->w * (size_t)r->scene->h;
+    int from = j;
+    while (from > 0 && !patch_is_whole(&r->checks[from].p, n))
+        from--;                 /* checks[0] is whole */
+    int at = -1;
+    for (int k = from; r->base.color && k <= j; k++)
+        if (r->checks[k].upto == r->base_upto)
+            at = k;
+    if (at >= 0) {
+        from = at + 1;
+    } else if (!r->base.color && !blank_picture(r, &r->base)) {
+        return false;
+    }
+    for (int k = from; k <= j; k++)
+        patch_apply(&r->checks[k].p, &r->base);
+    r->base_upto = r->checks[j].upto;
+    undo_clear(r);
+    return true;
+}
+
 /* Bring the cached base picture to "triangles [0, upto) drawn", from
  * itself, the nearest checkpoint before upto, or the background. */
 static bool advance_base(struct replay *r, int upto)
@@ -378,28 +465,30 @@ static bool advance_base(struct replay *r, int upto)
     if (r->base.color && upto < r->base_upto && r->base_upto - upto <= r->nundo)
         while (r->base_upto > upto)
             undo_last(r);
-    const struct replay_checkpoint *from = NULL;
+    int from = -1;
     for (int k = 0; k < r->nchecks && r->checks[k].upto <= upto; k++)
-        from = &r->checks[k];
+        from = k;
     bool base_ok = r->base.color && r->base_upto <= upto;
-    if (from && (!base_ok || (r->base_upto < from->upto
-                              && r->start[from->upto] - r->start[r->base_upto] > REDRAW_RATHER_THAN_COPY))) {
-        if (!target_copy(&r->base, &from->t))
+    if (from >= 0 && (!base_ok || (r->base_upto < r->checks[from].upto
+                                   && r->start[r->checks[from].upto] - r->start[r->base_upto]
+                                          > REDRAW_RATHER_THAN_COPY))) {
+        if (!restore_checkpoint(r, from))
             return false;
-        r->base_upto = from->upto;
-        undo_clear(r);
     } else if (!base_ok) {
-        target_free(&r->base);
-        if (!target_init(&r->base, r->scene->w, r->scene->h, scene_background(r->scene))
-            || !target_multisample(&r->base, r->params.samples))
+        if (r->base.color)
+            target_clear(&r->base);     /* its memory again: no fresh pages to fault in */
+        else if (!blank_picture(r, &r->base))
             return false;
         r->base_upto = 0;
         undo_clear(r);
     }
+    if (upto - r->base_upto > REPLAY_UNDO_TRIANGLES)
+        undo_clear(r);          /* the records start again near upto */
     for (; r->base_upto < upto; r->base_upto++) {
         struct tri_setup t;
         replay_setup(r, r->base_upto, &t);
-        undo_save(r, &t);
+        if (upto - r->base_upto <= REPLAY_UNDO_TRIANGLES)
+            undo_save(r, &t);
         struct raster_params p = replay_params(r, r->base_upto);
         r->variant->rasterize(&t, &p, &r->base, NULL);
     }

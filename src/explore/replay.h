@@ -19,12 +19,17 @@
 #include <stdint.h>
 
 #include "lesson.h"
+#include "explore/patch.h"
 
 /* The picture of the scene with triangles [0, upto) drawn, kept so that a
- * step far back needs only the triangles since the nearest one. */
+ * step far back needs only the triangles since the nearest one: the
+ * pixels that changed since the checkpoint before (a patch), or the whole
+ * picture (the first one, and one whenever the patches since the last
+ * whole one would outweigh a picture). A picture is a whole checkpoint and
+ * the patches after it applied in turn. */
 struct replay_checkpoint {
     int upto;
-    struct target t;
+    struct patch p;
 };
 
 struct replay {
@@ -44,13 +49,15 @@ struct replay {
 
     /* checkpoints, taken while counting (replay_keep_pictures) every
      * check_gap events, at most check_bytes of them; when they would exceed
-     * it, the one whose removal leaves the smallest gap goes, and the gap
-     * grows to that */
+     * it, the one whose removal leaves the smallest gap goes (merged into
+     * the one after it), and the gap grows to that */
     bool keep_pictures;
     struct replay_checkpoint *checks;
     int nchecks, checks_cap;
     uint64_t check_gap, check_last;     /* events apart; step of the last one */
     size_t check_bytes;                 /* REPLAY_CHECKPOINT_BYTES (a test may lower it) */
+    size_t check_used;                  /* bytes the checkpoints hold */
+    struct target check_then;           /* while counting: the picture at the last checkpoint */
 
     /* what the last triangles drawn into base overwrote (their boxes), for
      * stepping back a triangle without a redraw: records of triangles
@@ -67,11 +74,17 @@ struct replay_undo {
 };
 
 #define REPLAY_UNDO_BYTES ((size_t)32 << 20)
+/* ... and only for this many triangles before the one a redraw stops at:
+ * a jump redraws thousands since a checkpoint, and steps back start from
+ * where it landed (saving every box would cost a fifth of the jump). */
+#define REPLAY_UNDO_TRIANGLES 1024
 
 /* Checkpoints: at most this much memory, and this many events apart when
- * it allows (about 25 ms of redrawing a scene of small triangles). */
+ * it allows (about 6,500 small triangles, 5 ms of redrawing). Kept as
+ * patches, they cost about twice the pixels a scene writes, whatever the
+ * gap: 2,000,000 triangles at 1920 x 1080 fit 300 of them in 520 MB. */
 #define REPLAY_CHECKPOINT_BYTES ((size_t)640 << 20)
-#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 20)
+#define REPLAY_CHECKPOINT_EVENTS ((uint64_t)1 << 18)
 /* One more checkpoint this many triangles before the end (an eighth of a
  * small scene): End redraws them and keeps what they overwrote, so that
  * steps back from the end are quick too. */
