@@ -224,7 +224,7 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/t
 	@$(MAKE) --no-print-directory aarch64 simde-test
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
-	$(B)/tristep-bench --out $(B) --markdown BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+	$(B)/tristep-bench --out $(B) --markdown tests/bench/BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
 MINUTES  ?= 10
 soak: deps-test
 	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak

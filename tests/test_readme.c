@@ -1,6 +1,7 @@
 /* test_readme.c - the README's lesson catalogue lists exactly the lessons
  * that exist, each with its program name and title. */
 #include <criterion/criterion.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,4 +72,28 @@ Test(readme, every_picture_it_shows_exists)
         pictures++;
     }
     cr_expect_gt(pictures, 0, "README.md shows no picture");
+}
+
+/* The top level is the design card's: the four folders, the Makefile and
+ * the README, beside .ci, .gitignore and LICENSE; anything else (a table,
+ * a folder of models) belongs inside one of the folders. Read from what
+ * git tracks, so that a build folder does not count. */
+Test(readme, the_top_level_is_the_design_cards)
+{
+    static const char *const allowed[] = { ".ci", ".gitignore", "LICENSE", "Makefile", "README.md",
+                                           "figures", "lessons", "src", "tests" };
+    FILE *p = popen("git ls-files 2>/dev/null | cut -d/ -f1 | sort -u", "r");
+    cr_assert_not_null(p);
+    char name[256];
+    int seen = 0;
+    while (fgets(name, sizeof name, p)) {
+        name[strcspn(name, "\n")] = '\0';
+        bool ok = false;
+        for (size_t i = 0; i < sizeof allowed / sizeof allowed[0]; i++)
+            ok = ok || strcmp(name, allowed[i]) == 0;
+        cr_expect(ok, "the top level holds %s, which is not on the design card", name);
+        seen++;
+    }
+    pclose(p);
+    cr_assert_geq(seen, 6, "git ls-files listed %d top-level entries: not a git checkout?", seen);
 }

@@ -319,7 +319,7 @@ Test(scene3, the_shipped_models_are_what_the_code_makes)
         char *text, path[64];
         size_t len;
         cr_assert(builtin_model(names[i], &text, &len));
-        snprintf(path, sizeof path, "models/%s", names[i]);
+        snprintf(path, sizeof path, "src/scene/models/%s", names[i]);
         FILE *f = fopen(path, "rb");
         cr_assert_not_null(f, "%s is missing (run the tests from the repository)", path);
         char *file = malloc(len + 2);

@@ -877,8 +877,8 @@ static const char *const speed_units[] = {
  * which only `make bench` writes. */
 Test(texts, every_speed_a_text_quotes_is_the_benchs)
 {
-    cr_assert(exists("BENCH.md"), "BENCH.md is missing: run make bench");
-    const char *orig = test_read_text("BENCH.md");
+    cr_assert(exists("tests/bench/BENCH.md"), "BENCH.md is missing: run make bench");
+    const char *orig = test_read_text("tests/bench/BENCH.md");
     char *bench = malloc(strlen(orig) + 1);
     cr_assert_not_null(bench);
     strcpy(bench, orig);

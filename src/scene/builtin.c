@@ -281,8 +281,8 @@ const struct builtin_scene builtin_scenes[] = {
         "tri3 8 0 -200 .85 .8 .7  10000 0 -200 .85 .8 .7  10000 0 -10000 .85 .8 .7\n"
         "tri3 8 0 -200 .85 .8 .7  10000 0 -10000 .85 .8 .7  8 0 -10000 .85 .8 .7\n"
     },
-    { "model", "3-D: the torus of models/torus.obj (576 triangles), back faces culled",
-        "# the built-in OBJ model (models/torus.obj, made for tristep), back faces culled\n"
+    { "model", "3-D: the torus of src/scene/models/torus.obj (576 triangles), back faces culled",
+        "# the built-in OBJ model (src/scene/models/torus.obj, made for tristep), back faces culled\n"
         "size 64 48\n"
         "background 0.08 0.08 0.1\n"
         "camera  2.2 1.8 2.6   0 -0.1 0   0 1 0   45  0.5 20\n"
@@ -313,8 +313,8 @@ const struct builtin_scene builtin_scenes[] = {
         "tri3 -500 0 5 1 1 1 0 31.5625   500 0 5 1 1 1 62.5 31.5625   500 0 -500 1 1 1 62.5 0\n"
         "tri3 -500 0 5 1 1 1 0 31.5625   500 0 -500 1 1 1 62.5 0   -500 0 -500 1 1 1 0 0\n"
     },
-    { "texture-model", "3-D: the torus of models/torus.obj under bricks, its own vt (lesson 09)",
-        "# the built-in torus (models/torus.obj) with the texture coordinates of its\n"
+    { "texture-model", "3-D: the torus of src/scene/models/torus.obj under bricks, its own vt (lesson 09)",
+        "# the built-in torus (src/scene/models/torus.obj) with the texture coordinates of its\n"
         "# vt lines: the bricks once around the ring and once around the tube\n"
         "size 96 72\n"
         "background 0.08 0.08 0.1\n"
@@ -338,7 +338,7 @@ const struct builtin_scene builtin_scenes[] = {
         "tri3 1 0 1 0.35 0.33 0.3   -20 0 -200 0.3 0.3 0.3   1 0 -200 0.3 0.3 0.3\n"
     },
     { "texture-tiny", "3-D: 1,536 triangles of 8 pixels under a grid texture (lesson 09)",
-        "# the built-in sheet (models/sheet.obj): 32 x 24 squares, two triangles\n"
+        "# the built-in sheet (src/scene/models/sheet.obj): 32 x 24 squares, two triangles\n"
         "# each, seen head on so that a square is 4 x 4 pixels. Every 2 x 2 quad\n"
         "# that a triangle touches is shaded whole: helper pixels abound\n"
         "size 128 96\n"
