@@ -18,6 +18,8 @@
  *                                         it, every pixel inside a mesh
  *                                         holding exactly N
  */
+#include <string.h>
+
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 
@@ -148,6 +150,39 @@ static void write_samples(const struct tri_setup *t, const struct edges *e, cons
 
 /* --- the pixel loop --------------------------------------------------------------- */
 
+/* A pixel's samples as they were before a write: the step narrates what the
+ * write changed, and a step past the one the explorer shows (a frozen
+ * trace) puts them back. */
+struct pixel_keep {
+    uint32_t c[SAMPLES_MAX], colour;
+    float z[SAMPLES_MAX], depth;
+    uint8_t count;
+};
+
+static struct pixel_keep keep_pixel(struct target *fb, size_t i, int n)
+{
+    struct pixel_keep k = { .colour = fb->color[i], .depth = fb->depth[i],
+                            .count = fb->count ? fb->count[i] : 0 };
+    memcpy(k.c, sample_colour(fb, i, n), (size_t)n * sizeof k.c[0]);
+    memcpy(k.z, sample_depth(fb, i, n), (size_t)n * sizeof k.z[0]);
+    return k;
+}
+
+static bool any_sample_passed(const struct pixel_keep *k, struct target *fb, size_t i, int n)
+{
+    return memcmp(k->z, sample_depth(fb, i, n), (size_t)n * sizeof k->z[0]) != 0;
+}
+
+static void put_back(const struct pixel_keep *k, struct target *fb, size_t i, int n)
+{
+    memcpy(sample_colour(fb, i, n), k->c, (size_t)n * sizeof k->c[0]);
+    memcpy(sample_depth(fb, i, n), k->z, (size_t)n * sizeof k->z[0]);
+    fb->color[i] = k->colour;
+    fb->depth[i] = k->depth;
+    if (fb->count)
+        fb->count[i] = k->count;
+}
+
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr)
 {
@@ -185,12 +220,16 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
                 continue;
             uint32_t colour = centre_colour(t, p, tr, F);
             size_t i = (size_t)y * (size_t)fb->w + (size_t)x;
-            NARRATE(tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y, .rgba = colour,
-                    .mask = { (uint16_t)mask },
-                    .aux = { (float)n, (float)__builtin_popcount(mask), (float)mask, 0 });
-            if (NARRATING && tr && tr->frozen)
-                continue;
+            struct pixel_keep keep = keep_pixel(fb, i, n);
             write_samples(t, &e, &pt, fb, x, y, mask, colour);
             resolve(fb, i, n);
+            /* the step says what the write did: the nearest sample's depth,
+             * and whether any sample passed its depth test */
+            NARRATE(tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y, .rgba = colour,
+                    .z = fb->depth[i], .flags = any_sample_passed(&keep, fb, i, n) ? TRACE_DEPTH_PASS : 0,
+                    .mask = { (uint16_t)mask },
+                    .aux = { (float)n, (float)__builtin_popcount(mask), (float)mask, 0 });
+            if (trace_frozen(tr))
+                put_back(&keep, fb, i, n);     /* a step past the one shown */
         }
 }
