@@ -130,24 +130,34 @@ static bool student_clip(struct poly *out, const struct poly *in, const struct p
     return true;
 }
 
-/* Lesson 06's pipeline (front_triangle in src/front/front.c) with the
+/* The world triangle being drawn, and its frustum's near plane, for the
+ * clip stage below. */
+static int current_tri;
+static double current_near;
+
+/* The clip stage of lesson 06's pipeline done by the student's clipper:
+ * what it leaves behind near is drawn, not divided by d <= 0. */
+static void student_stage(struct poly *out, const struct poly *in, const struct plane *pl,
+                          struct trace *tr)
+{
+    (void)tr;
+    if (!student_clip(out, in, pl, current_tri)) {
+        out->n = 0;
+        return;
+    }
+    for (int k = 0; k < out->n; k++)
+        out->v[k].pos[2] = fmax(fabs(out->v[k].pos[2]), current_near);
+}
+
+/* Lesson 06's pipeline, front_pipeline() in src/front/front.c, with the
  * student's clipper for near and far. */
 static int clip_pipeline(const struct frustum *v, enum cull cull, const struct world_tri *t,
                          struct vertex out[][3])
 {
-    struct poly p = { .n = 3 }, q;
-    for (int k = 0; k < 3; k++)
-        p.v[k] = view_vertex(v, t->p[k], t->rgb[k]);
-    struct plane near = depth_plane(v, PLANE_NEAR), far = depth_plane(v, PLANE_FAR);
-    int tri = (int)(t - world_base);
-    if (!student_clip(&q, &p, &near, tri) || !student_clip(&p, &q, &far, tri))
-        return 0;
-    for (int k = 0; k < p.n; k++)       /* what is left behind near: drawn, not divided by d <= 0 */
-        p.v[k].pos[2] = fmax(fabs(p.v[k].pos[2]), v->near);
-    project(v, &p);
-    if (!in_guard_band(&p))
-        clip_guard_band(&p, NULL);
-    return fan(&p, cull, out, NULL);
+    static const struct front_way way = { .clip = student_stage };
+    current_tri = (int)(t - world_base);
+    current_near = v->near;
+    return front_pipeline(v, cull, t, &way, NULL, out);
 }
 
 bool exercise_front(struct scene *s)
