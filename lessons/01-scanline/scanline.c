@@ -377,8 +377,8 @@ static void fill_float(const struct tri_setup *t, const struct raster_params *p,
                        const struct seg *g, const struct seg *d, const struct gradient *grad)
 {
     int y = (int)floorf(Ya);
-    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_ROWS, .x = (int32_t)floorf(g->Xa), .y = y,
-            .x1 = (int32_t)floorf(d->Xa), .y1 = y);
+    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_ROWS, .x = (int32_t)floorf(g->Xa),
+            .y = y, .x1 = (int32_t)floorf(d->Xa), .y1 = y);
     if (y < 0 || y >= t->target_h || !(g->Xa < d->Xa))
         return;
     float x = g->Xa;

@@ -245,13 +245,14 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
             COUNT(tr, 3, EDGE_VALUE_COST);
         }
         struct attrs P = attributes_restart(&at, F01, F02, F03, tr);
-        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_LOOP_Y, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
-                .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
+        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_LOOP_Y, .x = t->minx, .y = y,
+                .x1 = t->maxx, .y1 = y, .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
 
         for (int x = t->minx; x <= t->maxx; x++) {
             bool inside = Cx01 >= 0 && Cx02 >= 0 && Cx03 >= 0;
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .span = L_TEST - L_LOOP_X, .x = x, .y = y,
-                    .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 }, .flags = inside ? TRACE_INSIDE : 0,
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .span = L_TEST - L_LOOP_X, .x = x,
+                    .y = y, .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 },
+                    .flags = inside ? TRACE_INSIDE : 0,
                     .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t });
             if (inside)
                 PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
