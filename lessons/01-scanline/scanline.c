@@ -255,7 +255,8 @@ static void fill(const struct tri_setup *t, const struct raster_params *p, struc
     COUNT(tr, 1, PRESTEP_COST);
     COUNT(tr, ATTR_COUNT, PRESTEP_ATTR_COST);
 
-    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)x0, .y = y, .x1 = (int32_t)x1, .y1 = y);
+    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_ROWS, .x = (int32_t)x0, .y = y,
+            .x1 = (int32_t)x1, .y1 = y);
     if (x0 > x1)
         return;
     NARRATE(tr, .kind = TRACE_SPAN, .line = L_PRESTEP, .x = (int32_t)x0, .y = y, .x1 = (int32_t)x1, .y1 = y);
@@ -279,8 +280,10 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
     struct corners k;
     corners_of(&k, t, p);
     COUNT(tr, 3, POINT_OF_COST);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_CASE, .flags = k.case_a);
     struct gradient g = gradient_of(t, &k.p1, &k.p2, &k.p3);
     COUNT(tr, ATTR_COUNT, GRADIENT_COST);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_GRAD);
 
     /* rows [first, middle) use the upper short edge, [middle, end) the lower */
     int64_t first = row_at(k.p1.y), middle = row_at(k.mid->y), end = row_at(k.bottom->y);
@@ -295,6 +298,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
     edge_start(&long_edge, &k.p1, k.bottom, first);
     COUNT(tr, 1, EDGE_START_COST);
     COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_EDGES, .x = (int32_t)long_edge.x, .y = (int32_t)first);
 
     for (int half = 0; half < 2; half++) {
         int64_t from = half == 0 ? first : (middle > first ? middle : first);
@@ -308,6 +312,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             edge_start(&short_edge, k.mid, k.bottom, from);
         COUNT(tr, 1, EDGE_START_COST);
         COUNT(tr, ATTR_COUNT, EDGE_START_ATTR_COST);
+        NARRATE(tr, .kind = TRACE_STEP, .line = L_EDGES, .x = (int32_t)short_edge.x, .y = (int32_t)from);
         struct edge *left = k.case_a ? &short_edge : &long_edge;
         struct edge *right = k.case_a ? &long_edge : &short_edge;
 
@@ -317,6 +322,8 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
             edge_step(right);
             COUNT(tr, 2, EDGE_WALK_STEP_COST);
             COUNT(tr, 2 * ATTR_COUNT, PLANE_STEP_COST);
+            NARRATE(tr, .kind = TRACE_STEP, .line = L_STEP, .x = (int32_t)left->x, .y = (int32_t)row + 1,
+                    .x1 = (int32_t)right->x - 1, .y1 = (int32_t)row + 1);
         }
     }
 }
@@ -370,8 +377,8 @@ static void fill_float(const struct tri_setup *t, const struct raster_params *p,
                        const struct seg *g, const struct seg *d, const struct gradient *grad)
 {
     int y = (int)floorf(Ya);
-    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = (int32_t)floorf(g->Xa), .y = y,
-            .x1 = (int32_t)floorf(d->Xa), .y1 = y);
+    NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_ROWS, .x = (int32_t)floorf(g->Xa),
+            .y = y, .x1 = (int32_t)floorf(d->Xa), .y1 = y);
     if (y < 0 || y >= t->target_h || !(g->Xa < d->Xa))
         return;
     float x = g->Xa;
@@ -397,19 +404,24 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
 
     struct corners k;
     corners_of(&k, t, p);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_CASE, .flags = k.case_a);
     struct gradient grad = gradient_of(t, &k.p1, &k.p2, &k.p3);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_GRAD);
 
     float y = (float)k.p1.y / SUBPIXEL_ONE;     /* a.Ya: the top vertex's height */
     struct seg long_edge = calc_seg_incr(&k.p1, k.bottom);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_EDGES);
     for (int half = 0; half < 2; half++) {
         struct seg short_edge = half == 0 ? calc_seg_incr(&k.p1, k.mid)
                                           : calc_seg_incr(k.mid, k.bottom);
+        NARRATE(tr, .kind = TRACE_STEP, .line = L_EDGES);
         struct seg *g = k.case_a ? &short_edge : &long_edge;   /* left ("gauche") */
         struct seg *d = k.case_a ? &long_edge : &short_edge;   /* right ("droite") */
         for (int n = 0; n < short_edge.len; n++, y++) {
             fill_float(t, p, fb, tr, y, g, d, &grad);
             seg_step(g);
             seg_step(d);
+            NARRATE(tr, .kind = TRACE_STEP, .line = L_STEP);
         }
     }
 }

@@ -70,7 +70,7 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
                            struct target *fb, struct trace *tr, enum fill_rule rule)
 {
     const struct vertex *a = &t->v[0], *b = &t->v[1], *c = &t->v[2];
-    NARRATE_SETUP(tr, t, L_SETUP);
+    NARRATE_SETUP(tr, t, TRACE_LINES(L_SETUP, L_BOX));     /* the box comes with the setup */
     if (t->empty)
         return;
     double inv_area2 = 1.0 / (double)t->area2;
@@ -87,7 +87,7 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
             bool in = inside(t, F, rule);
             COUNT(tr, 3, EDGE_VALUE_COST);
             COUNT(tr, 3, FILL_RULE_COST);
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .span = L_TEST - L_EDGES, .x = x, .y = y,
                     .e = { F[0], F[1], F[2] }, .flags = in ? TRACE_INSIDE : 0);
             if (!in)
                 continue;
@@ -104,7 +104,7 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
                 alpha * a->s + beta * b->s + gamma * c->s,
                 alpha * a->t + beta * b->t + gamma * c->t);
             COUNT(tr, 6, INTERPOLATE_COST);     /* z, r, g, b, s, t */
-            PLOT(fb, tr, L_DRAW, x, y, (float)z, color);
+            PLOT(fb, tr, TRACE_LINES(L_BARY, L_DRAW), x, y, (float)z, color);
         }
     }
 }

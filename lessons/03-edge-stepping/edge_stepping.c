@@ -50,16 +50,15 @@ static const char *const pseudocode[] = {
     "Cy0k = F0k",                                               /* 3 */
     "loop y = minY to maxY:",                                   /* 4 */
     "  Cx0k = Cy0k;  u, v, w = Cx02, Cx03, Cx01 / area2  (13)-(15)", /* 5 */
-    "  loop x = minX to maxX:",                                 /* 6 */
+    "  loop x = minX..maxX, Cx0k, colour, z += d/dx  (9):",     /* 6 */
     "    if Cx01 >= 0 and Cx02 >= 0 and Cx03 >= 0:",            /* 7 */
     "      Render(x, y) with colour, z",                        /* 8 */
-    "    Cx0k += 256 I0k;  colour, z += d/dx   (9)",            /* 9 */
-    "  Cy0k += 256 J0k   (10)",                                 /* 10 */
+    "  Cy0k += 256 J0k   (10)",                                 /* 9 */
     NULL,
 };
 
 enum { L_SETUP, L_BIAS, L_FIRST, L_CY, L_LOOP_Y, L_ROW, L_LOOP_X, L_TEST, L_RENDER,
-       L_STEP_X, L_STEP_Y };
+       L_STEP_Y };
 
 /* The watch panel's values: what is being stepped besides the edge values
  * (colours scaled to 0..255 and s, t by the checker's N: see attrs_of). */
@@ -210,6 +209,7 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
     const int64_t K02 = t->K[EDGE_BC] + b02;
     const int64_t K03 = t->K[EDGE_CA] + b03;
     COUNT(tr, 3, FILL_RULE_COST);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_BIAS);
 
     /* Steps of one pixel, in 1/256 units: (9) and (10) times 256. */
     const int64_t dx01 = I01 * SUBPIXEL_ONE, dy01 = J01 * SUBPIXEL_ONE;
@@ -223,6 +223,8 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
     int64_t Cy02 = held(I02 * X + J02 * Y + K02, h);
     int64_t Cy03 = held(I03 * X + J03 * Y + K03, h);
     COUNT(tr, 3, EDGE_VALUE_COST);
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_CY, .span = L_CY - L_FIRST, .x = t->minx, .y = t->miny,
+            .e = { Cy01 - b01, Cy02 - b02, Cy03 - b03 });
 
     struct attributes at;
     attributes_setup(&at, t, p, tr);
@@ -243,13 +245,14 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
             COUNT(tr, 3, EDGE_VALUE_COST);
         }
         struct attrs P = attributes_restart(&at, F01, F02, F03, tr);
-        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y,
-                .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
+        NARRATE(tr, .kind = TRACE_ROW, .line = L_ROW, .span = L_ROW - L_LOOP_Y, .x = t->minx, .y = y,
+                .x1 = t->maxx, .y1 = y, .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 });
 
         for (int x = t->minx; x <= t->maxx; x++) {
             bool inside = Cx01 >= 0 && Cx02 >= 0 && Cx03 >= 0;
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
-                    .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 }, .flags = inside ? TRACE_INSIDE : 0,
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .span = L_TEST - L_LOOP_X, .x = x,
+                    .y = y, .e = { Cx01 - b01, Cx02 - b02, Cx03 - b03 },
+                    .flags = inside ? TRACE_INSIDE : 0,
                     .aux = { (float)P.z, (float)P.r, (float)P.g, (float)P.b, (float)P.s, (float)P.t });
             if (inside)
                 PLOT(fb, tr, L_RENDER, x, y, (float)P.z, attrs_colour(P, p, tr));
@@ -265,6 +268,8 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
         Cy02 = held(Cy02 + dy02, h);
         Cy03 = held(Cy03 + dy03, h);
         COUNT(tr, 3, EDGE_STEP_COST);
+        NARRATE(tr, .kind = TRACE_STEP, .line = L_STEP_Y, .x = t->minx, .y = y + 1,
+                .e = { Cy01 - b01, Cy02 - b02, Cy03 - b03 });
     }
 }
 

@@ -23,7 +23,7 @@
 
 /* Lines of lesson 03's pseudo-code, which the explorer lights (edge_stepping.c). */
 enum { L_SETUP, L_BIAS, L_FIRST, L_CY, L_LOOP_Y, L_ROW, L_LOOP_X, L_TEST, L_RENDER,
-       L_STEP_X, L_STEP_Y };
+       L_STEP_Y };
 
 /* The edges as the loop uses them: k = 0, 1, 2 are the seed's F01 (AB),
  * F02 (BC), F03 (CA). */

@@ -24,7 +24,7 @@
 
 /* Lines of lesson 04's pseudo-code, which the explorer lights. */
 enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ZTEST, L_ATTR,
-       L_WRITE, L_STEP_X, L_STEP_Y };
+       L_WRITE, L_STEP_Y };
 
 enum { LANE_INV_Z, LANE_W, LANE_U, LANE_V };
 

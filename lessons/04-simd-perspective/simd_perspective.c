@@ -37,19 +37,18 @@ static const char *const pseudocode[] = {
     "F = (I X + J Y + K) / Area2, X, Y: 1st centre",     /* 2: (1/z, w, u, v) */
     "I = I / Area2;  J = J / Area2;  Cy = F",            /* 3 */
     "loop y = minY to maxY:  Cx = Cy",                   /* 4 */
-    "  loop x = minX to maxX:",                          /* 5 */
+    "  loop x = minX to maxX, Cx += I after each:",      /* 5 */
     "    if F01, F02, F03 inside (exact):",              /* 6: top-left rule */
     "      Depth = 1 / Cx[0]",                           /* 7 */
     "      if Depth < DepthBuffer(x, y):",               /* 8: the nearer wins */
     "        P = (u PA/ZA+v PB/ZB+w PC/ZC)*Depth",       /* 9: (23) */
     "        write Depth, colour of P",                  /* 10 */
-    "    Cx += I",                                       /* 11 */
-    "  Cy += J",                                         /* 12 */
+    "  Cy += J",                                         /* 11 */
     NULL,
 };
 
 enum { L_BOX, L_DEPTH_EDGE, L_F, L_DIVIDE, L_ROW, L_PIXEL, L_TEST, L_DEPTH, L_ZTEST, L_ATTR,
-       L_WRITE, L_STEP_X, L_STEP_Y };
+       L_WRITE, L_STEP_Y };
 
 /* The lanes, in the source's order. */
 enum { LANE_INV_Z, LANE_W, LANE_U, LANE_V };
@@ -91,7 +90,7 @@ struct persp_setup {
  * of one edge unit for vertices inside +-16384 px) is far below what the
  * float lanes keep. */
 static void persp_setup(const struct tri_setup *t, const struct raster_params *p,
-                        struct persp_setup *s)
+                        struct persp_setup *s, struct trace *tr)
 {
     const struct vertex *a = &t->v[0], *b = &t->v[1], *c = &t->v[2];
     double ZA = a->z, ZB = b->z, ZC = c->z;
@@ -100,6 +99,7 @@ static void persp_setup(const struct tri_setup *t, const struct raster_params *p
     double I00 = t->I[EDGE_BC] / ZA + t->I[EDGE_CA] / ZB + t->I[EDGE_AB] / ZC;  /* (19) */
     double J00 = t->J[EDGE_BC] / ZA + t->J[EDGE_CA] / ZB + t->J[EDGE_AB] / ZC;  /* (20) */
     double K00 = t->K[EDGE_BC] / ZA + t->K[EDGE_CA] / ZB + t->K[EDGE_AB] / ZC;  /* (21) */
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_DEPTH_EDGE);
 
     for (int k = 0; k < 3; k++) {
         s->e[k] = edge_value(t, k, t->minx, t->miny);
@@ -118,6 +118,8 @@ static void persp_setup(const struct tri_setup *t, const struct raster_params *p
         s->I[lane] = I[lane] * SUBPIXEL_ONE / A;
         s->J[lane] = J[lane] * SUBPIXEL_ONE / A;
     }
+    NARRATE(tr, .kind = TRACE_STEP, .line = L_DIVIDE, .span = L_DIVIDE - L_F, .x = t->minx, .y = t->miny,
+            .aux = { (float)s->F[0], (float)s->F[1], (float)s->F[2], (float)s->F[3] });
 
     /* (23) divides each vertex's attribute by its Z once, here; the affine
      * exhibit keeps the bare attribute and, below, skips the "* Depth". */
@@ -138,20 +140,17 @@ static void persp_setup(const struct tri_setup *t, const struct raster_params *p
  * (u a_A/Z_A + v a_B/Z_B + w a_C/Z_C) * Depth. */
 #define PERSPECTIVE_COST { .mul = 4, .add = 2 }
 
+/* The last line a pixel's test does: the inside test alone, then the depth
+ * and its test, then (23) for a fragment that shows. */
+static int pixel_line(bool in, bool shows)
+{
+    return !in ? L_TEST : !shows ? L_ZTEST : L_ATTR;
+}
+
 static bool covered(const struct tri_setup *t, const int64_t e[3])
 {
     return edge_inside(t, EDGE_AB, e[0]) && edge_inside(t, EDGE_BC, e[1])
         && edge_inside(t, EDGE_CA, e[2]);
-}
-
-static void narrate_setup(const struct tri_setup *t, const struct persp_setup *s,
-                          struct trace *tr)
-{
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_F, .x = t->minx, .y = t->miny,
-            .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 },
-            .aux = { (float)s->F[0], (float)s->F[1], (float)s->F[2], (float)s->F[3] });
-    (void)t;
-    (void)s;
 }
 
 /* --- the source's layout: one pixel's (1/z, w, u, v) in one register ----------------
@@ -261,12 +260,10 @@ walk_box(const struct tri_setup *t, const struct raster_params *p, struct target
          struct trace *tr, enum twin tw)
 {
     struct persp_setup s;
-    if (t->empty) {
-        NARRATE_SETUP(tr, t, L_BOX);
+    NARRATE_SETUP(tr, t, L_BOX);
+    if (t->empty)
         return;
-    }
-    persp_setup(t, p, &s);
-    narrate_setup(t, &s, tr);
+    persp_setup(t, p, &s, tr);
     union reg I = reg_set(s.I, tw), J = reg_set(s.J, tw), Cy = reg_set(s.F, tw);
     /* each vertex's (r, g, b, s) / Z and (t, 0, 0, 0) / Z: two registers */
     union reg QA[2] = { reg_load(s.Q[0], tw), reg_load(s.Q[0] + 4, tw) };
@@ -298,7 +295,8 @@ walk_box(const struct tri_setup *t, const struct raster_params *p, struct target
             }
             if (NARRATING)
                 reg_store(lane, Cx, tw);
-            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x, .y = y,
+            NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = pixel_line(in, shows),
+                    .span = pixel_line(in, shows) - L_PIXEL, .x = x, .y = y,
                     .e = { e[0], e[1], e[2] }, .flags = in ? TRACE_INSIDE : 0, .z = depth,
                     .aux = { lane[0], lane[1], lane[2], lane[3], attr[ATTR_S], attr[ATTR_T] });
             /* a hidden fragment is still counted (PLOT), its colour never written */
@@ -317,6 +315,7 @@ walk_box(const struct tri_setup *t, const struct raster_params *p, struct target
             ey[k] += s.ey[k];
         COUNT(tr, 4, PLANE_STEP_COST);
         COUNT(tr, 3, EDGE_STEP_COST);
+        NARRATE(tr, .kind = TRACE_STEP, .line = L_STEP_Y, .x = t->minx, .y = y + 1);
     }
 }
 
@@ -347,12 +346,10 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                                struct target *fb, struct trace *tr)
 {
     struct persp_setup s;
-    if (t->empty) {
-        NARRATE_SETUP(tr, t, L_BOX);
+    NARRATE_SETUP(tr, t, L_BOX);
+    if (t->empty)
         return;
-    }
-    persp_setup(t, p, &s);
-    narrate_setup(t, &s, tr);
+    persp_setup(t, p, &s, tr);
 
     /* quantity q at pixels minX .. minX+3 of row minY: F + (0, 1, 2, 3) * I */
     __m128 Cy[4], I4[4], J[4];
@@ -431,7 +428,8 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
             }
             for (int i = 0; i < valid; i++) {
                 bool in = inside >> i & 1;
-                NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = L_TEST, .x = x + i, .y = y,
+                NARRATE(tr, .kind = TRACE_PIXEL_TEST, .line = pixel_line(in, shows >> i & 1),
+                        .span = pixel_line(in, shows >> i & 1) - L_PIXEL, .x = x + i, .y = y,
                         .e = { e[0][i], e[1][i], e[2][i] }, .flags = in ? TRACE_INSIDE : 0,
                         .z = depth[i],
                         .aux = { lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i],
@@ -461,6 +459,7 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
         }
         COUNT(tr, 4 * 4, PLANE_STEP_COST);
         COUNT(tr, 4 * 3, EDGE_STEP_COST);
+        NARRATE(tr, .kind = TRACE_STEP, .line = L_STEP_Y, .x = t->minx, .y = y + 1);
     }
 }
 

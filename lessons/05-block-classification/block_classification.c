@@ -197,7 +197,7 @@ static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
                 COUNT(r->tr, 4 * QUAD_PLANES, PLANE_STEP_COST);
             }
             bool in = cx[0] >= 0 && cx[1] >= 0 && cx[2] >= 0;
-            NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_PIXEL, .x = x, .y = y,
+            NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_PIXEL, .span = L_PIXEL - L_STEP, .x = x, .y = y,
                     .e = { cx[0] - e->bias[0], cx[1] - e->bias[1], cx[2] - e->bias[2] },
                     .flags = in ? TRACE_INSIDE : 0);
             if (in) {
@@ -283,7 +283,8 @@ static enum block_class block(struct run *r, enum block_rule rule, int x0, int y
     unsigned m[3];
     corner_masks(r, x0, y0, x1, y1, m);
     enum block_class klass = classify(m, rule);
-    NARRATE(r->tr, .kind = TRACE_BLOCK, .line = klass == BLOCK_EMPTY ? L_EMPTY : klass == BLOCK_FULL ? L_FULL : L_PARTIAL,
+    int line = klass == BLOCK_EMPTY ? L_EMPTY : klass == BLOCK_FULL ? L_FULL : L_PARTIAL;
+    NARRATE(r->tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_LOOP),
             .x = x0, .y = y0,
             .x1 = x1, .y1 = y1, .klass = (uint8_t)klass,
             .mask = { (uint16_t)m[0], (uint16_t)m[1], (uint16_t)m[2] },
@@ -335,7 +336,7 @@ struct block_options {
 static void rasterize_blocks(const struct tri_setup *t, const struct raster_params *p,
                              struct target *fb, struct trace *tr, struct block_options o)
 {
-    NARRATE_SETUP(tr, t, L_BOX);
+    NARRATE_SETUP(tr, t, TRACE_LINES(L_SETUP, L_BOX));  /* the edges and their box */
     if (t->empty)
         return;
     int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;

@@ -118,9 +118,7 @@ static void pattern_setup(struct pattern *pt, const struct sample_pattern *sp)
  * three edges, a plain sign test. O_sk = I0k dx_s + J0k dy_s is sample s's
  * offset on edge k: the same in every pixel, computed once per triangle. */
 struct edges {
-    int64_t f0[3];                  /* F0k + bias_k at the centre of pixel (0, 0) */
-    int64_t dx[3], dy[3];           /* one pixel right: 256 I0k, one row down: 256 J0k */
-    int64_t bias[3];                /* to narrate F0k itself */
+    struct biased_edges b;          /* F0k + bias_k at the pixel centres (lesson 05's) */
     int64_t off[SAMPLES_MAX][3];    /* O_sk */
     int64_t ext0[3];                /* the extent's top-left corner from the centre */
     int64_t ext_w[3], ext_h[3];     /* the extent's width and height, on edge k */
@@ -129,23 +127,14 @@ struct edges {
 static void edges_setup(struct edges *e, const struct tri_setup *t, const struct pattern *pt,
                         bool fill_rule)
 {
+    biased_edges_setup(&e->b, t, fill_rule);
     for (int k = 0; k < 3; k++) {
-        e->bias[k] = fill_rule ? t->bias[k] : 0;
-        e->dx[k] = t->I[k] * SUBPIXEL_ONE;
-        e->dy[k] = t->J[k] * SUBPIXEL_ONE;
-        e->f0[k] = edge_value(t, k, 0, 0) + e->bias[k];
         for (int s = 0; s < pt->n; s++)
             e->off[s][k] = t->I[k] * pt->dx[s] + t->J[k] * pt->dy[s];
         e->ext0[k] = t->I[k] * pt->lo_x + t->J[k] * pt->lo_y;
         e->ext_w[k] = t->I[k] * (pt->hi_x - pt->lo_x);
         e->ext_h[k] = t->J[k] * (pt->hi_y - pt->lo_y);
     }
-}
-
-/* F0k + bias_k at the centre of pixel (x, y): exact. */
-static int64_t edge_at(const struct edges *e, int k, int x, int y)
-{
-    return e->f0[k] + e->dx[k] * x + e->dy[k] * y;
 }
 
 /* --- one triangle's run ------------------------------------------------------- */
@@ -173,12 +162,6 @@ struct run {
     uint32_t *scolor;                   /* the samples: n per pixel, or the pixels */
     float *sdepth;                      /*   themselves when n = 1 */
 };
-
-/* Writes of a step that has not happened must not reach the target. */
-static bool frozen(const struct trace *tr)
-{
-    return NARRATING && tr && tr->frozen;
-}
 
 /* --- the box ------------------------------------------------------------------ */
 
@@ -405,8 +388,9 @@ static void full_block(const struct run *r, int x0, int y0, int x1, int y1)
  * (+256 I0k right, +256 J0k down), each sample one addition away. */
 static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
 {
-    const struct edges *e = &r->e;
-    int64_t cy[3] = { edge_at(e, 0, x0, y0), edge_at(e, 1, x0, y0), edge_at(e, 2, x0, y0) };
+    const struct biased_edges *e = &r->e.b;
+    int64_t cy[3] = { biased_edge_at(e, 0, x0, y0), biased_edge_at(e, 1, x0, y0),
+                      biased_edge_at(e, 2, x0, y0) };
     for (int y = y0; y <= y1; y++) {
         int64_t cx[3] = { cy[0], cy[1], cy[2] };
         for (int x = x0; x <= x1; x++) {
@@ -424,7 +408,7 @@ static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
                         .z = o.nearest, .rgba = o.rgba, .flags = o.passed ? TRACE_DEPTH_PASS : 0,
                         .mask = { (uint16_t)mask },
                         .aux = { (float)r->pt.n, (float)__builtin_popcount(mask), (float)mask, r->grid });
-                if (!frozen(r->tr))
+                if (!trace_frozen(r->tr))
                     store(r, x, y, mask, &o);
             }
             for (int k = 0; k < 3; k++)
@@ -442,11 +426,12 @@ static void partial_block(const struct run *r, int x0, int y0, int x1, int y1)
 static void block(const struct run *r, int x0, int y0, int x1, int y1)
 {
     const struct edges *e = &r->e;
+    const struct biased_edges *b = &e->b;
     unsigned m[3];
     for (int k = 0; k < 3; k++) {
-        int64_t tl = edge_at(e, k, x0, y0) + e->ext0[k];
-        int64_t tr = tl + e->dx[k] * (x1 - x0) + e->ext_w[k];
-        int64_t bl = tl + e->dy[k] * (y1 - y0) + e->ext_h[k];
+        int64_t tl = biased_edge_at(b, k, x0, y0) + e->ext0[k];
+        int64_t tr = tl + b->dx[k] * (x1 - x0) + e->ext_w[k];
+        int64_t bl = tl + b->dy[k] * (y1 - y0) + e->ext_h[k];
         int64_t br = tr + (bl - tl);
         m[k] = (unsigned)(tl >= 0) << 3 | (unsigned)(tr >= 0) << 2
              | (unsigned)(bl >= 0) << 1 | (unsigned)(br >= 0);
@@ -455,14 +440,14 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
     enum block_class klass = m[0] == 0 || m[1] == 0 || m[2] == 0 ? BLOCK_EMPTY
                            : m[0] == 0xF && m[1] == 0xF && m[2] == 0xF ? BLOCK_FULL
                            : BLOCK_PARTIAL;
-    NARRATE(r->tr, .kind = TRACE_BLOCK,
-            .line = klass == BLOCK_EMPTY ? L_EMPTY : klass == BLOCK_FULL ? L_FULL : L_PARTIAL,
+    int line = klass == BLOCK_EMPTY ? L_EMPTY : klass == BLOCK_FULL ? L_FULL : L_PARTIAL;
+    NARRATE(r->tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_LOOP),
             .x = x0, .y = y0, .x1 = x1, .y1 = y1, .klass = (uint8_t)klass,
             .mask = { (uint16_t)m[0], (uint16_t)m[1], (uint16_t)m[2] },
-            .e = { edge_at(e, 0, x0, y0) - e->bias[0], edge_at(e, 1, x0, y0) - e->bias[1],
-                   edge_at(e, 2, x0, y0) - e->bias[2] },
+            .e = { biased_edge_at(b, 0, x0, y0) - b->bias[0], biased_edge_at(b, 1, x0, y0) - b->bias[1],
+                   biased_edge_at(b, 2, x0, y0) - b->bias[2] },
             .aux = { (float)r->pt.n, 0, 0, r->grid });
-    if (klass == BLOCK_FULL && !frozen(r->tr))
+    if (klass == BLOCK_FULL && !trace_frozen(r->tr))
         full_block(r, x0, y0, x1, y1);
     else if (klass == BLOCK_PARTIAL)
         partial_block(r, x0, y0, x1, y1);
@@ -500,8 +485,11 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
 
     int box[4];
     bool any = sample_box(t, &r.pt, box);
-    NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .x = box[0], .y = box[1], .x1 = box[2],
-            .y1 = box[3], .e = { t->area2, 0, 0 }, .aux = { (float)n, 0, 0, o.grid && n > 1 });
+    if (any)                    /* F0k and each sample's offsets O_sk: the setup's line */
+        edges_setup(&r.e, t, &r.pt, o.fill_rule);
+    NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .span = any ? L_BOX - L_SETUP : 0, .x = box[0],
+            .y = box[1], .x1 = box[2], .y1 = box[3], .e = { t->area2, 0, 0 },
+            .aux = { (float)n, 0, 0, o.grid && n > 1 });
     if (!any)
         return;
     r.t = t, r.p = p, r.fb = fb, r.tr = tr;
@@ -510,7 +498,6 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
     if (r.tent)
         tent_setup(&r.taps, &r.pt);
     r.grid = o.grid && n > 1;
-    edges_setup(&r.e, t, &r.pt, o.fill_rule);
     planes_setup(&r.pl, t, p);
     r.nplanes = p->checker > 0 ? PL_COUNT : PL_S;
     for (int s = 0; s < n; s++)
@@ -526,7 +513,7 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
             block(&r, xa, ya, xb, yb);
         }
     }
-    if (r.tent && !frozen(tr))
+    if (r.tent && !trace_frozen(tr))
         tent_resolve(&r, box);
 }
 

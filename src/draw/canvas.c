@@ -309,6 +309,7 @@ static void paint_current(struct painter *p)
                 outline(p, ex->tri.minx, ex->tri.miny, ex->tri.maxx + 1, ex->tri.maxy + 1,
                         p->pal->accent, w);
             break;
+        case TRACE_STEP:
         case TRACE_KIND_COUNT:
             break;
         }

@@ -11,9 +11,17 @@
 #include "views.h"
 
 static const char *const kind_names[TRACE_KIND_COUNT] = {
-    "setup", "row", "span", "block", "pixel test", "pixel write", "front end",
+    "setup", "row", "span", "block", "pixel test", "pixel write", "front end", "step",
 };
 static const char *const class_names[BLOCK_CLASS_COUNT] = { "empty", "full", "partial" };
+
+static int pseudocode_lines(const struct lesson *l)
+{
+    int n = 0;
+    while (l->pseudocode && l->pseudocode[n])
+        n++;
+    return n;
+}
 
 static double heading(struct painter *p, double x, double y, double w, const char *title)
 {
@@ -73,9 +81,11 @@ static double pseudocode(struct painter *p, double x, double y, double w)
     struct explorer *ex = p->ex;
     double y0 = y, lh = 17 * p->s;
     int lit = ex->has_last ? ex->last.line : -1;
+    int from = ex->has_last ? lit - ex->last.span : -1;     /* a step may light a few lines */
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_END);
     for (int i = 0; ex->lesson->pseudocode && ex->lesson->pseudocode[i]; i++) {
-        if (i == lit) {
+        bool on = i >= from && i <= lit;
+        if (on) {
             set_rgb(p->cr, p->pal->hilite);
             cairo_rectangle(p->cr, x - 4 * p->s, y, w + 8 * p->s, lh);
             cairo_fill(p->cr);
@@ -85,7 +95,7 @@ static double pseudocode(struct painter *p, double x, double y, double w)
         }
         char buf[160];
         snprintf(buf, sizeof buf, "%2d %s", i + 1, ex->lesson->pseudocode[i]);
-        draw_text(p, x, y + 1 * p->s, w, buf, 11.5, i == lit ? p->pal->accent : p->pal->text, false);
+        draw_text(p, x, y + 1 * p->s, w, buf, 11.5, on ? p->pal->accent : p->pal->text, false);
         y += lh;
     }
     pango_layout_set_ellipsize(p->layout, PANGO_ELLIPSIZE_NONE);
@@ -151,12 +161,23 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
                  (ev->flags & TRACE_DEPTH_PASS) ? "pass" : "fail");
         at = cat(buf, n, at, "colour #%06x\n", (unsigned)(ev->rgba & 0xffffff));
         break;
+    case TRACE_STEP: {          /* the lit line says what: its words */
+        const char *w = ev->line < pseudocode_lines(ex->lesson) ? ex->lesson->pseudocode[ev->line] : "?";
+        at = cat(buf, n, at, "%s\n", w + strspn(w, " "));
+        for (int k = 0; k < 3 && (ev->e[0] || ev->e[1] || ev->e[2]); k++) {    /* F, if stepped */
+            char v[24];
+            format_edge(v, sizeof v, ev->e[k]);
+            at = cat(buf, n, at, "%s = %lld (%s px\u00b2)\n", edge_names[k], (long long)ev->e[k], v);
+        }
+        break;
+    }
     case TRACE_FRONT:           /* the lesson's watch says what the step did */
     case TRACE_KIND_COUNT:
         break;
     }
     if (ex->lesson->aux_names && (ev->kind == TRACE_PIXEL_TEST || ev->kind == TRACE_ROW
-                                  || ev->kind == TRACE_SPAN || ev->kind == TRACE_BLOCK)) {
+                                  || ev->kind == TRACE_SPAN || ev->kind == TRACE_BLOCK
+                                  || (ev->kind == TRACE_STEP && ev->aux[0] != 0))) {
         for (int k = 0; k < 6 && ex->lesson->aux_names[k]; k++)
             at = cat(buf, n, at, "%s%s %.6g", k ? ", " : "", ex->lesson->aux_names[k], ev->aux[k]);
         if (ex->lesson->aux_names[0])
@@ -179,9 +200,15 @@ static double watch(struct painter *p, double x, double y, double w)
     if (!ex->has_last) {
         at = cat(buf, n, at, "nothing has happened yet: step forward (Right)\n");
     } else {
-        at = cat(buf, n, at, "%s, line %d, triangle %d\n",
-                 ex->last.kind < TRACE_KIND_COUNT ? kind_names[ex->last.kind] : "?",
-                 ex->last.line + 1, replay_unit_tri(&ex->replay, ex->cur) + 1);  /* the scene's */
+        char lines[24];
+        if (ex->last.span)
+            snprintf(lines, sizeof lines, "lines %d-%d", ex->last.line - ex->last.span + 1,
+                     ex->last.line + 1);
+        else
+            snprintf(lines, sizeof lines, "line %d", ex->last.line + 1);
+        at = cat(buf, n, at, "%s, %s, triangle %d\n",
+                 ex->last.kind < TRACE_KIND_COUNT ? kind_names[ex->last.kind] : "?", lines,
+                 replay_unit_tri(&ex->replay, ex->cur) + 1);  /* the scene's */
         at = watch_values(ex, buf, n, at, &ex->last);
     }
     if (ex->pinned) {

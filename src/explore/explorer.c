@@ -91,6 +91,7 @@ static void take_event(void *ctx, const struct trace_event *ev)
         break;
     case TRACE_SETUP:
     case TRACE_FRONT:           /* a step of the 3-D front end: no pixel of the grid */
+    case TRACE_STEP:
     case TRACE_KIND_COUNT:
         break;
     }

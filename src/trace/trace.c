@@ -40,6 +40,7 @@ static void count(struct trace_counters *c, const struct trace_event *ev)
         break;
     case TRACE_SETUP:
     case TRACE_FRONT:
+    case TRACE_STEP:
     case TRACE_KIND_COUNT:
         break;
     }
@@ -69,8 +70,10 @@ void trace_emit(struct trace *tr, struct trace_event *ev)
     }
     ev->tri = tr->tri;
     ev->part = tr->part;
-    if (tr->one_line)
+    if (tr->one_line) {
         ev->line = tr->line;
+        ev->span = 0;
+    }
     ev->index = (uint32_t)index;
     ev->mul = tr->c.mul;
     ev->add = tr->c.add;
@@ -83,7 +86,8 @@ void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
                 float z, uint32_t rgba)
 {
     struct trace_event ev = {
-        .kind = TRACE_PIXEL_WRITE, .line = (uint8_t)line, .x = x, .y = y, .z = z, .rgba = rgba,
+        .kind = TRACE_PIXEL_WRITE, .line = (uint8_t)(line & 0xff), .span = (uint8_t)(line >> 8),
+        .x = x, .y = y, .z = z, .rgba = rgba,
         .flags = target_depth_pass(fb, x, y, z) ? TRACE_DEPTH_PASS : 0,
     };
     trace_emit(tr, &ev);

@@ -42,6 +42,8 @@ enum trace_kind {
                            klass = what (enum front_step), part = the world
                            triangle, (x, y) the pixel of a projected vertex,
                            aux[] its values */
+    TRACE_STEP,         /* a step that touches no pixel: a value set up or
+                           stepped, as the lit line says */
     TRACE_KIND_COUNT
 };
 
@@ -94,6 +96,8 @@ struct trace_event {
     uint8_t line;       /* line of the lesson's pseudo-code, 0-based */
     uint8_t flags;      /* enum trace_flags */
     uint8_t klass;      /* enum block_class, for TRACE_BLOCK */
+    uint8_t span;       /* the step lights lines line - span .. line: a few
+                           lines the code does at once (0: line alone) */
     int32_t x, y;       /* pixel; row start; span start; block origin */
     int32_t x1, y1;     /* span end; block's last pixel (inclusive) */
     int64_t e[3];       /* edge values F01, F02, F03 (1/65536 px^2) */
@@ -132,11 +136,15 @@ void trace_begin(struct trace *tr, uint32_t tri, uint64_t limit);
 /* Deliver one event (or freeze). Lessons use NARRATE, not this. */
 void trace_emit(struct trace *tr, struct trace_event *ev);
 /* Narrated write of one covered pixel: a TRACE_PIXEL_WRITE event, then the
- * write itself unless the trace is frozen. */
+ * write itself unless the trace is frozen. line: a line, or TRACE_LINES(). */
 void trace_plot(struct trace *tr, struct target *fb, int line, int x, int y,
                 float z, uint32_t rgba);
 
 #define TRACE_UNLIMITED UINT64_MAX
+
+/* The line of a PLOT or NARRATE_SETUP that lights the lines first .. last:
+ * a write or a setup that does a few lines of the pseudo-code at once. */
+#define TRACE_LINES(first, last) ((last) | ((last) - (first)) << 8)
 
 #ifdef TRISTEP_NARRATE
 /* Say what happens; the fields are a designated initializer list. */
@@ -178,7 +186,8 @@ static inline bool trace_frozen(const struct trace *tr)
 /* The triangle is set up: its box and twice its area, the first event of
  * every triangle (the explorer draws the box). */
 #define NARRATE_SETUP(tr, t, ln) \
-    NARRATE(tr, .kind = TRACE_SETUP, .line = (ln), .x = (t)->minx, .y = (t)->miny, \
+    NARRATE(tr, .kind = TRACE_SETUP, .line = (uint8_t)((ln) & 0xff), .span = (uint8_t)((ln) >> 8), \
+            .x = (t)->minx, .y = (t)->miny, \
             .x1 = (t)->maxx, .y1 = (t)->maxy, .e = { (t)->area2, 0, 0 })
 
 #endif
