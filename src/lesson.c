@@ -7,8 +7,8 @@
 
 front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v)
 {
-    front_fn f = l->fronts ? l->fronts[v - l->variants] : NULL;
-    return f ? f : front_scene;
+    (void)l;
+    return v->front ? v->front : front_scene;
 }
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name)

@@ -63,14 +63,41 @@ typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_para
 typedef bool (*rasterize_scene_fn)(const struct scene *s, const struct raster_params *p,
                                    struct target *fb);
 
-/* One way of running the lesson: the algorithm itself, a faster twin, or an
- * exhibit that reproduces a slip of the source texts. */
+/* What a variant is, and so how the programs treat it: the explorer's T
+ * key steps through the variants drawn by the exact rule (twins and
+ * alternatives), X through those shown against it; the tests hold the
+ * former to the reference and expect the latter to differ from it. */
+enum variant_kind {
+    VARIANT_ALGORITHM,      /* variants[0]: the lesson's algorithm */
+    VARIANT_TWIN,           /* the same pixels another way, faster (SIMD, block size, threads) */
+    VARIANT_ALTERNATIVE,    /* another exact method: the same coverage, its own colours or
+                             * clip space (lesson 08's ssaa and tent, lesson 06's clip-space-gl) */
+    VARIANT_CONTRAST,       /* no slip, yet not the algorithm's picture or depth: shown against it
+                             * (lesson 06's depth storages, float clipping in canonical order) */
+    VARIANT_EXHIBIT,        /* a slip of the source texts, reproduced: shown against the exact rule */
+    VARIANT_EXERCISE,       /* the student's code (make exercise): shown against the exact rule */
+};
+
+/* One way of running the lesson, written with designated initializers:
+ * { .name = "q4", .kind = VARIANT_TWIN, .rasterize = rasterize_q4, .what = "..." }. */
 struct lesson_variant {
     const char *name;       /* --variant NAME */
     const char *what;       /* one line for --help and the explorer */
     rasterize_fn rasterize;
-    bool exhibit;           /* deliberately not exact: shown against the exact rule */
+    enum variant_kind kind;
+    /* how it makes a 3-D scene's screen triangles (lesson 06's exhibits have
+     * their own), or NULL: the shared front end, front_scene (src/front/) */
+    front_fn front;
+    /* the depth buffer keeps another quantity than z (lesson 06 stores 1/d,
+     * NDC z, reversed depth): shown against the exact rule by colours alone */
+    bool other_depth;
 };
+
+/* Shown against the exact rule (the explorer's diff, the X key), not held to it. */
+static inline bool variant_against_exact(const struct lesson_variant *v)
+{
+    return v->kind >= VARIANT_CONTRAST;
+}
 
 #define LESSON_COMPARE_MAX 2
 
@@ -159,14 +186,6 @@ struct lesson {
     /* With it, the order the narrated replay steps through (the explorer
      * keeps one count per unit instead of one per triangle), or NULL. */
     lesson_units_fn narration_units;
-    /* How each variant makes a 3-D scene's screen triangles (nvariants
-     * entries; lesson 06's exhibits have their own), or NULL: every variant
-     * uses the shared front end (src/front/) */
-    const front_fn *fronts;
-    /* Which variants keep another quantity than z in the depth buffer
-     * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
-     * NULL: none. An exhibit among them is compared by its colours alone. */
-    const bool *other_depth;
     /* How it draws a triangle under an image texture (`texture FILE.png`),
      * one sentence for --help, or NULL: in its vertex colour, the image
      * unread (every lesson before texture mapping) */
@@ -183,8 +202,8 @@ static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
         return NULL;
     return l->rasterize_scene[v - l->variants];
 }
-/* The front end variant v of lesson l runs on a 3-D scene: its entry of
- * l->fronts, or front_scene. */
+/* The front end variant v of lesson l runs on a 3-D scene: v->front, or
+ * front_scene. */
 front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);

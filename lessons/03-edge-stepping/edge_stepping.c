@@ -290,9 +290,10 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
 }
 
 static const struct lesson_variant variants[] = {
-    { "stepping", "integer edge values stepped by additions: exact (seed 001)", rasterize, false },
-    { "float", "exhibit: the same loop in single-precision float drifts on large triangles",
-      rasterize_float, true },
+    { .name = "stepping", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
+      .what = "integer edge values stepped by additions: exact (seed 001)" },
+    { .name = "float", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_float,
+      .what = "exhibit: the same loop in single-precision float drifts on large triangles" },
 };
 
 static const char *const compare[] = { "02-barycentric", NULL };

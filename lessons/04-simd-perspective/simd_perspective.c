@@ -465,11 +465,12 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 }
 
 static const struct lesson_variant variants[] = {
-    { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
-      rasterize_sse, false },
-    { "scalar", "the same steps on four plain floats: the SSE code's twin",
-      rasterize_scalar, false },
-    { "row4", "four pixels per register, one register per quantity", rasterize_row4_sse, false },
+    { .name = "sse", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_sse,
+      .what = "the source's layout: one pixel's (1/z, w, u, v) in one SSE register" },
+    { .name = "scalar", .kind = VARIANT_TWIN, .rasterize = rasterize_scalar,
+      .what = "the same steps on four plain floats: the SSE code's twin" },
+    { .name = "row4", .kind = VARIANT_TWIN, .rasterize = rasterize_row4_sse,
+      .what = "four pixels per register, one register per quantity" },
 };
 
 const struct lesson lesson_04 = {

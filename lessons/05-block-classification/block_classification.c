@@ -425,17 +425,20 @@ static void rasterize_or_inside(const struct tri_setup *t, const struct raster_p
 }
 
 static const struct lesson_variant variants[] = {
-    { "q8", "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time",
-      rasterize_q8, false },
-    { "q4", "4 x 4 blocks", rasterize_q4, false },
-    { "q16", "16 x 16 blocks", rasterize_q16, false },
-    { "hier", "64 x 64 coarse blocks, the partial ones cut into 8 x 8 blocks", rasterize_hier, false },
-    { "q8-pixel", "8 x 8 blocks, partial blocks one pixel at a time (64-bit edge values)",
-      rasterize_pixelwise, false },
-    { "corners-outside", "exhibit: skip a block when every corner is outside the triangle",
-      rasterize_corners_outside, true },
-    { "or-inside", "exhibit: the pseudo-code's || makes a block full when inside ONE edge",
-      rasterize_or_inside, true },
+    { .name = "q8", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_q8,
+      .what = "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time" },
+    { .name = "q4", .kind = VARIANT_TWIN, .rasterize = rasterize_q4,
+      .what = "4 x 4 blocks" },
+    { .name = "q16", .kind = VARIANT_TWIN, .rasterize = rasterize_q16,
+      .what = "16 x 16 blocks" },
+    { .name = "hier", .kind = VARIANT_TWIN, .rasterize = rasterize_hier,
+      .what = "64 x 64 coarse blocks, the partial ones cut into 8 x 8 blocks" },
+    { .name = "q8-pixel", .kind = VARIANT_TWIN, .rasterize = rasterize_pixelwise,
+      .what = "8 x 8 blocks, partial blocks one pixel at a time (64-bit edge values)" },
+    { .name = "corners-outside", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_corners_outside,
+      .what = "exhibit: skip a block when every corner is outside the triangle" },
+    { .name = "or-inside", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_or_inside,
+      .what = "exhibit: the pseudo-code's || makes a block full when inside ONE edge" },
 };
 
 static const char *const compare[] = { "02-barycentric", "03-edge-stepping", NULL };

@@ -1366,21 +1366,26 @@ VARIANT(wrong_corner, .twin = TWIN_BEST, .tile_buffers = true, .corners = CORNER
 VARIANT(unordered, .twin = TWIN_BEST, .tile_buffers = true, .unordered = true)
 
 static const struct lesson_variant variants[] = {
-    { "tiles", "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 where the CPU "
-      "has it), one worker per core (or --threads N)", rasterize_tiles, false },
-    { "1-thread", "the same on one thread", rasterize_one_thread, false },
-    { "in-place", "one thread, no tile buffers: each tile drawn straight into the framebuffer",
-      rasterize_in_place, false },
-    { "four-corners", "one thread, every corner of every edge tested, as in lesson 05",
-      rasterize_four_corners, false },
-    { "sse2", "one thread, the SSE2 twin: two registers of four pixels", rasterize_sse2, false },
-    { "scalar", "one thread, the plain C twin: one pixel at a time", rasterize_scalar, false },
-    { "no-bins", "one thread, no bins: triangle after triangle through the tiles of its box",
-      rasterize_no_bins, false },
-    { "wrong-corner", "exhibit: tiles rejected with the accept corner of each edge",
-      rasterize_wrong_corner, true },
-    { "unordered", "exhibit: each worker draws its own share of a bin first, so the order "
-      "within a tile depends on which thread took it", rasterize_unordered, true },
+    { .name = "tiles", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_tiles,
+      .what = "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 where the CPU "
+      "has it), one worker per core (or --threads N)" },
+    { .name = "1-thread", .kind = VARIANT_TWIN, .rasterize = rasterize_one_thread,
+      .what = "the same on one thread" },
+    { .name = "in-place", .kind = VARIANT_TWIN, .rasterize = rasterize_in_place,
+      .what = "one thread, no tile buffers: each tile drawn straight into the framebuffer" },
+    { .name = "four-corners", .kind = VARIANT_TWIN, .rasterize = rasterize_four_corners,
+      .what = "one thread, every corner of every edge tested, as in lesson 05" },
+    { .name = "sse2", .kind = VARIANT_TWIN, .rasterize = rasterize_sse2,
+      .what = "one thread, the SSE2 twin: two registers of four pixels" },
+    { .name = "scalar", .kind = VARIANT_TWIN, .rasterize = rasterize_scalar,
+      .what = "one thread, the plain C twin: one pixel at a time" },
+    { .name = "no-bins", .kind = VARIANT_TWIN, .rasterize = rasterize_no_bins,
+      .what = "one thread, no bins: triangle after triangle through the tiles of its box" },
+    { .name = "wrong-corner", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_wrong_corner,
+      .what = "exhibit: tiles rejected with the accept corner of each edge" },
+    { .name = "unordered", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_unordered,
+      .what = "exhibit: each worker draws its own share of a bin first, so the order "
+      "within a tile depends on which thread took it" },
 };
 
 static const rasterize_scene_fn scenes[] = {

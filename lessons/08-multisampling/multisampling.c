@@ -563,14 +563,16 @@ static void rasterize_no_fill_rule(const struct tri_setup *t, const struct raste
 }
 
 static const struct lesson_variant variants[] = {
-    { "msaa", "multisampling: coverage and depth per sample, colour once per pixel",
-      rasterize_msaa, false },
-    { "ssaa", "supersampling: colour shaded at every covered sample", rasterize_ssaa, false },
-    { "tent", "msaa resolved by a tent filter: the neighbours' samples count too", rasterize_tent, false },
-    { "grid", "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern",
-      rasterize_grid, true },
-    { "no-fill-rule", "exhibit: a sample exactly on an edge is covered by both triangles",
-      rasterize_no_fill_rule, true },
+    { .name = "msaa", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_msaa,
+      .what = "multisampling: coverage and depth per sample, colour once per pixel" },
+    { .name = "ssaa", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_ssaa,
+      .what = "supersampling: colour shaded at every covered sample" },
+    { .name = "tent", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_tent,
+      .what = "msaa resolved by a tent filter: the neighbours' samples count too" },
+    { .name = "grid", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_grid,
+      .what = "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern" },
+    { .name = "no-fill-rule", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_no_fill_rule,
+      .what = "exhibit: a sample exactly on an edge is covered by both triangles" },
 };
 
 static const char *const compare[] = { "05-block-classification", NULL };

@@ -239,7 +239,7 @@ static void set_params(struct app *a, const struct raster_params *p, const char 
 static bool has_twins(const struct lesson *l)
 {
     for (int i = 1; i < l->nvariants; i++)
-        if (!l->variants[i].exhibit)
+        if (!variant_against_exact(&l->variants[i]))
             return true;
     return false;
 }

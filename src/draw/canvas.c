@@ -116,7 +116,7 @@ static void paint_grid(struct painter *p, int x0, int y0, int x1, int y1)
 static void paint_exhibit(struct painter *p, int x0, int y0, int x1, int y1)
 {
     struct explorer *ex = p->ex;
-    if (!ex->diff || !ex->lesson->variants[ex->variant].exhibit)
+    if (!ex->diff || !variant_against_exact(&ex->lesson->variants[ex->variant]))
         return;
     cairo_t *cr = p->cr;
     const struct explorer_layout *L = &p->L;

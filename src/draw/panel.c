@@ -57,7 +57,7 @@ static double legend(struct painter *p, double x, double y, double w)
         y += swatch(p, x, y, w, items[i].colour, items[i].label) + 1 * s;
     if (note)
         y += draw_text(p, x, y, w, note, 11, p->pal->dim, false);
-    if (ex->lesson->variants[ex->variant].exhibit) {
+    if (variant_against_exact(&ex->lesson->variants[ex->variant])) {
         y += swatch(p, x, y, w, p->pal->extra, "extra: more than the exact rule") + s;
         y += swatch(p, x, y, w, p->pal->missing, "missing: a crack") + s;
         if (ex->wrong_colour)
@@ -272,7 +272,7 @@ static double counters(struct painter *p, double x, double y, double w)
     double h = draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     if (ex->ncompare > 0)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
-    if (ex->lesson->variants[ex->variant].exhibit) {
+    if (variant_against_exact(&ex->lesson->variants[ex->variant])) {
         char e[256];
         int at = snprintf(e, sizeof e, "vs %s, %d triangle%s finished:\nextra %llu   missing (cracks) %llu",
                           ex->lesson->variants[0].name, ex->diff_done, ex->diff_done == 1 ? "" : "s",
@@ -306,9 +306,10 @@ void paint_panel(struct painter *p)
 
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
     char buf[512];
-    if (v->exhibit) {
-        /* the exercise (make exercise) is shown against the exact rule like an exhibit */
-        const char *badge = strcmp(v->name, "exercise") == 0 ? "YOUR CODE" : "EXHIBIT";
+    if (variant_against_exact(v)) {
+        /* shown against the exact rule: a badge says why */
+        const char *badge = v->kind == VARIANT_EXERCISE ? "YOUR CODE"
+                            : v->kind == VARIANT_CONTRAST ? "CONTRAST" : "EXHIBIT";
         double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
@@ -317,7 +318,8 @@ void paint_panel(struct painter *p)
         snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
         y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
     } else {
-        snprintf(buf, sizeof buf, "variant %s%s", v->name, ex->variant ? " (faster twin)" : "");
+        snprintf(buf, sizeof buf, "variant %s%s", v->name, v->kind == VARIANT_TWIN ? " (faster twin)"
+                 : v->kind == VARIANT_ALTERNATIVE ? " (alternative)" : "");
         y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     }
     snprintf(buf, sizeof buf, "scene %s, %dx%d, %d triangle%s", ex->scene_name, ex->scene.w,
@@ -388,13 +390,18 @@ void paint_help(struct painter *p)
         "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
         "N                    numbers in cells: auto, always, off\n"
         "S                    save the scene as it is now to a new file\n");
-    bool exhibits = false, twins = false;
-    for (int i = 1; i < ex->lesson->nvariants; i++)
-        exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;
+    bool exhibits = false, twins = false, alternatives = false;
+    for (int i = 1; i < ex->lesson->nvariants; i++) {
+        const struct lesson_variant *v = &ex->lesson->variants[i];
+        exhibits |= variant_against_exact(v);
+        twins |= v->kind == VARIANT_TWIN, alternatives |= v->kind == VARIANT_ALTERNATIVE;
+    }
     if (exhibits)
         at = cat(keys, n, at, "X                    next exhibit (against the exact rule)\n");
-    if (twins)
-        at = cat(keys, n, at, "T                    next faster twin\n");
+    if (twins || alternatives)
+        at = cat(keys, n, at, alternatives ? twins ? "T                    next twin or alternative\n"
+                                                   : "T                    next alternative\n"
+                                           : "T                    next faster twin\n");
     if (ex->lesson->params & LESSON_PARAM_SUBPIXEL)
         at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
     if (ex->lesson->params & LESSON_PARAM_BLOCK)

@@ -233,7 +233,7 @@ static bool extra_so_far(struct explorer *ex)
     bool shaded = target_copy(&with, &ex->exact);
     if (shaded)
         ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
-    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
+    bool other_depth = ex->lesson->variants[ex->variant].other_depth;
     for (size_t i = 0; i < n; i++) {
         int now = ex->fb.count[i] - ex->replay.base.count[i];
         if (ex->diff[i] == 0 && now > exact[i])     /* an earlier verdict stands */
@@ -252,7 +252,7 @@ static bool compare_exhibit(struct explorer *ex)
 {
     ex->extra = ex->missing = ex->wrong_colour = 0;
     ex->diff_done = 0;
-    if (!ex->lesson->variants[ex->variant].exhibit)
+    if (!variant_against_exact(&ex->lesson->variants[ex->variant]))
         return true;
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
     if (!ex->diff && !(ex->diff = malloc(n)))
@@ -275,7 +275,7 @@ static bool compare_exhibit(struct explorer *ex)
         return false;
     }
     ex->diff_done = done;
-    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
+    bool other_depth = ex->lesson->variants[ex->variant].other_depth;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
         /* a buffer holding another depth than z (lesson 06's storages) is
@@ -530,11 +530,12 @@ bool explorer_set_params(struct explorer *ex, const struct raster_params *p)
     return rerun(ex, ex->step);
 }
 
-/* The next variant after the current one with exhibit == want, wrapping to 0. */
+/* The next variant after the current one shown against the exact rule
+ * (want) or drawn by it (!want), wrapping to 0. */
 static int next_variant(const struct explorer *ex, bool want)
 {
     for (int i = ex->variant + 1; i < ex->lesson->nvariants; i++)
-        if (ex->lesson->variants[i].exhibit == want)
+        if (variant_against_exact(&ex->lesson->variants[i]) == want)
             return i;
     return 0;
 }
