@@ -13,13 +13,18 @@
 #include "scene/scene.h"
 #include "trace/trace.h"
 
-/* Settings a run may change without changing the algorithm. */
+/* How many parameters of its own a lesson may have (rows of its table). */
+#define LESSON_PARAMS_MAX 4
+
+/* Settings a run may change without changing the algorithm: what every
+ * lesson's run reads, and the values of the lesson's own parameters. */
 struct raster_params {
     int checker;          /* the scene's "texture checker N", 0 = untextured */
-    int block_size;       /* q for block lessons (0 = the lesson's default) */
-    bool affine;          /* texture affinely, not perspective-correct (exhibit) */
-    int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
-    int threads;          /* worker threads of a scene-level run (lesson 07), 0 = one per core */
+    int subpixel_bits;    /* snapping precision of the set-up, SUBPIXEL_BITS unless an exhibit */
+    int samples;          /* samples per pixel of the target, 1, 4 or 8 (0 = 1, the centre) */
+    /* the lesson's own parameters, knob[i] the value of row i of its table
+     * (struct lesson_param, PARAM_OWN rows); 0 = the lesson's default */
+    int knob[LESSON_PARAMS_MAX];
     /* The narrated replay of a scene-level lesson (lesson 07) runs one
      * triangle inside one tile at a time: tile > 0 restricts `rasterize` to
      * tile number tile - 1 (row-major, 64 x 64), and these say where that
@@ -30,7 +35,6 @@ struct raster_params {
      * outside a replay of such a lesson) */
     const struct lesson_unit *units;
     int nunits;
-    int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
     /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
      * of a world triangle from it before rasterizing its first screen triangle */
     const struct scene *scene;
@@ -105,16 +109,34 @@ static inline bool variant_against_exact(const struct lesson_variant *v)
  * the explorer can run an earlier lesson on the same scene for comparison. */
 extern const struct lesson *const all_lessons[];
 
-/* Which raster_params a lesson reacts to: the explorer offers keys for
- * exactly these (and lists them in its help overlay). */
-enum lesson_param_flags {
-    LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
-    LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
-    LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
-    LESSON_PARAM_SAMPLES = 8,   /* samples per pixel 1, 4, 8; 4 unless --samples (lesson 08) */
+/* Where a parameter's value lives. */
+enum lesson_param_slot {
+    PARAM_OWN,              /* knob[its row]: read by the lesson alone, through its row */
+    PARAM_SUBPIXEL_BITS,    /* raster_params.subpixel_bits, which every lesson's set-up reads */
+    PARAM_SAMPLES,          /* raster_params.samples, which the shared drivers read */
 };
 
-#define LESSON_SAMPLES_DEFAULT 4    /* --samples of a lesson with LESSON_PARAM_SAMPLES */
+/* One parameter of a lesson, a row of the table in its descriptor. The
+ * command line (src/cli/), the explorer's keys (src/app/params.c) and its
+ * panel (src/draw/panel.c) read the table; every program accepts the
+ * options of every lesson's table (the same option means the same thing in
+ * each), and a lesson ignores the options of rows it does not have, except
+ * that shared slots are always set. */
+struct lesson_param {
+    const char *option;     /* "block-size": --block-size ARG */
+    const char *arg;        /* "Q", as --help shows it; NULL: a flag (--affine), which sets 1 */
+    const char *help;       /* --help's line after the option */
+    const char *name;       /* "block size": the panel's and the keys' word */
+    const char *const *words;   /* a flag's two states in the panel ({ "off", "on" }), or NULL */
+    int key;                /* the explorer's key: the next value, wrapping; 0: none */
+    int key_down;           /* with it, key_down the value before and key the one after, stopping
+                             * at the ends ([ and ]); 0: key alone */
+    int min, max;           /* the values allowed ... */
+    const int *values;      /* ... or only these, -1-terminated (4, 8, 16) */
+    int def;                /* the value without an option (may lie outside the range: threads
+                             * 0, one per core) */
+    enum lesson_param_slot slot;
+};
 
 /* A named cost (trace/trace.h) counted n times, in a lesson's declaration of
  * what one pixel costs: COST_TERM(3, EDGE_VALUE_COST). A list of terms ends
@@ -168,7 +190,9 @@ struct lesson {
     const struct lesson_variant *variants;  /* variants[0] is the lesson's algorithm */
     int nvariants;
     const char *const *aux_names;       /* names of trace_event.aux[], NULL-terminated */
-    unsigned params;                    /* enum lesson_param_flags it reacts to */
+    /* its parameters, rows ending with { 0 } (NULL: none); the lesson names
+     * its rows by an enum and reads row i of its own as p->knob[i] */
+    const struct lesson_param *params;
     /* ids of earlier lessons (at most LESSON_COMPARE_MAX, NULL-terminated)
      * that the explorer runs on the same scene, to show their counters
      * (pixels tested, arithmetic per pixel) beside this lesson's */
@@ -207,5 +231,25 @@ static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
 front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
+
+/* The row of lesson l with option `option` (its index in *row when row is
+ * not NULL), or NULL. */
+const struct lesson_param *lesson_param(const struct lesson *l, const char *option, int *row);
+/* Where row `row` of lesson l keeps its value in p. */
+int *lesson_param_slot(const struct lesson *l, int row, struct raster_params *p);
+/* Sets the parameter named by option to v, if lesson l has it; false if not. */
+bool lesson_param_set(const struct lesson *l, struct raster_params *p, const char *option, int v);
+/* Every parameter of lesson l at its default, SUBPIXEL_BITS bits unless the lesson says. */
+struct raster_params lesson_params_default(const struct lesson *l);
+/* Params p of lesson `from` as lesson `to` reads them: every field shared
+ * by all lessons as in p, and each parameter of `to`'s own at the value of
+ * `from`'s row with the same option (the same option means the same
+ * thing), else at its default. */
+struct raster_params lesson_params_as(const struct lesson *to, const struct lesson *from,
+                                      const struct raster_params *p);
+/* Whether v is a value row r allows. */
+bool lesson_param_allows(const struct lesson_param *r, int v);
+/* Row r's values in words, "4, 8 or 16" or "0..8", into buf[0..n). */
+void lesson_param_range(const struct lesson_param *r, char *buf, size_t n);
 
 #endif

@@ -697,7 +697,7 @@ static void check_dump_bits(const char *program, const char *variant, const char
     /* a lesson with samples (08) counts samples, 4 by default: one sample is
      * the pixel centre (its sample counts are test_lesson08.c's) */
     const struct lesson *l = lesson_of(strrchr(program, '/') ? strrchr(program, '/') + 1 : program);
-    if (l && (l->params & LESSON_PARAM_SAMPLES)) {
+    if (l && lesson_param(l, "samples", NULL)) {
         argv[n++] = "--samples";
         argv[n++] = "1";
     }

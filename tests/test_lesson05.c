@@ -238,7 +238,7 @@ Test(lesson05, blocks_tile_the_box_once_with_true_masks)
     int sizes[] = { 4, 8, 16 };
     for (int k = 0; k < 3; k++) {
         struct raster_params p = default_params();
-        p.block_size = sizes[k];
+        cr_assert(lesson_param_set(&lesson_05, &p, "block-size", sizes[k]));
         char what[96];
         snprintf(what, sizeof what, "q8 with --block-size %d", sizes[k]);
         check_blocks(&lesson_05.variants[0], s.tris[0].v, s.w, s.h, &p, what);

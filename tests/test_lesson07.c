@@ -154,7 +154,7 @@ Test(lesson07, picture_is_the_same_bytes_for_1_2_3_and_8_threads)
         p.checker = s.checker;
         struct target first;
         for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
-            p.threads = threads[k];
+            lesson_param_set(&lesson_07, &p, "threads", threads[k]);
             for (int b = 0; b < 2; b++) {
                 for (int again = 0; again < 3; again++) {
                     struct target fb;
@@ -370,10 +370,10 @@ Test(lesson07, unordered_bins_keep_coverage_and_one_thread_keeps_the_picture)
     struct raster_params p = default_params();
     struct target exact, one, two;
     draw_whole(&lesson_07_fast, "tiles", &s, &p, &exact);
-    p.threads = 1;
+    lesson_param_set(&lesson_07, &p, "threads", 1);
     draw_whole(&lesson_07_fast, "unordered", &s, &p, &one);
     cr_assert(same_bytes(&exact, &one), "unordered on one thread changed the picture");
-    p.threads = 2;
+    lesson_param_set(&lesson_07, &p, "threads", 2);
     draw_whole(&lesson_07_fast, "unordered", &s, &p, &two);
     cr_assert(memcmp(ref, two.count, (size_t)s.w * (size_t)s.h) == 0, "unordered changed coverage");
     target_free(&exact);
@@ -414,7 +414,7 @@ static void draw_units(const char *name, const struct scene *s, int threads, str
 {
     const struct lesson_variant *v = variant(&lesson_07, name);
     struct raster_params p = default_params();
-    p.threads = threads;
+    lesson_param_set(&lesson_07, &p, "threads", threads);
     long n = lesson_07.narration_units(s, v, &p, NULL, 0);
     cr_assert_geq(n, 0);
     struct lesson_unit *u = malloc((size_t)(n ? n : 1) * sizeof *u);
@@ -508,7 +508,7 @@ Test(lesson07, explorer_marks_the_pixels_unordered_threads_change)
     for (int threads = 2; threads <= 3; threads++) {
         struct explorer ex;
         struct raster_params p = default_params();
-        p.threads = threads;
+        lesson_param_set(&lesson_07, &p, "threads", threads);
         cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &lesson_07, .scene = &s,
                                                              .variant = variant(&lesson_07, "unordered"),
                                                              .params = &p, .step_end = true },

@@ -307,7 +307,13 @@ const struct lesson lesson_03 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .params = LESSON_PARAM_SUBPIXEL,
+    /* the precision every lesson snaps to; its exhibit is fewer bits */
+    .params = (const struct lesson_param[]){
+        { .option = "subpixel-bits", .arg = "N", .name = "sub-pixel bits",
+          .help = "snap vertices to N fractional bits, 0..8 (default 8)",
+          .key = ']', .key_down = '[', .min = 0, .max = SUBPIXEL_BITS, .def = SUBPIXEL_BITS,
+          .slot = PARAM_SUBPIXEL_BITS },
+        { 0 } },
     .compare = compare,
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },

@@ -55,6 +55,7 @@ enum { L_SETUP, L_BOX, L_LOOP, L_MASKS, L_EMPTY, L_FULL, L_PARTIAL, L_STEP, L_PI
 static const char *const aux_names[] = { "q", "level", NULL };
 
 #define Q_DEFAULT 8         /* the default block size (exercise 1 compares 4, 8, 16) */
+enum { P_BLOCK };           /* the lesson's parameter rows: p->knob[P_BLOCK] is --block-size */
 #define Q_COARSE 64         /* the hierarchical variant's coarse level */
 
 /* --- the edges, as the block loop uses them ------------------------------- */
@@ -338,7 +339,7 @@ static void rasterize_blocks(const struct tri_setup *t, const struct raster_para
     NARRATE_SETUP(tr, t, L_BOX);
     if (t->empty)
         return;
-    int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;
+    int q = o.q > 0 ? o.q : p->knob[P_BLOCK] > 0 ? p->knob[P_BLOCK] : Q_DEFAULT;
     if (q > Q_COARSE)
         q = Q_COARSE;
 
@@ -453,7 +454,11 @@ const struct lesson lesson_05 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .params = LESSON_PARAM_BLOCK,
+    .params = (const struct lesson_param[]){
+        [P_BLOCK] = { .option = "block-size", .arg = "Q", .name = "block", .key = 'b', .min = 4,
+                      .max = 16, .values = (const int[]){ 4, 8, 16, -1 }, .def = Q_DEFAULT,
+                      .help = "block size for block lessons (4, 8 or 16)" },
+        { 0 } },
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, QUAD_DEPTH_COST), COST_TERM(1, QUAD_COLOUR_COST), { 0 } },

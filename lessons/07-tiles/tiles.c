@@ -85,6 +85,7 @@ enum { L_SETUP, L_BIN, L_REJECT, L_ACCEPT, L_PARTIAL_TILE, L_TAKE, L_BIN_LOOP, L
  * level (0 tile, 1 block), the tile's bin size, the triangle's place in the
  * bin, and the worker thread that drew the tile in the real run. */
 static const char *const aux_names[] = { "q", "level", "bin", "entry", "thread", NULL };
+enum { P_THREADS };         /* the lesson's parameter rows: p->knob[P_THREADS] is --threads */
 
 #define TILE 64             /* tile side: 64 x 64 colour + depth = 32 KB, level-1 cache */
 #define BLOCK 8             /* block side, and pixels a register (AVX2) */
@@ -1147,7 +1148,8 @@ static bool draw_scene(const struct scene *s, const struct raster_params *p, str
     struct run *r = calloc(1, sizeof *r);
     if (!r)
         return false;
-    int threads = o.threads > 0 ? o.threads : p->threads > 0 ? p->threads : default_threads();
+    int threads = o.threads > 0 ? o.threads
+                  : p->knob[P_THREADS] > 0 ? p->knob[P_THREADS] : default_threads();
     threads = threads > MAX_THREADS ? MAX_THREADS : threads;
     r->s = s, r->p = p, r->fb = fb, r->o = o;
     r->draw = pick_twin(o.twin);
@@ -1313,7 +1315,7 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
     }
     /* count[tile] now points past the tile's last unit; the pool hands out
      * the tiles with triangles in order, each to the worker free first */
-    int threads = p->threads > 0 ? p->threads : default_threads();
+    int threads = p->knob[P_THREADS] > 0 ? p->knob[P_THREADS] : default_threads();
     threads = threads > MAX_THREADS ? MAX_THREADS : threads;
     double busy[MAX_THREADS] = { 0 };
     int worker = 0;
@@ -1405,6 +1407,11 @@ const struct lesson lesson_07 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
+    .params = (const struct lesson_param[]){
+        [P_THREADS] = { .option = "threads", .arg = "N", .name = "threads",
+                        .help = "worker threads of a tiled lesson, 1..64 (default: one per core)",
+                        .min = 1, .max = MAX_THREADS },
+        { 0 } },
     .compare = compare,
     .rasterize_scene = scenes,
     .narration_units = narration_units,

@@ -3,6 +3,7 @@
  * counters) and the help overlay. */
 #include "painter.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -147,7 +148,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
                  (ev->flags & TRACE_DEPTH_PASS) ? "pass" : "fail");
         at = cat(buf, n, at, "colour #%06x\n", (unsigned)(ev->rgba & 0xffffff));
         break;
-    case TRACE_FRONT:           /* the lesson's watch says what the step did */
+    case TRACE_FRONT:           /* the shared front end's step: what it did is the lesson's
+                                 * watch's to say (lesson 06, clipping_explorer.c) */
     case TRACE_KIND_COUNT:
         break;
     }
@@ -309,7 +311,7 @@ void paint_panel(struct painter *p)
     if (variant_against_exact(v)) {
         /* shown against the exact rule: a badge says why */
         const char *badge = v->kind == VARIANT_EXERCISE ? "YOUR CODE"
-                            : v->kind == VARIANT_CONTRAST ? "CONTRAST" : "EXHIBIT";
+                            : v->kind == VARIANT_CONTRAST ? "COMPARED" : "EXHIBIT";
         double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
@@ -325,19 +327,23 @@ void paint_panel(struct painter *p)
     snprintf(buf, sizeof buf, "scene %s, %dx%d, %d triangle%s", ex->scene_name, ex->scene.w,
              ex->scene.h, ex->scene.ntris, ex->scene.ntris == 1 ? "" : "s");
     y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
-    unsigned prm = ex->lesson->params;
-    if (prm) {
+    if (ex->lesson->params) {     /* the rows of its table that a key changes */
         size_t at = 0;
         buf[0] = '\0';
-        if (prm & LESSON_PARAM_SUBPIXEL)
-            at = cat(buf, sizeof buf, at, "sub-pixel bits %d  ", ex->params.subpixel_bits);
-        if (prm & LESSON_PARAM_BLOCK)
-            at = cat(buf, sizeof buf, at, "block %d  ", ex->params.block_size ? ex->params.block_size : 8);
-        if (prm & LESSON_PARAM_SAMPLES)
-            at = cat(buf, sizeof buf, at, "samples %d  ", ex->params.samples > 1 ? ex->params.samples : 1);
-        if (prm & LESSON_PARAM_AFFINE)
-            at = cat(buf, sizeof buf, at, "%s", ex->params.affine ? "affine" : "perspective");
-        y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+        for (int i = 0; ex->lesson->params[i].option; i++) {
+            const struct lesson_param *r = &ex->lesson->params[i];
+            struct raster_params prm = ex->params;
+            int v = *lesson_param_slot(ex->lesson, i, &prm);
+            v = lesson_param_allows(r, v) ? v : r->def;     /* 0: the lesson's default */
+            if (!r->key)
+                continue;
+            if (r->words)
+                at = cat(buf, sizeof buf, at, "%s  ", r->words[v != 0]);
+            else
+                at = cat(buf, sizeof buf, at, "%s %d  ", r->name, v);
+        }
+        if (at > 0)
+            y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     }
     y += 8 * s;
 
@@ -402,14 +408,21 @@ void paint_help(struct painter *p)
         at = cat(keys, n, at, alternatives ? twins ? "T                    next twin or alternative\n"
                                                    : "T                    next alternative\n"
                                            : "T                    next faster twin\n");
-    if (ex->lesson->params & LESSON_PARAM_SUBPIXEL)
-        at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
-    if (ex->lesson->params & LESSON_PARAM_BLOCK)
-        at = cat(keys, n, at, "B                    block size 4, 8, 16\n");
-    if (ex->lesson->params & LESSON_PARAM_SAMPLES)
-        at = cat(keys, n, at, "M                    samples per pixel 1, 4, 8\n");
-    if (ex->lesson->params & LESSON_PARAM_AFFINE)
-        at = cat(keys, n, at, "P                    affine / perspective-correct\n");
+    for (int i = 0; ex->lesson->params && ex->lesson->params[i].option; i++) {
+        const struct lesson_param *r = &ex->lesson->params[i];
+        char range[64], key[8];
+        lesson_param_range(r, range, sizeof range);
+        if (r->key && r->key_down) {
+            snprintf(key, sizeof key, "%c / %c", toupper(r->key_down), toupper(r->key));
+            at = cat(keys, n, at, "%-21sless / more %s (%s)\n", key, r->name, range);
+        } else if (r->key && r->words) {
+            snprintf(key, sizeof key, "%c", toupper(r->key));
+            at = cat(keys, n, at, "%-21s%s / %s\n", key, r->words[1], r->words[0]);
+        } else if (r->key) {
+            snprintf(key, sizeof key, "%c", toupper(r->key));
+            at = cat(keys, n, at, "%-21s%s %s\n", key, r->name, range);
+        }
+    }
     at = cat(keys, n, at,
         "E                    export the view (PNG and SVG)\n"
         "L                    light theme (for paper) / dark\n"

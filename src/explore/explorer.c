@@ -388,15 +388,17 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
 
 /* --- variants, params, vertices ---------------------------------------------- */
 
-/* Run the lessons named by lesson->compare on the same scene and params. */
+/* Run the lessons named by lesson->compare on the same scene and params
+ * (each lesson's own parameters as it reads them: lesson_params_as). */
 static bool compare_init(struct explorer *ex)
 {
     for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
+                struct raster_params p = lesson_params_as(all_lessons[k], ex->lesson, &ex->params);
                 if (!(ex->count_later ? replay_begin : replay_init)(
                         &ex->compare_replay[ex->ncompare], &ex->scene,
-                        &all_lessons[k]->variants[0], &ex->params)) {
+                        &all_lessons[k]->variants[0], &p)) {
                     replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
                 }
@@ -408,7 +410,7 @@ static bool compare_init(struct explorer *ex)
 static bool compare_recount(struct explorer *ex)
 {
     for (int i = 0; i < ex->ncompare; i++) {
-        ex->compare_replay[i].params = ex->params;
+        ex->compare_replay[i].params = lesson_params_as(ex->compare[i], ex->lesson, &ex->params);
         ex->compare_replay[i].scene = &ex->scene;
         if (!(ex->count_later ? replay_restart(&ex->compare_replay[i])
                               : replay_recount(&ex->compare_replay[i])))

@@ -963,7 +963,7 @@ int main(int argc, char **argv)
                                           .exhibit = variant_against_exact(var), .lesson = *l, .var = var };
             /* a lesson with samples: its exact variants at 4 and 8 samples
              * too, each checked against its own reference */
-            for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !variant_against_exact(var)
+            for (int n = 4; n <= 8 && lesson_param(*l, "samples", NULL) && !variant_against_exact(var)
                             && nrows < MAX_ROWS; n += 4) {
                 static char names[MAX_ROWS][48];
                 snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);
