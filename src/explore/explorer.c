@@ -388,8 +388,7 @@ bool explorer_move(struct explorer *ex, enum step_unit unit, int dir)
 
 /* --- variants, params, vertices ---------------------------------------------- */
 
-/* Run the lessons named by lesson->compare on the same scene and params
- * (each lesson's own parameters as it reads them: lesson_params_as). */
+/* Run the lessons named by lesson->compare on the same scene and params. */
 static bool compare_init(struct explorer *ex)
 {
     for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
@@ -532,8 +531,7 @@ bool explorer_set_params(struct explorer *ex, const struct raster_params *p)
     return rerun(ex, ex->step);
 }
 
-/* The next variant after the current one shown against the exact rule
- * (want) or drawn by it (!want), wrapping to 0. */
+/* The next variant after the current one shown against the exact rule (want) or not. */
 static int next_variant(const struct explorer *ex, bool want)
 {
     for (int i = ex->variant + 1; i < ex->lesson->nvariants; i++)
