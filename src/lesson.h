@@ -13,13 +13,18 @@
 #include "scene/scene.h"
 #include "trace/trace.h"
 
-/* Settings a run may change without changing the algorithm. */
+/* How many parameters of its own a lesson may have (rows of its table). */
+#define LESSON_PARAMS_MAX 4
+
+/* Settings a run may change without changing the algorithm: what every
+ * lesson's run reads, and the values of the lesson's own parameters. */
 struct raster_params {
     int checker;          /* the scene's "texture checker N", 0 = untextured */
-    int block_size;       /* q for block lessons (0 = the lesson's default) */
-    bool affine;          /* texture affinely, not perspective-correct (exhibit) */
-    int subpixel_bits;    /* snapping precision, SUBPIXEL_BITS unless an exhibit */
-    int threads;          /* worker threads of a scene-level run (lesson 07), 0 = one per core */
+    int subpixel_bits;    /* snapping precision of the set-up, SUBPIXEL_BITS unless an exhibit */
+    int samples;          /* samples per pixel of the target, 1, 4 or 8 (0 = 1, the centre) */
+    /* the lesson's own parameters, knob[i] the value of row i of its table
+     * (struct lesson_param, PARAM_OWN rows); 0 = the lesson's default */
+    int knob[LESSON_PARAMS_MAX];
     /* The narrated replay of a scene-level lesson (lesson 07) runs one
      * triangle inside one tile at a time: tile > 0 restricts `rasterize` to
      * tile number tile - 1 (row-major, 64 x 64), and these say where that
@@ -30,7 +35,6 @@ struct raster_params {
      * outside a replay of such a lesson) */
     const struct lesson_unit *units;
     int nunits;
-    int samples;          /* samples per pixel, 1, 4 or 8 (lesson 08; 0 = 1, the centre) */
     /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
      * of a world triangle from it before rasterizing its first screen triangle */
     const struct scene *scene;
@@ -63,14 +67,41 @@ typedef void (*rasterize_fn)(const struct tri_setup *t, const struct raster_para
 typedef bool (*rasterize_scene_fn)(const struct scene *s, const struct raster_params *p,
                                    struct target *fb);
 
-/* One way of running the lesson: the algorithm itself, a faster twin, or an
- * exhibit that reproduces a slip of the source texts. */
+/* What a variant is, and so how the programs treat it: the explorer's T
+ * key steps through the variants drawn by the exact rule (twins and
+ * alternatives), X through those shown against it; the tests hold the
+ * former to the reference and expect the latter to differ from it. */
+enum variant_kind {
+    VARIANT_ALGORITHM,      /* variants[0]: the lesson's algorithm */
+    VARIANT_TWIN,           /* the same pixels another way, faster (SIMD, block size, threads) */
+    VARIANT_ALTERNATIVE,    /* another exact method: the same coverage, its own colours or
+                             * clip space (lesson 08's ssaa and tent, lesson 06's clip-space-gl) */
+    VARIANT_CONTRAST,       /* no slip, yet not the algorithm's picture or depth: shown against it
+                             * (lesson 06's depth storages, float clipping in canonical order) */
+    VARIANT_EXHIBIT,        /* a slip of the source texts, reproduced: shown against the exact rule */
+    VARIANT_EXERCISE,       /* the student's code (make exercise): shown against the exact rule */
+};
+
+/* One way of running the lesson, written with designated initializers:
+ * { .name = "q4", .kind = VARIANT_TWIN, .rasterize = rasterize_q4, .what = "..." }. */
 struct lesson_variant {
     const char *name;       /* --variant NAME */
     const char *what;       /* one line for --help and the explorer */
     rasterize_fn rasterize;
-    bool exhibit;           /* deliberately not exact: shown against the exact rule */
+    enum variant_kind kind;
+    /* how it makes a 3-D scene's screen triangles (lesson 06's exhibits have
+     * their own), or NULL: the shared front end, front_scene (src/front/) */
+    front_fn front;
+    /* the depth buffer keeps another quantity than z (lesson 06 stores 1/d,
+     * NDC z, reversed depth): shown against the exact rule by colours alone */
+    bool other_depth;
 };
+
+/* Shown against the exact rule (the explorer's diff, the X key), not held to it. */
+static inline bool variant_against_exact(const struct lesson_variant *v)
+{
+    return v->kind >= VARIANT_CONTRAST;
+}
 
 #define LESSON_COMPARE_MAX 2
 
@@ -78,16 +109,34 @@ struct lesson_variant {
  * the explorer can run an earlier lesson on the same scene for comparison. */
 extern const struct lesson *const all_lessons[];
 
-/* Which raster_params a lesson reacts to: the explorer offers keys for
- * exactly these (and lists them in its help overlay). */
-enum lesson_param_flags {
-    LESSON_PARAM_SUBPIXEL = 1,  /* subpixel_bits 0..8 (lesson 03) */
-    LESSON_PARAM_BLOCK = 2,     /* block_size 4, 8, 16 (lesson 05) */
-    LESSON_PARAM_AFFINE = 4,    /* affine vs perspective-correct (lesson 04) */
-    LESSON_PARAM_SAMPLES = 8,   /* samples per pixel 1, 4, 8; 4 unless --samples (lesson 08) */
+/* Where a parameter's value lives. */
+enum lesson_param_slot {
+    PARAM_OWN,              /* knob[its row]: read by the lesson alone, through its row */
+    PARAM_SUBPIXEL_BITS,    /* raster_params.subpixel_bits, which every lesson's set-up reads */
+    PARAM_SAMPLES,          /* raster_params.samples, which the shared drivers read */
 };
 
-#define LESSON_SAMPLES_DEFAULT 4    /* --samples of a lesson with LESSON_PARAM_SAMPLES */
+/* One parameter of a lesson, a row of the table in its descriptor. The
+ * command line (src/cli/), the explorer's keys (src/app/params.c) and its
+ * panel (src/draw/panel.c) read the table; every program accepts the
+ * options of every lesson's table (the same option means the same thing in
+ * each), and a lesson ignores the options of rows it does not have, except
+ * that shared slots are always set. */
+struct lesson_param {
+    const char *option;     /* "block-size": --block-size ARG */
+    const char *arg;        /* "Q", as --help shows it; NULL: a flag (--affine), which sets 1 */
+    const char *help;       /* --help's line after the option */
+    const char *name;       /* "block size": the panel's and the keys' word */
+    const char *const *words;   /* a flag's two states in the panel ({ "off", "on" }), or NULL */
+    int key;                /* the explorer's key: the next value, wrapping; 0: none */
+    int key_down;           /* with it, key_down the value before and key the one after, stopping
+                             * at the ends ([ and ]); 0: key alone */
+    int min, max;           /* the values allowed ... */
+    const int *values;      /* ... or only these, -1-terminated (4, 8, 16) */
+    int def;                /* the value without an option (may lie outside the range: threads
+                             * 0, one per core) */
+    enum lesson_param_slot slot;
+};
 
 /* A named cost (trace/trace.h) counted n times, in a lesson's declaration of
  * what one pixel costs: COST_TERM(3, EDGE_VALUE_COST). A list of terms ends
@@ -141,7 +190,9 @@ struct lesson {
     const struct lesson_variant *variants;  /* variants[0] is the lesson's algorithm */
     int nvariants;
     const char *const *aux_names;       /* names of trace_event.aux[], NULL-terminated */
-    unsigned params;                    /* enum lesson_param_flags it reacts to */
+    /* its parameters, rows ending with { 0 } (NULL: none); the lesson names
+     * its rows by an enum and reads row i of its own as p->knob[i] */
+    const struct lesson_param *params;
     /* ids of earlier lessons (at most LESSON_COMPARE_MAX, NULL-terminated)
      * that the explorer runs on the same scene, to show their counters
      * (pixels tested, arithmetic per pixel) beside this lesson's */
@@ -159,14 +210,6 @@ struct lesson {
     /* With it, the order the narrated replay steps through (the explorer
      * keeps one count per unit instead of one per triangle), or NULL. */
     lesson_units_fn narration_units;
-    /* How each variant makes a 3-D scene's screen triangles (nvariants
-     * entries; lesson 06's exhibits have their own), or NULL: every variant
-     * uses the shared front end (src/front/) */
-    const front_fn *fronts;
-    /* Which variants keep another quantity than z in the depth buffer
-     * (nvariants entries; lesson 06 stores 1/d, NDC z, reversed depth), or
-     * NULL: none. An exhibit among them is compared by its colours alone. */
-    const bool *other_depth;
     /* How it draws a triangle under an image texture (`texture FILE.png`),
      * one sentence for --help, or NULL: in its vertex colour, the image
      * unread (every lesson before texture mapping) */
@@ -183,10 +226,30 @@ static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
         return NULL;
     return l->rasterize_scene[v - l->variants];
 }
-/* The front end variant v of lesson l runs on a 3-D scene: its entry of
- * l->fronts, or front_scene. */
+/* The front end variant v of lesson l runs on a 3-D scene: v->front, or
+ * front_scene. */
 front_fn lesson_front(const struct lesson *l, const struct lesson_variant *v);
 
 const struct lesson_variant *lesson_variant(const struct lesson *l, const char *name);
+
+/* The row of lesson l with option `option` (its index in *row when row is
+ * not NULL), or NULL. */
+const struct lesson_param *lesson_param(const struct lesson *l, const char *option, int *row);
+/* Where row `row` of lesson l keeps its value in p. */
+int *lesson_param_slot(const struct lesson *l, int row, struct raster_params *p);
+/* Sets the parameter named by option to v, if lesson l has it; false if not. */
+bool lesson_param_set(const struct lesson *l, struct raster_params *p, const char *option, int v);
+/* Every parameter of lesson l at its default, SUBPIXEL_BITS bits unless the lesson says. */
+struct raster_params lesson_params_default(const struct lesson *l);
+/* Params p of lesson `from` as lesson `to` reads them: every field shared
+ * by all lessons as in p, and each parameter of `to`'s own at the value of
+ * `from`'s row with the same option (the same option means the same
+ * thing), else at its default. */
+struct raster_params lesson_params_as(const struct lesson *to, const struct lesson *from,
+                                      const struct raster_params *p);
+/* Whether v is a value row r allows. */
+bool lesson_param_allows(const struct lesson_param *r, int v);
+/* Row r's values in words, "4, 8 or 16" or "0..8", into buf[0..n). */
+void lesson_param_range(const struct lesson_param *r, char *buf, size_t n);
 
 #endif

@@ -697,7 +697,7 @@ static void check_dump_bits(const char *program, const char *variant, const char
     /* a lesson with samples (08) counts samples, 4 by default: one sample is
      * the pixel centre (its sample counts are test_lesson08.c's) */
     const struct lesson *l = lesson_of(strrchr(program, '/') ? strrchr(program, '/') + 1 : program);
-    if (l && (l->params & LESSON_PARAM_SAMPLES)) {
+    if (l && lesson_param(l, "samples", NULL)) {
         argv[n++] = "--samples";
         argv[n++] = "1";
     }
@@ -751,7 +751,7 @@ Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180, .fin
         const struct lesson *l = lesson_of(p.name[k]);
         cr_assert_not_null(l, "program %s has no lesson", p.name[k]);
         for (int v = 0; v < l->nvariants; v++)
-            if (!l->variants[v].exhibit)
+            if (!variant_against_exact(&l->variants[v]))
                 check_dump(p.path[k], l->variants[v].name, scenes[0], scenes[0], &d);
     }
     dirs_remove(&d);

@@ -646,15 +646,22 @@ Test(explorer, scale_200k_triangles, .timeout = 120)
  * read subpixel_bits 0 as "the default" and snapped to 8 bits. */
 Test(explorer, agrees_with_headless_for_every_parameter_value, .timeout = 120)
 {
-    struct raster_params cases[16];
-    int n = 0;
-    for (int bits = 0; bits <= SUBPIXEL_BITS; bits++)
-        cases[n++] = (struct raster_params){ .subpixel_bits = bits };
-    for (int q = 4; q <= 16; q *= 2)
-        cases[n++] = (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS, .block_size = q };
-    cases[n++] = (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS, .affine = true };
     for (int li = 0; all_lessons[li]; li++) {
         const struct lesson *l = all_lessons[li];
+        /* every sub-pixel precision, and every value of each parameter of
+         * the lesson's own that the explorer has a key for */
+        struct raster_params cases[32];
+        int n = 0;
+        for (int bits = 0; bits <= SUBPIXEL_BITS; bits++)
+            cases[n++] = (struct raster_params){ .subpixel_bits = bits };
+        for (int i = 0; l->params && l->params[i].option; i++) {
+            const struct lesson_param *r = &l->params[i];
+            for (int v = r->min; r->key && r->slot == PARAM_OWN && v <= r->max && n < 32; v++)
+                if (lesson_param_allows(r, v)) {
+                    cases[n] = (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS };
+                    *lesson_param_slot(l, i, &cases[n++]) = v;
+                }
+        }
         for (int kind = SCENE_BUILTIN; kind <= SCENE_EXHIBIT; kind++) {
             struct scene s;
             if (!load_scene(l, kind, &s))
@@ -682,9 +689,9 @@ Test(explorer, agrees_with_headless_for_every_parameter_value, .timeout = 120)
                         cr_assert(render_scene(hs, &l->variants[v], &p, &fb));
                     cr_assert(targets_equal(&ex.fb, &fb),
                               "%s %s on %s: the explorer differs from the headless run with "
-                              "subpixel_bits %d, block_size %d, affine %d", l->id,
+                              "subpixel_bits %d, knobs %d %d", l->id,
                               l->variants[v].name, kind ? "the exhibit scene" : "the built-in scene",
-                              p.subpixel_bits, p.block_size, p.affine);
+                              p.subpixel_bits, p.knob[0], p.knob[1]);
                     cr_assert_eq(ex.params.subpixel_bits, p.subpixel_bits);
                     scene_free(&own);
                     target_free(&fb);

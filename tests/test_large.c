@@ -170,7 +170,7 @@ Test(large, stepping_back_with_samples_matches_a_fresh_run)
     cr_assert(scene_builtin(&s, "samples", err, sizeof err), "%s", err);
     const struct lesson *l = lesson_numbered("08");
     struct explorer ex;
-    struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = LESSON_SAMPLES_DEFAULT };
+    struct raster_params p = lesson_params_default(l);     /* 4 samples */
     struct explorer_desc d = { .lesson = l, .scene = &s, .params = &p, .step_end = true };
     cr_assert(explorer_init(&ex, &d, err, sizeof err), "%s", err);
     cr_assert_eq(ex.params.samples, 4);

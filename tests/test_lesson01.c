@@ -90,7 +90,7 @@ Test(lesson01, source_float_exhibit_differs_by_the_count_the_lesson_states)
     for (int k = 0; k < 2; k++) {
         const struct lesson_variant *v = lesson_variant(ls[k], "source-float");
         cr_assert_not_null(v);
-        cr_expect(v->exhibit);
+        cr_expect(variant_against_exact(v));
         struct tally c = compare_scene(ls[k]->exhibit_scene, v);
         cr_expect_eq(c.differ, EXHIBIT_DIFFER, "differ: %d", c.differ);
         cr_expect_eq(c.holes, EXHIBIT_HOLES, "holes: %d", c.holes);

@@ -74,7 +74,7 @@ static struct pixel_values *run_scene(const struct scene *s, const char *variant
     cr_assert_not_null(c.px);
     struct raster_params p = default_params();
     p.checker = s->checker;
-    p.affine = affine;
+    cr_assert(lesson_param_set(&lesson_04, &p, "affine", affine));
     struct target fb;
     cr_assert(target_init(&fb, s->w, s->h, 0));
     struct trace tr = { .sink = collect, .ctx = &c };

@@ -100,7 +100,7 @@ Test(lesson07, scene_coverage_equals_the_reference_for_every_exact_variant)
             for (int b = 0; b < 2; b++)
                 for (int vi = 0; vi < builds[b]->nvariants; vi++) {
                     const struct lesson_variant *v = &builds[b]->variants[vi];
-                    if (v->exhibit)
+                    if (variant_against_exact(v))
                         continue;
                     struct target fb;
                     draw_whole(builds[b], v->name, &s, &p, &fb);
@@ -154,7 +154,7 @@ Test(lesson07, picture_is_the_same_bytes_for_1_2_3_and_8_threads)
         p.checker = s.checker;
         struct target first;
         for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
-            p.threads = threads[k];
+            lesson_param_set(&lesson_07, &p, "threads", threads[k]);
             for (int b = 0; b < 2; b++) {
                 for (int again = 0; again < 3; again++) {
                     struct target fb;
@@ -253,7 +253,7 @@ Test(lesson07, guard_band_triangles_stay_exact)
         struct raster_params p = default_params();
         for (int b = 0; b < 2; b++)
             for (int vi = 0; vi < builds[b]->nvariants; vi++) {
-                if (builds[b]->variants[vi].exhibit)
+                if (variant_against_exact(&builds[b]->variants[vi]))
                     continue;
                 struct target fb;
                 draw_whole(builds[b], builds[b]->variants[vi].name, &s, &p, &fb);
@@ -370,10 +370,10 @@ Test(lesson07, unordered_bins_keep_coverage_and_one_thread_keeps_the_picture)
     struct raster_params p = default_params();
     struct target exact, one, two;
     draw_whole(&lesson_07_fast, "tiles", &s, &p, &exact);
-    p.threads = 1;
+    lesson_param_set(&lesson_07, &p, "threads", 1);
     draw_whole(&lesson_07_fast, "unordered", &s, &p, &one);
     cr_assert(same_bytes(&exact, &one), "unordered on one thread changed the picture");
-    p.threads = 2;
+    lesson_param_set(&lesson_07, &p, "threads", 2);
     draw_whole(&lesson_07_fast, "unordered", &s, &p, &two);
     cr_assert(memcmp(ref, two.count, (size_t)s.w * (size_t)s.h) == 0, "unordered changed coverage");
     target_free(&exact);
@@ -425,7 +425,7 @@ static void draw_units(const char *name, const struct scene *s, int threads, str
 {
     const struct lesson_variant *v = variant(&lesson_07, name);
     struct raster_params p = default_params();
-    p.threads = threads;
+    lesson_param_set(&lesson_07, &p, "threads", threads);
     long n = lesson_07.narration_units(s, v, &p, NULL, 0);
     cr_assert_geq(n, 0);
     struct lesson_unit *u = malloc((size_t)(n ? n : 1) * sizeof *u);
@@ -518,7 +518,7 @@ Test(lesson07, explorer_marks_the_pixels_unordered_threads_change)
     for (int threads = 2; threads <= 3; threads++) {
         struct explorer ex;
         struct raster_params p = default_params();
-        p.threads = threads;
+        lesson_param_set(&lesson_07, &p, "threads", threads);
         cr_assert(explorer_init(&ex, &(struct explorer_desc){ .lesson = &lesson_07, .scene = &s,
                                                              .variant = variant(&lesson_07, "unordered"),
                                                              .params = &p, .step_end = true },
@@ -628,7 +628,8 @@ Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
         random_scene(&s, &rng, 200 + 31 * rep, 150 - 17 * rep, 150, true, rep == 3 ? 5 : 0);
         struct raster_params p = default_params();
         p.checker = s.checker;
-        p.threads = 1 + rep % 3;
+        int threads = 1 + rep % 3;
+        cr_assert(lesson_param_set(&lesson_07, &p, "threads", threads));
         const struct lesson_variant *vn = variant(&lesson_07, "tiles");
         const struct lesson_variant *vf = variant(&lesson_07_fast, "tiles");
         long n = lesson_07.narration_units(&s, vn, &p, NULL, 0);
@@ -656,7 +657,7 @@ Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
                 if (u[i].bin_entry == 0)
                     worker[tile] = u[i].thread;
                 cr_assert_eq(u[i].thread, worker[tile], "tile %d: two workers", tile);
-                cr_assert(u[i].thread >= 0 && u[i].thread < p.threads);
+                cr_assert(u[i].thread >= 0 && u[i].thread < threads);
                 cr_assert(u[i].bin_entry == 0 || u[i].tri > last_tri[tile],
                           "tile %d: its bin is not drawn in scene order", tile);
                 next_entry[tile]++;

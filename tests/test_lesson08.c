@@ -584,7 +584,7 @@ static struct trace_counters run_counted_q(const char *vname, int n, int q)
     cr_assert(target_init(&fb, s.w, s.h, 0));
     struct raster_params p = default_params();
     p.samples = n;
-    p.block_size = q;
+    cr_assert(lesson_param_set(&lesson_08, &p, "block-size", q));
     struct trace_counters sum = { 0 };
     for (int i = 0; i < s.ntris; i++) {
         struct tri_setup t;

@@ -45,8 +45,8 @@ static void step_through(const struct lesson *l, const struct lesson_variant *v,
 {
     struct raster_params p = default_params();
     p.scene = s;
-    if (l->params & LESSON_PARAM_SAMPLES)
-        p.samples = LESSON_SAMPLES_DEFAULT;
+    if (lesson_param(l, "samples", NULL))
+        p.samples = lesson_param(l, "samples", NULL)->def;
     struct replay r;
     cr_assert(replay_begin_units(&r, s, v, &p, l->narration_units), "%s/%s: out of memory", l->id,
               v->name);

@@ -79,7 +79,7 @@ static struct tally compare(const char *scene, const struct lesson *l, const cha
     const struct lesson_variant *v = variant ? lesson_variant(l, variant) : &l->variants[0];
     cr_assert_not_null(v, "%s has no variant %s", l->id, variant);
     struct raster_params p = default_params();
-    p.block_size = block_size;
+    cr_assert(!block_size || lesson_param_set(l, &p, "block-size", block_size));
     struct target fb;
     cr_assert(render_scene(&s, v, &p, &fb));
     uint8_t *ref = reference_scene(&s);
@@ -110,7 +110,7 @@ static struct trace_counters narrate(const char *scene, const struct lesson *l, 
 {
     struct scene s = load(scene);
     struct raster_params p = default_params();
-    p.block_size = block_size;
+    cr_assert(!block_size || lesson_param_set(l, &p, "block-size", block_size));
     struct target fb;
     cr_assert(target_init(&fb, s.w, s.h, scene_background(&s)));
     struct trace_counters sum = { 0 };

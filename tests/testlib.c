@@ -239,7 +239,7 @@ int exact_variants(struct test_variant *out, int max, int builds)
         const struct lesson *const *list = b == 0 ? all_lessons : all_lessons_fast;
         for (int i = 0; list[i]; i++)
             for (int k = 0; k < list[i]->nvariants; k++) {
-                if (list[i]->variants[k].exhibit)
+                if (variant_against_exact(&list[i]->variants[k]))
                     continue;
                 if (n < max)
                     out[n] = (struct test_variant){ list[i], &list[i]->variants[k], b == 0 };

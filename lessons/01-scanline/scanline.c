@@ -427,10 +427,10 @@ static void rasterize_source(const struct tri_setup *t, const struct raster_para
 }
 
 static const struct lesson_variant variants[] = {
-    { "exact", "fixed-point edges, exact presteps, top-left rule: equal to the reference",
-      rasterize, false },
-    { "source-float", "exhibit: seed 002's float stepping without prestep: gaps and overlaps",
-      rasterize_source, true },
+    { .name = "exact", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
+      .what = "fixed-point edges, exact presteps, top-left rule: equal to the reference" },
+    { .name = "source-float", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_source,
+      .what = "exhibit: seed 002's float stepping without prestep: gaps and overlaps" },
 };
 
 const struct lesson lesson_01 = {

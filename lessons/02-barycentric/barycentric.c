@@ -128,9 +128,12 @@ static void rasterize_strict(const struct tri_setup *t, const struct raster_para
 }
 
 static const struct lesson_variant variants[] = {
-    { "top-left", "the top-left rule decides centres on an edge (seed 004)", rasterize, false },
-    { "inclusive", "exhibit: F >= 0 on every edge draws shared edges twice", rasterize_inclusive, true },
-    { "strict", "exhibit: 0 < alpha, beta, gamma (seed 003) leaves cracks", rasterize_strict, true },
+    { .name = "top-left", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
+      .what = "the top-left rule decides centres on an edge (seed 004)" },
+    { .name = "inclusive", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_inclusive,
+      .what = "exhibit: F >= 0 on every edge draws shared edges twice" },
+    { .name = "strict", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_strict,
+      .what = "exhibit: 0 < alpha, beta, gamma (seed 003) leaves cracks" },
 };
 
 const struct lesson lesson_02 = {

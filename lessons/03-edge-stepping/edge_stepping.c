@@ -295,9 +295,10 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
 }
 
 static const struct lesson_variant variants[] = {
-    { "stepping", "integer edge values stepped by additions: exact (seed 001)", rasterize, false },
-    { "float", "exhibit: the same loop in single-precision float drifts on large triangles",
-      rasterize_float, true },
+    { .name = "stepping", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
+      .what = "integer edge values stepped by additions: exact (seed 001)" },
+    { .name = "float", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_float,
+      .what = "exhibit: the same loop in single-precision float drifts on large triangles" },
 };
 
 static const char *const compare[] = { "02-barycentric", NULL };
@@ -311,7 +312,13 @@ const struct lesson lesson_03 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .params = LESSON_PARAM_SUBPIXEL,
+    /* the precision every lesson snaps to; its exhibit is fewer bits */
+    .params = (const struct lesson_param[]){
+        { .option = "subpixel-bits", .arg = "N", .name = "sub-pixel bits",
+          .help = "snap vertices to N fractional bits, 0..8 (default 8)",
+          .key = ']', .key_down = '[', .min = 0, .max = SUBPIXEL_BITS, .def = SUBPIXEL_BITS,
+          .slot = PARAM_SUBPIXEL_BITS },
+        { 0 } },
     .compare = compare,
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },

@@ -58,6 +58,8 @@ enum { ATTR_R, ATTR_G, ATTR_B, ATTR_S, ATTR_T, ATTR_COUNT = 8 };
 
 static const char *const aux_names[] = { "1/z", "w", "u", "v", "s", "t", NULL };
 
+enum { P_AFFINE };  /* the lesson's parameter rows: p->knob[P_AFFINE] is --affine */
+
 /* Everything the pixel loops need, computed once per triangle. */
 struct persp_setup {
     /* (1/z, w, u, v) at the centre of (minX, minY), per pixel to the right,
@@ -125,7 +127,7 @@ static void persp_setup(const struct tri_setup *t, const struct raster_params *p
      * exhibit keeps the bare attribute and, below, skips the "* Depth". */
     for (int i = 0; i < 3; i++) {
         const struct vertex *v = &t->v[i];
-        double q = p->affine ? 1.0 : 1.0 / v->z;
+        double q = p->knob[P_AFFINE] ? 1.0 : 1.0 / v->z;
         float *Q = s->Q[i];
         Q[ATTR_R] = (float)(v->r * q);
         Q[ATTR_G] = (float)(v->g * q);
@@ -286,7 +288,7 @@ walk_box(const struct tri_setup *t, const struct raster_params *p, struct target
             }
             bool shows = in && target_depth_pass(fb, x, y, depth);
             if (shows) {                                /* shade only what will show */
-                float m = p->affine ? 1.0f : depth;
+                float m = p->knob[P_AFFINE] ? 1.0f : depth;
                 union reg P0 = reg_perspective(Cx, QA[0], QB[0], QC[0], m, tw);  /* r, g, b, s */
                 union reg P1 = reg_perspective(Cx, QA[1], QB[1], QC[1], m, tw);  /* t */
                 reg_store(attr, P0, tw);
@@ -408,7 +410,7 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
                 COUNT(tr, 4, RECIPROCAL_COST);
             }
             if (shows) {
-                __m128 M = p->affine ? one : _mm_loadu_ps(depth);
+                __m128 M = p->knob[P_AFFINE] ? one : _mm_loadu_ps(depth);
                 for (int i = 0; i <= ATTR_T; i++)                  /* (23), four pixels */
                     _mm_storeu_ps(attr[i], _mm_mul_ps(_mm_add_ps(_mm_add_ps(
                         _mm_mul_ps(U, QA[i]), _mm_mul_ps(V, QB[i])), _mm_mul_ps(W, QC[i])), M));
@@ -464,11 +466,12 @@ static void rasterize_row4_sse(const struct tri_setup *t, const struct raster_pa
 }
 
 static const struct lesson_variant variants[] = {
-    { "sse", "the source's layout: one pixel's (1/z, w, u, v) in one SSE register",
-      rasterize_sse, false },
-    { "scalar", "the same steps on four plain floats: the SSE code's twin",
-      rasterize_scalar, false },
-    { "row4", "four pixels per register, one register per quantity", rasterize_row4_sse, false },
+    { .name = "sse", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_sse,
+      .what = "the source's layout: one pixel's (1/z, w, u, v) in one SSE register" },
+    { .name = "scalar", .kind = VARIANT_TWIN, .rasterize = rasterize_scalar,
+      .what = "the same steps on four plain floats: the SSE code's twin" },
+    { .name = "row4", .kind = VARIANT_TWIN, .rasterize = rasterize_row4_sse,
+      .what = "four pixels per register, one register per quantity" },
 };
 
 const struct lesson lesson_04 = {
@@ -481,7 +484,12 @@ const struct lesson lesson_04 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .params = LESSON_PARAM_AFFINE,
+    .params = (const struct lesson_param[]){
+        [P_AFFINE] = { .option = "affine", .name = "texturing",
+                       .help = "texture affinely, not perspective-correct (lesson 04's exhibit)",
+                       .words = (const char *const[]){ "perspective", "affine" },
+                       .key = 'p', .min = 0, .max = 1 },
+        { 0 } },
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, FILL_RULE_COST), COST_TERM(4, PLANE_STEP_COST), COST_TERM(3, EDGE_STEP_COST),
         { 0 } },

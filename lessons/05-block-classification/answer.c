@@ -31,6 +31,7 @@
 enum { L_SETUP, L_BOX, L_LOOP, L_MASKS, L_EMPTY, L_FULL, L_PARTIAL, L_STEP, L_PIXEL };
 
 #define Q_DEFAULT 8
+enum { P_BLOCK };   /* p->knob[P_BLOCK]: --block-size (the lesson's parameter row 0) */
 
 /* The edges with the fill rule folded in: F0k + bias_k at the centre of
  * pixel (x, y) is f0[k] + dx[k] * x + dy[k] * y, exactly; the pixel is
@@ -141,7 +142,7 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
             .x1 = t->maxx, .y1 = t->maxy, .e = { t->area2, 0, 0 });
     if (t->empty)
         return;
-    int q = p->block_size > 0 ? p->block_size : Q_DEFAULT;
+    int q = p->knob[P_BLOCK] > 0 ? p->knob[P_BLOCK] : Q_DEFAULT;
     struct edges e;
     for (int k = 0; k < 3; k++) {
         e.dx[k] = t->I[k] * SUBPIXEL_ONE;

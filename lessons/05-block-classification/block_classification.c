@@ -55,6 +55,7 @@ enum { L_SETUP, L_BOX, L_LOOP, L_MASKS, L_EMPTY, L_FULL, L_PARTIAL, L_STEP, L_PI
 static const char *const aux_names[] = { "q", "level", NULL };
 
 #define Q_DEFAULT 8         /* the default block size (exercise 1 compares 4, 8, 16) */
+enum { P_BLOCK };           /* the lesson's parameter rows: p->knob[P_BLOCK] is --block-size */
 #define Q_COARSE 64         /* the hierarchical variant's coarse level */
 
 /* --- the edges, as the block loop uses them ------------------------------- */
@@ -339,7 +340,7 @@ static void rasterize_blocks(const struct tri_setup *t, const struct raster_para
     NARRATE_SETUP(tr, t, TRACE_LINES(L_SETUP, L_BOX));  /* the edges and their box */
     if (t->empty)
         return;
-    int q = o.q > 0 ? o.q : p->block_size > 0 ? p->block_size : Q_DEFAULT;
+    int q = o.q > 0 ? o.q : p->knob[P_BLOCK] > 0 ? p->knob[P_BLOCK] : Q_DEFAULT;
     if (q > Q_COARSE)
         q = Q_COARSE;
 
@@ -426,17 +427,20 @@ static void rasterize_or_inside(const struct tri_setup *t, const struct raster_p
 }
 
 static const struct lesson_variant variants[] = {
-    { "q8", "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time",
-      rasterize_q8, false },
-    { "q4", "4 x 4 blocks", rasterize_q4, false },
-    { "q16", "16 x 16 blocks", rasterize_q16, false },
-    { "hier", "64 x 64 coarse blocks, the partial ones cut into 8 x 8 blocks", rasterize_hier, false },
-    { "q8-pixel", "8 x 8 blocks, partial blocks one pixel at a time (64-bit edge values)",
-      rasterize_pixelwise, false },
-    { "corners-outside", "exhibit: skip a block when every corner is outside the triangle",
-      rasterize_corners_outside, true },
-    { "or-inside", "exhibit: the pseudo-code's || makes a block full when inside ONE edge",
-      rasterize_or_inside, true },
+    { .name = "q8", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_q8,
+      .what = "8 x 8 blocks (or --block-size Q), partial blocks four pixels at a time" },
+    { .name = "q4", .kind = VARIANT_TWIN, .rasterize = rasterize_q4,
+      .what = "4 x 4 blocks" },
+    { .name = "q16", .kind = VARIANT_TWIN, .rasterize = rasterize_q16,
+      .what = "16 x 16 blocks" },
+    { .name = "hier", .kind = VARIANT_TWIN, .rasterize = rasterize_hier,
+      .what = "64 x 64 coarse blocks, the partial ones cut into 8 x 8 blocks" },
+    { .name = "q8-pixel", .kind = VARIANT_TWIN, .rasterize = rasterize_pixelwise,
+      .what = "8 x 8 blocks, partial blocks one pixel at a time (64-bit edge values)" },
+    { .name = "corners-outside", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_corners_outside,
+      .what = "exhibit: skip a block when every corner is outside the triangle" },
+    { .name = "or-inside", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_or_inside,
+      .what = "exhibit: the pseudo-code's || makes a block full when inside ONE edge" },
 };
 
 static const char *const compare[] = { "02-barycentric", "03-edge-stepping", NULL };
@@ -451,7 +455,11 @@ const struct lesson lesson_05 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .params = LESSON_PARAM_BLOCK,
+    .params = (const struct lesson_param[]){
+        [P_BLOCK] = { .option = "block-size", .arg = "Q", .name = "block", .key = 'b', .min = 4,
+                      .max = 16, .values = (const int[]){ 4, 8, 16, -1 }, .def = Q_DEFAULT,
+                      .help = "block size for block lessons (4, 8 or 16)" },
+        { 0 } },
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, QUAD_DEPTH_COST), COST_TERM(1, QUAD_COLOUR_COST), { 0 } },

@@ -513,43 +513,39 @@ static void rasterize_edges32(const struct tri_setup *t, const struct raster_par
 }
 
 static const struct lesson_variant variants[] = {
-    { "clip", "clip near and far, guard band, lesson 05's rasterizer storing d", rasterize, false },
-    { "inverse", "storage: the depth buffer holds 1/d as a float (the same picture)",
-      rasterize_inverse, true },
-    { "reversed", "storage: reversed float depth n (f - d) / ((f - n) d) (the same picture)",
-      rasterize_reversed, true },
-    { "ndc24", "exhibit: OpenGL's NDC z in 24 bits: far surfaces close together fight",
-      rasterize_ndc24, true },
-    { "project-first", "exhibit: projecting before clipping: a triangle behind the eye, inside out",
-      rasterize_05, true },
-    { "walk-order", "exhibit: float clipping in each triangle's own edge order: cracks",
-      rasterize_05, true },
-    { "float-canonical", "float clipping in the canonical order: the cut moves, no crack",
-      rasterize_05, true },
-    { "viewport", "exhibit: x, y clipped to the screen, not the guard band: more clipping",
-      rasterize_05, true },
-    { "no-guard-32", "exhibit: no guard band and 32-bit edge values: lesson 03's overflow",
-      rasterize_edges32, true },
-    { "clip-space-gl", "near and far clipped in clip space, -w <= z <= w (OpenGL): the same picture",
-      rasterize_05, false },
-    { "clip-space-vk", "near and far clipped in clip space, 0 <= z <= w (Vulkan, D3D): the same picture",
-      rasterize_05, false },
+    { .name = "clip", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
+      .what = "clip near and far, guard band, lesson 05's rasterizer storing d" },
+    { .name = "inverse", .kind = VARIANT_CONTRAST, .rasterize = rasterize_inverse,
+      .other_depth = true,
+      .what = "storage: the depth buffer holds 1/d as a float (the same picture)" },
+    { .name = "reversed", .kind = VARIANT_CONTRAST, .rasterize = rasterize_reversed,
+      .other_depth = true,
+      .what = "storage: reversed float depth n (f - d) / ((f - n) d) (the same picture)" },
+    { .name = "ndc24", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_ndc24,
+      .other_depth = true,
+      .what = "exhibit: OpenGL's NDC z in 24 bits: far surfaces close together fight" },
+    { .name = "project-first", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_05,
+      .front = front_project_first,
+      .what = "exhibit: projecting before clipping: a triangle behind the eye, inside out" },
+    { .name = "walk-order", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_05,
+      .front = front_walk_order,
+      .what = "exhibit: float clipping in each triangle's own edge order: cracks" },
+    { .name = "float-canonical", .kind = VARIANT_CONTRAST, .rasterize = rasterize_05,
+      .front = front_float_canonical,
+      .what = "float clipping in the canonical order: the cut moves, no crack" },
+    { .name = "viewport", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_05,
+      .front = front_viewport,
+      .what = "exhibit: x, y clipped to the screen, not the guard band: more clipping" },
+    { .name = "no-guard-32", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_edges32,
+      .front = front_no_guard,
+      .what = "exhibit: no guard band and 32-bit edge values: lesson 03's overflow" },
+    { .name = "clip-space-gl", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_05,
+      .front = front_clip_space_gl,
+      .what = "near and far clipped in clip space, -w <= z <= w (OpenGL): the same picture" },
+    { .name = "clip-space-vk", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_05,
+      .front = front_clip_space_vk,
+      .what = "near and far clipped in clip space, 0 <= z <= w (Vulkan, D3D): the same picture" },
 };
-
-/* How each variant makes the screen triangles (NULL: the shared front end). */
-static const front_fn fronts[] = {
-    NULL, NULL, NULL, NULL, front_project_first, front_walk_order, front_float_canonical, front_viewport,
-    front_no_guard, front_clip_space_gl, front_clip_space_vk,
-};
-
-_Static_assert(sizeof fronts / sizeof fronts[0] == sizeof variants / sizeof variants[0],
-               "one front end per variant");
-
-/* The variants whose depth buffer holds another quantity than d. */
-static const bool other_depth[] = { false, true, true, true, false, false, false, false, false,
-                                    false, false };
-_Static_assert(sizeof other_depth / sizeof other_depth[0] == sizeof variants / sizeof variants[0],
-               "one entry per variant");
 
 const struct lesson lesson_06 = {
     .id = "06-clipping",
@@ -561,8 +557,6 @@ const struct lesson lesson_06 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .aux_names = aux_names,
-    .fronts = fronts,
-    .other_depth = other_depth,
     /* the exercise: the student's clipper in the front end, lesson 05's
      * rasterizer given (lessons/06-clipping/exercise.c) */
     .exercise = { .write_line = L_RASTER, .clip = true },

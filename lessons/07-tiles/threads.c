@@ -374,7 +374,8 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
         }
         return true;
     }
-    int threads = o.threads > 0 ? o.threads : p->threads > 0 ? p->threads : default_threads();
+    int threads = o.threads > 0 ? o.threads
+                  : p->knob[P_THREADS] > 0 ? p->knob[P_THREADS] : default_threads();
     threads = threads > MAX_THREADS ? MAX_THREADS : threads;
     pthread_mutex_lock(&frame_lock);
     bool ok = keep_room(shares(threads), threads, o.tile_buffers);

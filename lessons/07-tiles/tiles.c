@@ -111,25 +111,30 @@ VARIANT(rasterize_wrong_corner, scene_wrong_corner, V_WRONG_CORNER)
 VARIANT(rasterize_unordered, scene_unordered, V_UNORDERED)
 
 static const struct lesson_variant variants[V_COUNT] = {
-    [V_TILES] = { "tiles", "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 "
-                  "where the CPU has it), one worker per core (or --threads N)", rasterize_tiles,
-                  false },
-    [V_ONE_THREAD] = { "1-thread", "the same on one thread", rasterize_one_thread, false },
-    [V_IN_PLACE] = { "in-place", "one thread, no tile buffers: each tile drawn straight into "
-                     "the framebuffer", rasterize_in_place, false },
-    [V_FOUR_CORNERS] = { "four-corners", "one thread, every corner of every edge tested, as in "
-                         "lesson 05", rasterize_four_corners, false },
-    [V_SSE2] = { "sse2", "one thread, the SSE2 twin: two registers of four pixels",
-                 rasterize_sse2, false },
-    [V_SCALAR] = { "scalar", "one thread, the plain C twin: one pixel at a time",
-                   rasterize_scalar, false },
-    [V_NO_BINS] = { "no-bins", "one thread, no bins: triangle after triangle through the tiles "
-                    "of its box", rasterize_no_bins, false },
-    [V_WRONG_CORNER] = { "wrong-corner", "exhibit: tiles rejected with the accept corner of "
-                         "each edge", rasterize_wrong_corner, true },
-    [V_UNORDERED] = { "unordered", "exhibit: each worker draws its own share of a bin first, so "
-                      "the order within a tile depends on which thread took it",
-                      rasterize_unordered, true },
+    [V_TILES] = { .name = "tiles", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_tiles,
+                  .what = "64 x 64 tiles in cache, 8 x 8 blocks, 8 pixels a register (AVX2 "
+                  "where the CPU has it), one worker per core (or --threads N)" },
+    [V_ONE_THREAD] = { .name = "1-thread", .kind = VARIANT_TWIN, .rasterize = rasterize_one_thread,
+                       .what = "the same on one thread" },
+    [V_IN_PLACE] = { .name = "in-place", .kind = VARIANT_TWIN, .rasterize = rasterize_in_place,
+                     .what = "one thread, no tile buffers: each tile drawn straight into the "
+                     "framebuffer" },
+    [V_FOUR_CORNERS] = { .name = "four-corners", .kind = VARIANT_TWIN,
+                         .rasterize = rasterize_four_corners,
+                         .what = "one thread, every corner of every edge tested, as in lesson 05" },
+    [V_SSE2] = { .name = "sse2", .kind = VARIANT_TWIN, .rasterize = rasterize_sse2,
+                 .what = "one thread, the SSE2 twin: two registers of four pixels" },
+    [V_SCALAR] = { .name = "scalar", .kind = VARIANT_TWIN, .rasterize = rasterize_scalar,
+                   .what = "one thread, the plain C twin: one pixel at a time" },
+    [V_NO_BINS] = { .name = "no-bins", .kind = VARIANT_TWIN, .rasterize = rasterize_no_bins,
+                    .what = "one thread, no bins: triangle after triangle through the tiles of "
+                    "its box" },
+    [V_WRONG_CORNER] = { .name = "wrong-corner", .kind = VARIANT_EXHIBIT,
+                         .rasterize = rasterize_wrong_corner,
+                         .what = "exhibit: tiles rejected with the accept corner of each edge" },
+    [V_UNORDERED] = { .name = "unordered", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_unordered,
+                      .what = "exhibit: each worker draws its own share of a bin first, so the "
+                      "order within a tile depends on which worker took it" },
 };
 
 static const rasterize_scene_fn scenes[V_COUNT] = {
@@ -197,6 +202,11 @@ const struct lesson lesson_07 = {
     .perspective = true,
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
+    .params = (const struct lesson_param[]){
+        [P_THREADS] = { .option = "threads", .arg = "N", .name = "threads",
+                        .help = "worker threads of a tiled lesson, 1..64 (default: one per core)",
+                        .min = 1, .max = MAX_THREADS },
+        { 0 } },
     .compare = compare,
     .rasterize_scene = scenes,
     .narration_units = narration_units,

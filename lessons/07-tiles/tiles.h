@@ -67,6 +67,7 @@ static inline bool frozen(const struct trace *tr)
 #define BLOCK 8             /* block side, and pixels a register (AVX2) */
 #define LANES 8
 #define MAX_THREADS 64
+enum { P_THREADS };         /* the lesson's parameter rows: p->knob[P_THREADS] is --threads */
 #define E_LIMIT (1 << 30)   /* |I i + J j| < 2^30 inside a tile: see (E) in tiles.c */
 
 /* --- set-up (setup.c) ----------------------------------------------------- */

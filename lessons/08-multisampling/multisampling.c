@@ -66,6 +66,7 @@ enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
  * unnamed: the explorer's watch shows them in one notation, its own. */
 
 #define Q_DEFAULT 8
+enum { P_BLOCK, P_SAMPLES };    /* the lesson's parameter rows: p->knob[P_BLOCK] is --block-size */
 
 /* Named costs of this lesson (trace/trace.h):
  *   SAMPLE_EDGE_COST   a sample's edge value: the pixel's plus its offset
@@ -505,7 +506,7 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
             r.plane_off[s][q] = (r.pl.px[q] * r.pt.dx[s] + r.pl.py[q] * r.pt.dy[s]) / SUBPIXEL_ONE;
 
     /* lesson 05's grid of q x q blocks, aligned on the screen, clipped to the box */
-    int q = p->block_size > 0 ? p->block_size : Q_DEFAULT;
+    int q = p->knob[P_BLOCK] > 0 ? p->knob[P_BLOCK] : Q_DEFAULT;
     for (int by = box[1] - box[1] % q; by <= box[3]; by += q) {
         int ya = by < box[1] ? box[1] : by, yb = by + q - 1 > box[3] ? box[3] : by + q - 1;
         for (int bx = box[0] - box[0] % q; bx <= box[2]; bx += q) {
@@ -550,17 +551,17 @@ static void rasterize_no_fill_rule(const struct tri_setup *t, const struct raste
 }
 
 static const struct lesson_variant variants[] = {
-    { "msaa", "multisampling: coverage and depth per sample, colour once per pixel",
-      rasterize_msaa, false },
-    { "ssaa", "supersampling: colour shaded at every covered sample", rasterize_ssaa, false },
-    { "tent", "msaa resolved by a tent filter: the neighbours' samples count too", rasterize_tent, false },
-    { "grid", "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern",
-      rasterize_grid, true },
-    { "no-fill-rule", "exhibit: a sample exactly on an edge is covered by both triangles",
-      rasterize_no_fill_rule, true },
+    { .name = "msaa", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_msaa,
+      .what = "multisampling: coverage and depth per sample, colour once per pixel" },
+    { .name = "ssaa", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_ssaa,
+      .what = "supersampling: colour shaded at every covered sample" },
+    { .name = "tent", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_tent,
+      .what = "msaa resolved by a tent filter: the neighbours' samples count too" },
+    { .name = "grid", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_grid,
+      .what = "exhibit: samples on a regular grid (4: the quarter points) instead of the rotated pattern" },
+    { .name = "no-fill-rule", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_no_fill_rule,
+      .what = "exhibit: a sample exactly on an edge is covered by both triangles" },
 };
-
-static const char *const compare[] = { "05-block-classification", NULL };
 
 const struct lesson lesson_08 = {
     .id = "08-multisampling",
@@ -571,16 +572,22 @@ const struct lesson lesson_08 = {
     .perspective = true,
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
-    .params = LESSON_PARAM_BLOCK | LESSON_PARAM_SAMPLES,
-    /* at one sample (what the recount runs): the edges at the sample and the
-     * step to the next pixel; covered: four planes at the centre, the colour,
-     * the sample's depth */
+    .params = (const struct lesson_param[]){
+        [P_BLOCK] = { .option = "block-size", .arg = "Q", .name = "block", .key = 'b', .min = 4,
+                      .max = 16, .values = (const int[]){ 4, 8, 16, -1 }, .def = Q_DEFAULT,
+                      .help = "block size for block lessons (4, 8 or 16)" },
+        [P_SAMPLES] = { .option = "samples", .arg = "N", .name = "samples", .key = 'm', .def = 4,
+                        .min = 1, .max = 8, .values = (const int[]){ 1, 4, 8, -1 }, .slot = PARAM_SAMPLES,
+                        .help = "samples per pixel, 1, 4 or 8 (lesson 08; default 4)" },
+        { 0 } },
+    /* at one sample (what the recount runs): the edges at the sample, the step
+     * to the next pixel; covered: four planes at the centre, colour, depth */
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, SAMPLE_EDGE_COST), COST_TERM(3, EDGE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
         COST_TERM(4, PLANE_AT_COST), COST_TERM(2, RECIPROCAL_COST), COST_TERM(3, ATTRIBUTE_COST),
         COST_TERM(1, PACK_SCALED_COST), COST_TERM(1, PLANE_STEP_COST), { 0 } },
-    .compare = compare,
+    .compare = (const char *const[]){ "05-block-classification", NULL },
     /* make check draws every scene at 4 and 8 samples, then at the centre */
     .exercise = { .write_line = L_WRITE, .samples = (const int[]){ 4, 8, 1, 0 } },
 };

@@ -239,7 +239,7 @@ static void set_params(struct app *a, const struct raster_params *p, const char 
 static bool has_twins(const struct lesson *l)
 {
     for (int i = 1; i < l->nvariants; i++)
-        if (!l->variants[i].exhibit)
+        if (!variant_against_exact(&l->variants[i]))
             return true;
     return false;
 }
@@ -247,7 +247,6 @@ static bool has_twins(const struct lesson *l)
 static void key(struct app *a, SDL_Keycode k, Uint16 mod)
 {
     struct explorer *ex = &a->ex;
-    unsigned prm = a->lesson->params;
     enum step_unit unit = mod & KMOD_CTRL ? STEP_TRIANGLE : mod & KMOD_SHIFT ? STEP_GROUP : STEP_EVENT;
     char buf[96];
     struct raster_params p = ex->params;
@@ -293,10 +292,6 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
         if (has_twins(a->lesson) && !explorer_cycle_twin(ex))
             out_of_memory(a);
         break;
-    case SDLK_LEFTBRACKET: case SDLK_RIGHTBRACKET: case SDLK_b: case SDLK_m: case SDLK_p:
-        if (params_key(prm, (int)k, &p, buf, sizeof buf))     /* params.c */
-            set_params(a, &p, buf);
-        break;
     case SDLK_e: export_view(a); break;
     case SDLK_l:    /* figures for print: the light theme, also in the window */
         if (!explorer_set_theme(ex, ex->theme == THEME_LIGHT ? THEME_DARK : THEME_LIGHT))
@@ -313,7 +308,12 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
     case SDLK_f: ex->zoom = 0; break;
     case SDLK_h: case SDLK_F1: ex->help = !ex->help; break;
     case SDLK_q: case SDLK_ESCAPE: a->quit = true; break;
-    default: a->dirty = false; break;
+    default:    /* a key of a row of the lesson's parameter table (params.c), or none */
+        if (params_key(a->lesson, (int)k, &p, buf, sizeof buf))
+            set_params(a, &p, buf);
+        else
+            a->dirty = false;
+        break;
     }
 }
 

@@ -1,41 +1,42 @@
-/* params.c - the keys that change a lesson's parameters (params.h). */
+/* params.c - the keys that change a lesson's parameters (params.h): read
+ * from the rows of the lesson's table (lesson.h, struct lesson_param). */
 #include "params.h"
 
 #include <stdio.h>
 
-bool params_key(unsigned params, int key, struct raster_params *p, char *what, size_t n)
+/* The value after (dir > 0) or before v among row r's values, wrapping
+ * when wrap, else stopping at the ends. */
+static int next_value(const struct lesson_param *r, int v, int dir, bool wrap)
 {
-    switch (key) {
-    case '[': case ']':
-        if (!(params & LESSON_PARAM_SUBPIXEL))
-            return false;
-        p->subpixel_bits += key == '[' ? -1 : 1;
-        p->subpixel_bits = p->subpixel_bits < 0 ? 0 : p->subpixel_bits > 8 ? 8 : p->subpixel_bits;
-        snprintf(what, n, "sub-pixel bits: %d", p->subpixel_bits);
-        return true;
-    case 'b': {
-        if (!(params & LESSON_PARAM_BLOCK))
-            return false;
-        int q = p->block_size ? p->block_size : 8;
-        p->block_size = q == 4 ? 8 : q == 8 ? 16 : 4;
-        snprintf(what, n, "block size %d x %d", p->block_size, p->block_size);
+    if (r->values) {
+        int n = 0, at = 0;
+        while (r->values[n] >= 0)
+            at = r->values[n] == v ? n : at, n++;
+        at += dir;
+        return r->values[wrap ? (at + n) % n : at < 0 ? 0 : at >= n ? n - 1 : at];
+    }
+    v += dir;
+    if (v < r->min)
+        return wrap ? r->max : r->min;
+    if (v > r->max)
+        return wrap ? r->min : r->max;
+    return v;
+}
+
+bool params_key(const struct lesson *l, int key, struct raster_params *p, char *what, size_t n)
+{
+    for (int i = 0; key && l->params && l->params[i].option; i++) {
+        const struct lesson_param *r = &l->params[i];
+        if (key != r->key && key != r->key_down)
+            continue;
+        int *v = lesson_param_slot(l, i, p);
+        int now = lesson_param_allows(r, *v) ? *v : r->def;   /* 0: the lesson's default */
+        *v = next_value(r, now, key == r->key_down ? -1 : +1, !r->key_down);
+        if (r->words)
+            snprintf(what, n, "%s: %s", r->name, r->words[*v != 0]);
+        else
+            snprintf(what, n, "%s: %d", r->name, *v);
         return true;
     }
-    case 'm': {
-        if (!(params & LESSON_PARAM_SAMPLES))
-            return false;
-        int s = p->samples > 1 ? p->samples : 1;
-        p->samples = s == 1 ? 4 : s == 4 ? 8 : 1;
-        snprintf(what, n, "%d sample%s per pixel", p->samples, p->samples == 1 ? "" : "s");
-        return true;
-    }
-    case 'p':
-        if (!(params & LESSON_PARAM_AFFINE))
-            return false;
-        p->affine = !p->affine;
-        snprintf(what, n, "%s", p->affine ? "affine texturing (the exhibit)" : "perspective-correct");
-        return true;
-    default:
-        return false;
-    }
+    return false;
 }

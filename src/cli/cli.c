@@ -28,6 +28,10 @@ static bool png_writer(FILE *out, void *ctx) { return write_color_png(out, ctx);
 
 /* --- options --------------------------------------------------------------------- */
 
+#define PARAM_OPTIONS_MAX 16    /* distinct parameter options over every lesson */
+
+static int param_options(const struct lesson *l, const struct lesson_param *rows[PARAM_OPTIONS_MAX]);
+
 static void usage(const struct lesson *l, FILE *out)
 {
     fprintf(out,
@@ -46,19 +50,23 @@ static void usage(const struct lesson *l, FILE *out)
         "  --zoom PX               screen pixels per scene pixel (default: fit)\n"
         "  --scale F               interface scale for text and panels (default 1)\n"
         "  --theme dark|light      colours: dark for the screen (default), light for paper\n"
-        "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n"
-        "  --block-size Q          block size for block lessons (4, 8 or 16)\n"
-        "  --subpixel-bits N       snap vertices to N fractional bits, 0..8 (default 8)\n"
-        "  --threads N             worker threads of a tiled lesson, 1..64 (default: one per core)\n"
-        "  --samples N             samples per pixel, 1, 4 or 8 (lesson 08; default 4)\n"
-        "  --affine                texture affinely, not perspective-correct (lesson 04's exhibit)\n"
+        "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n",
+        l->id, l->title, l->builtin_scene);
+    const struct lesson_param *rows[PARAM_OPTIONS_MAX];
+    int nrows = param_options(l, rows);
+    for (int i = 0; i < nrows; i++) {     /* the lessons' parameters (their tables) */
+        char opt[64];
+        snprintf(opt, sizeof opt, "--%s%s%s", rows[i]->option, rows[i]->arg ? " " : "",
+                 rows[i]->arg ? rows[i]->arg : "");
+        fprintf(out, "  %-24s%s\n", opt, rows[i]->help);
+    }
+    fprintf(out,
         "  --keys FILE             explorer: read key names from FILE, one per line\n"
         "  --list-scenes           list the built-in scenes\n"
         "  --help                  show this help\n"
         "  --version               show the version\n"
         "\n"
-        "Variants:\n",
-        l->id, l->title, l->builtin_scene);
+        "Variants:\n");
     for (int i = 0; i < l->nvariants; i++)
         fprintf(out, "  %-22s  %s%s\n", l->variants[i].name, l->variants[i].what,
                 i == 0 ? " (default)" : "");
@@ -103,9 +111,9 @@ static bool parse_positive(const char *s, double max, double *out)
 
 enum {
     OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
-    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_BLOCK, OPT_BITS, OPT_THREADS,
-    OPT_SAMPLES, OPT_AFFINE, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_KEYS, OPT_LIST_SCENES,
     OPT_HELP, OPT_VERSION,
+    OPT_PARAM,      /* OPT_PARAM + i: the i-th option of the lessons' parameter tables */
 };
 
 static const struct option long_options[] = {
@@ -121,29 +129,73 @@ static const struct option long_options[] = {
     { "scale", required_argument, NULL, OPT_SCALE },
     { "theme", required_argument, NULL, OPT_THEME },
     { "figure-part", required_argument, NULL, OPT_PART },
-    { "block-size", required_argument, NULL, OPT_BLOCK },
-    { "subpixel-bits", required_argument, NULL, OPT_BITS },
-    { "threads", required_argument, NULL, OPT_THREADS },
-    { "samples", required_argument, NULL, OPT_SAMPLES },
-    { "affine", no_argument, NULL, OPT_AFFINE },
     { "keys", required_argument, NULL, OPT_KEYS },
     { "list-scenes", no_argument, NULL, OPT_LIST_SCENES },
     { "help", no_argument, NULL, OPT_HELP },
     { "version", no_argument, NULL, OPT_VERSION },
     { NULL, 0, NULL, 0 },
 };
+#define FIXED_OPTIONS (sizeof long_options / sizeof long_options[0] - 1)
+
+/* The options of every lesson's parameters, each once, in the order of the
+ * lessons (every program links them all, and accepts them all: an option
+ * of a row the lesson lacks is checked, then ignored unless its slot is
+ * shared): writes them to rows and returns how many. */
+static int param_options(const struct lesson *l, const struct lesson_param *rows[PARAM_OPTIONS_MAX])
+{
+    int n = 0;
+    for (int k = 0; all_lessons[k] || l; k++) {
+        const struct lesson *from = all_lessons[k] ? all_lessons[k] : l;
+        for (int i = 0; from->params && from->params[i].option; i++) {
+            bool seen = false;
+            for (int j = 0; j < n; j++)
+                seen |= strcmp(rows[j]->option, from->params[i].option) == 0;
+            if (!seen && n < PARAM_OPTIONS_MAX)
+                rows[n++] = &from->params[i];
+        }
+        if (!all_lessons[k])
+            break;
+    }
+    return n;
+}
+
+/* Option --row->option given as arg: into o->params, or an exit status. */
+static int param_option(const struct lesson *l, const struct lesson_param *row, const char *arg,
+                        struct cli_options *o)
+{
+    uint64_t u = 1;
+    if (row->arg && (!parse_uint(arg, (uint64_t)row->max, &u) || !lesson_param_allows(row, (int)u))) {
+        char range[64], fmt[128];
+        lesson_param_range(row, range, sizeof range);
+        snprintf(fmt, sizeof fmt, "--%s '%%s': expected %s", row->option, range);
+        return bad_usage(l, fmt, arg);
+    }
+    int i;
+    if (lesson_param(l, row->option, &i))
+        *lesson_param_slot(l, i, &o->params) = (int)u;
+    else if (row->slot == PARAM_SUBPIXEL_BITS)
+        o->params.subpixel_bits = (int)u;
+    else if (row->slot == PARAM_SAMPLES)
+        o->params.samples = (int)u;
+    return -1;
+}
 
 /* Returns -1 to go on, or an exit status. */
 static int parse_options(const struct lesson *l, int argc, char **argv, struct cli_options *o)
 {
-    *o = (struct cli_options){ .variant = &l->variants[0],
-                               .params = { .subpixel_bits = SUBPIXEL_BITS } };
-    if (l->params & LESSON_PARAM_SAMPLES)
-        o->params.samples = LESSON_SAMPLES_DEFAULT;
+    *o = (struct cli_options){ .variant = &l->variants[0], .params = lesson_params_default(l) };
+    const struct lesson_param *rows[PARAM_OPTIONS_MAX];
+    int nrows = param_options(l, rows);
+    struct option options[FIXED_OPTIONS + PARAM_OPTIONS_MAX + 1];
+    memcpy(options, long_options, FIXED_OPTIONS * sizeof *options);
+    for (int i = 0; i < nrows; i++)
+        options[FIXED_OPTIONS + (size_t)i] = (struct option){ rows[i]->option,
+            rows[i]->arg ? required_argument : no_argument, NULL, OPT_PARAM + i };
+    options[FIXED_OPTIONS + (size_t)nrows] = (struct option){ NULL, 0, NULL, 0 };
     opterr = 0;   /* our own messages, in the same form as every other error */
     optind = 1;
     int c;
-    while ((c = getopt_long(argc, argv, ":", long_options, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, ":", options, NULL)) != -1) {
         uint64_t u;
         switch (c) {
         case OPT_SCENE: o->scene_path = optarg; break;
@@ -192,27 +244,6 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
             if (!figure_part_from_name(optarg, &o->part))
                 return bad_usage(l, "--figure-part '%s': expected all or canvas", optarg);
             break;
-        case OPT_BLOCK:
-            if (!parse_uint(optarg, 64, &u) || (u != 4 && u != 8 && u != 16))
-                return bad_usage(l, "--block-size '%s': expected 4, 8 or 16", optarg);
-            o->params.block_size = (int)u;
-            break;
-        case OPT_BITS:
-            if (!parse_uint(optarg, SUBPIXEL_BITS, &u))
-                return bad_usage(l, "--subpixel-bits '%s': expected 0..8", optarg);
-            o->params.subpixel_bits = (int)u;
-            break;
-        case OPT_THREADS:
-            if (!parse_uint(optarg, 64, &u) || u < 1)
-                return bad_usage(l, "--threads '%s': expected 1..64", optarg);
-            o->params.threads = (int)u;
-            break;
-        case OPT_SAMPLES:
-            if (!parse_uint(optarg, SAMPLES_MAX, &u) || !sample_pattern((int)u))
-                return bad_usage(l, "--samples '%s': expected 1, 4 or 8", optarg);
-            o->params.samples = (int)u;
-            break;
-        case OPT_AFFINE: o->params.affine = true; break;
         case OPT_KEYS: o->keys = optarg; break;
         case OPT_LIST_SCENES:
             for (int i = 0; i < builtin_scene_count; i++)
@@ -223,6 +254,12 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
         case ':':
             return bad_usage(l, "option '%s' needs a value", argv[optind - 1]);
         default:
+            if (c >= OPT_PARAM && c < OPT_PARAM + nrows) {
+                int status = param_option(l, rows[c - OPT_PARAM], optarg, o);
+                if (status >= 0)
+                    return status;
+                break;
+            }
             /* an unknown short option inside a bundle ("-qz") leaves optind
              * on the bundle or past it: name the letter getopt saw */
             if (optopt > 0 && optopt < 256) {

@@ -116,7 +116,7 @@ static void paint_grid(struct painter *p, int x0, int y0, int x1, int y1)
 static void paint_exhibit(struct painter *p, int x0, int y0, int x1, int y1)
 {
     struct explorer *ex = p->ex;
-    if (!ex->diff || !ex->lesson->variants[ex->variant].exhibit)
+    if (!ex->diff || !variant_against_exact(&ex->lesson->variants[ex->variant]))
         return;
     cairo_t *cr = p->cr;
     const struct explorer_layout *L = &p->L;
@@ -301,6 +301,10 @@ static void paint_current(struct painter *p)
             outline(p, ev->x, ev->y, ev->x1 + 1, ev->y1 + 1, p->pal->accent, w);
             break;
         case TRACE_FRONT:
+            /* the shared front end's own event (src/front/front.c narrates
+             * it for every program on a 3-D scene, not lesson 06 alone): the
+             * pixel of the vertex it projected or made; lesson 06's own
+             * drawings of these steps are in its explorer file's overlay */
             if (ev->klass == FRONT_PROJECT || ev->klass == FRONT_NEW)
                 outline(p, ev->x, ev->y, ev->x + 1, ev->y + 1, p->pal->accent, w);
             break;

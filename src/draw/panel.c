@@ -3,6 +3,7 @@
  * counters) and the help overlay. */
 #include "painter.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -65,7 +66,7 @@ static double legend(struct painter *p, double x, double y, double w)
         y += swatch(p, x, y, w, items[i].colour, items[i].label) + 1 * s;
     if (note)
         y += draw_text(p, x, y, w, note, 11, p->pal->dim, false);
-    if (ex->lesson->variants[ex->variant].exhibit) {
+    if (variant_against_exact(&ex->lesson->variants[ex->variant])) {
         y += swatch(p, x, y, w, p->pal->extra, "extra: more than the exact rule") + s;
         y += swatch(p, x, y, w, p->pal->missing, "missing: a crack") + s;
         if (ex->wrong_colour)
@@ -171,7 +172,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
         }
         break;
     }
-    case TRACE_FRONT:           /* the lesson's watch says what the step did */
+    case TRACE_FRONT:           /* the shared front end's step: what it did is the lesson's
+                                 * watch's to say (lesson 06, clipping_explorer.c) */
     case TRACE_KIND_COUNT:
         break;
     }
@@ -303,7 +305,7 @@ static double counters(struct painter *p, double x, double y, double w)
     double h = draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     if (ex->ncompare > 0)
         h += compare_lines(p, x, y + h + 4 * p->s, w) + 4 * p->s;
-    if (ex->lesson->variants[ex->variant].exhibit) {
+    if (variant_against_exact(&ex->lesson->variants[ex->variant])) {
         char e[256];
         int at;
         if (ex->replay.units)   /* a run in parts of its own (lesson 07) */
@@ -343,9 +345,10 @@ void paint_panel(struct painter *p)
 
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
     char buf[512];
-    if (v->exhibit) {
-        /* the exercise (make exercise) is shown against the exact rule like an exhibit */
-        const char *badge = strcmp(v->name, "exercise") == 0 ? "YOUR CODE" : "EXHIBIT";
+    if (variant_against_exact(v)) {
+        /* shown against the exact rule: a badge says why */
+        const char *badge = v->kind == VARIANT_EXERCISE ? "YOUR CODE"
+                            : v->kind == VARIANT_CONTRAST ? "COMPARED" : "EXHIBIT";
         double bw = text_width(p, badge, 11) + 10 * s;
         set_rgb(cr, p->pal->exhibit);
         cairo_rectangle(cr, x, y + 1 * s, bw, 17 * s);
@@ -354,25 +357,30 @@ void paint_panel(struct painter *p)
         snprintf(buf, sizeof buf, "%s: %s", v->name, v->what);
         y += draw_text(p, x + bw + 8 * s, y + 1 * s, w - bw - 8 * s, buf, 11.5, p->pal->text, false) + 4 * s;
     } else {
-        snprintf(buf, sizeof buf, "variant %s%s", v->name, ex->variant ? " (faster twin)" : "");
+        snprintf(buf, sizeof buf, "variant %s%s", v->name, v->kind == VARIANT_TWIN ? " (faster twin)"
+                 : v->kind == VARIANT_ALTERNATIVE ? " (alternative)" : "");
         y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     }
     snprintf(buf, sizeof buf, "scene %s, %dx%d, %d triangle%s", ex->scene_name, ex->scene.w,
              ex->scene.h, ex->scene.ntris, ex->scene.ntris == 1 ? "" : "s");
     y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
-    unsigned prm = ex->lesson->params;
-    if (prm) {
+    if (ex->lesson->params) {     /* the rows of its table that a key changes */
         size_t at = 0;
         buf[0] = '\0';
-        if (prm & LESSON_PARAM_SUBPIXEL)
-            at = cat(buf, sizeof buf, at, "sub-pixel bits %d  ", ex->params.subpixel_bits);
-        if (prm & LESSON_PARAM_BLOCK)
-            at = cat(buf, sizeof buf, at, "block %d  ", ex->params.block_size ? ex->params.block_size : 8);
-        if (prm & LESSON_PARAM_SAMPLES)
-            at = cat(buf, sizeof buf, at, "samples %d  ", ex->params.samples > 1 ? ex->params.samples : 1);
-        if (prm & LESSON_PARAM_AFFINE)
-            at = cat(buf, sizeof buf, at, "%s", ex->params.affine ? "affine" : "perspective");
-        y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
+        for (int i = 0; ex->lesson->params[i].option; i++) {
+            const struct lesson_param *r = &ex->lesson->params[i];
+            struct raster_params prm = ex->params;
+            int v = *lesson_param_slot(ex->lesson, i, &prm);
+            v = lesson_param_allows(r, v) ? v : r->def;     /* 0: the lesson's default */
+            if (!r->key)
+                continue;
+            if (r->words)
+                at = cat(buf, sizeof buf, at, "%s  ", r->words[v != 0]);
+            else
+                at = cat(buf, sizeof buf, at, "%s %d  ", r->name, v);
+        }
+        if (at > 0)
+            y += draw_text(p, x, y, w, buf, 11.5, p->pal->text, false);
     }
     y += 8 * s;
 
@@ -425,21 +433,33 @@ void paint_help(struct painter *p)
         "0 1 2 3              edges view: all three, F_ab, F_bc, F_ca\n"
         "N                    numbers in cells: auto, always, off\n"
         "S                    save the scene as it is now to a new file\n");
-    bool exhibits = false, twins = false;
-    for (int i = 1; i < ex->lesson->nvariants; i++)
-        exhibits |= ex->lesson->variants[i].exhibit, twins |= !ex->lesson->variants[i].exhibit;
+    bool exhibits = false, twins = false, alternatives = false;
+    for (int i = 1; i < ex->lesson->nvariants; i++) {
+        const struct lesson_variant *v = &ex->lesson->variants[i];
+        exhibits |= variant_against_exact(v);
+        twins |= v->kind == VARIANT_TWIN, alternatives |= v->kind == VARIANT_ALTERNATIVE;
+    }
     if (exhibits)
         at = cat(keys, n, at, "X                    next exhibit (against the exact rule)\n");
-    if (twins)
-        at = cat(keys, n, at, "T                    next faster twin\n");
-    if (ex->lesson->params & LESSON_PARAM_SUBPIXEL)
-        at = cat(keys, n, at, "[ / ]                fewer / more sub-pixel bits (0..8)\n");
-    if (ex->lesson->params & LESSON_PARAM_BLOCK)
-        at = cat(keys, n, at, "B                    block size 4, 8, 16\n");
-    if (ex->lesson->params & LESSON_PARAM_SAMPLES)
-        at = cat(keys, n, at, "M                    samples per pixel 1, 4, 8\n");
-    if (ex->lesson->params & LESSON_PARAM_AFFINE)
-        at = cat(keys, n, at, "P                    affine / perspective-correct\n");
+    if (twins || alternatives)
+        at = cat(keys, n, at, alternatives ? twins ? "T                    next twin or alternative\n"
+                                                   : "T                    next alternative\n"
+                                           : "T                    next faster twin\n");
+    for (int i = 0; ex->lesson->params && ex->lesson->params[i].option; i++) {
+        const struct lesson_param *r = &ex->lesson->params[i];
+        char range[64], key[8];
+        lesson_param_range(r, range, sizeof range);
+        if (r->key && r->key_down) {
+            snprintf(key, sizeof key, "%c / %c", toupper(r->key_down), toupper(r->key));
+            at = cat(keys, n, at, "%-21sless / more %s (%s)\n", key, r->name, range);
+        } else if (r->key && r->words) {
+            snprintf(key, sizeof key, "%c", toupper(r->key));
+            at = cat(keys, n, at, "%-21s%s / %s\n", key, r->words[1], r->words[0]);
+        } else if (r->key) {
+            snprintf(key, sizeof key, "%c", toupper(r->key));
+            at = cat(keys, n, at, "%-21s%s %s\n", key, r->name, range);
+        }
+    }
     at = cat(keys, n, at,
         "E                    export the view (PNG and SVG)\n"
         "L                    light theme (for paper) / dark\n"

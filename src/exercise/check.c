@@ -273,7 +273,7 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
 static struct raster_params check_params(const struct check_options *o)
 {
     struct raster_params p = o->params;
-    if (p.subpixel_bits == 0 && p.block_size == 0 && !p.affine)
+    if (p.subpixel_bits == 0 && !memcmp(p.knob, (int[LESSON_PARAMS_MAX]){ 0 }, sizeof p.knob))
         p.subpixel_bits = SUBPIXEL_BITS;
     return p;
 }

@@ -46,7 +46,8 @@ static void run_exercise(const struct tri_setup *t, const struct raster_params *
 }
 
 const struct lesson_variant exercise_variant = {
-    "exercise", "your code, against the exact rule", run_exercise, true,
+    .name = "exercise", .kind = VARIANT_EXERCISE, .rasterize = run_exercise,
+    .what = "your code, against the exact rule",
 };
 
 /* --- the student's writes --------------------------------------------------------- */
@@ -233,10 +234,10 @@ static void exact_perspective(const struct tri_setup *t, const struct raster_par
 }
 
 static const struct lesson_variant exact_variants[2] = {
-    { "exact", "the exact rule: reference coverage, colour and depth interpolated linearly",
-      exact_linear, false },
-    { "exact", "the exact rule: reference coverage, colour and depth perspective-correct",
-      exact_perspective, false },
+    { .name = "exact", .kind = VARIANT_ALGORITHM, .rasterize = exact_linear,
+      .what = "the exact rule: reference coverage, colour and depth interpolated linearly" },
+    { .name = "exact", .kind = VARIANT_ALGORITHM, .rasterize = exact_perspective,
+      .what = "the exact rule: reference coverage, colour and depth perspective-correct" },
 };
 
 const struct lesson_variant *exercise_exact(bool perspective)
@@ -258,9 +259,7 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
     /* the exact picture by the lesson's front end, the exercise's by the
      * one around the student's clipper (lesson 06); the depth buffer holds
      * z in both */
-    static const front_fn fronts[2] = { NULL, exercise_front };
-    out->fronts = l->exercise.clip ? fronts : NULL;
-    out->other_depth = NULL;
+    variants[1].front = l->exercise.clip ? exercise_front : NULL;
     out->exhibit_scene = NULL;      /* X toggles on the student's scene */
     /* the exercise is one triangle at a time (lesson 07's whole-scene runs
      * and their narrated order belong to the lesson's own variants) */

@@ -107,7 +107,7 @@ struct check_options {
     const char *const *scenes;      /* scenes of the student's own (SCENE=), NULL-terminated */
     const char *out_dir;            /* where a counterexample is written */
     const char *open_cmd;           /* how to open a scene: "make exercise LESSON=02 FILE=x.c" */
-    struct raster_params params;    /* subpixel_bits, block_size, affine (the exhibit) */
+    struct raster_params params;    /* subpixel_bits and the lesson's own (lesson.h) */
     FILE *out;                      /* the report (stdout) */
     bool progress;                  /* show progress on long checks (a terminal) */
     const char *program;            /* the exercise program, for the debugger command */

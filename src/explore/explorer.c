@@ -238,7 +238,7 @@ static bool extra_so_far(struct explorer *ex)
     bool shaded = target_copy(&with, &ex->exact);
     if (shaded)
         ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
-    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
+    bool other_depth = ex->lesson->variants[ex->variant].other_depth;
     for (size_t i = 0; i < n; i++) {
         int now = ex->fb.count[i] - ex->replay.base.count[i];
         if (ex->diff[i] == 0 && now > exact[i])     /* an earlier verdict stands */
@@ -257,7 +257,7 @@ static bool compare_exhibit(struct explorer *ex)
 {
     ex->extra = ex->missing = ex->wrong_colour = 0;
     ex->diff_done = 0;
-    if (!ex->lesson->variants[ex->variant].exhibit)
+    if (!variant_against_exact(&ex->lesson->variants[ex->variant]))
         return true;
     size_t n = (size_t)ex->scene.w * (size_t)ex->scene.h;
     if (!ex->diff && !(ex->diff = malloc(n)))
@@ -280,7 +280,7 @@ static bool compare_exhibit(struct explorer *ex)
         return false;
     }
     ex->diff_done = done;
-    bool other_depth = ex->lesson->other_depth && ex->lesson->other_depth[ex->variant];
+    bool other_depth = ex->lesson->variants[ex->variant].other_depth;
     for (size_t i = 0; i < n; i++) {
         int have = count ? count[i] : 0, want = ex->exact.count[i];
         /* a buffer holding another depth than z (lesson 06's storages) is
@@ -327,9 +327,10 @@ static bool compare_init(struct explorer *ex)
     for (int i = 0; ex->lesson->compare && ex->lesson->compare[i] && i < LESSON_COMPARE_MAX; i++)
         for (int k = 0; all_lessons[k]; k++)
             if (strcmp(all_lessons[k]->id, ex->lesson->compare[i]) == 0) {
+                struct raster_params p = lesson_params_as(all_lessons[k], ex->lesson, &ex->params);
                 if (!(ex->count_later ? replay_begin : replay_init)(
                         &ex->compare_replay[ex->ncompare], &ex->scene,
-                        &all_lessons[k]->variants[0], &ex->params)) {
+                        &all_lessons[k]->variants[0], &p)) {
                     replay_free(&ex->compare_replay[ex->ncompare]);
                     return false;
                 }
@@ -341,7 +342,7 @@ static bool compare_init(struct explorer *ex)
 static bool compare_recount(struct explorer *ex)
 {
     for (int i = 0; i < ex->ncompare; i++) {
-        ex->compare_replay[i].params = ex->params;
+        ex->compare_replay[i].params = lesson_params_as(ex->compare[i], ex->lesson, &ex->params);
         ex->compare_replay[i].scene = &ex->scene;
         if (!(ex->count_later ? replay_restart(&ex->compare_replay[i])
                               : replay_recount(&ex->compare_replay[i])))
@@ -463,11 +464,11 @@ bool explorer_set_params(struct explorer *ex, const struct raster_params *p)
     return rerun(ex, ex->step);
 }
 
-/* The next variant after the current one with exhibit == want, wrapping to 0. */
+/* The next variant after the current one shown against the exact rule (want) or not. */
 static int next_variant(const struct explorer *ex, bool want)
 {
     for (int i = ex->variant + 1; i < ex->lesson->nvariants; i++)
-        if (ex->lesson->variants[i].exhibit == want)
+        if (variant_against_exact(&ex->lesson->variants[i]) == want)
             return i;
     return 0;
 }

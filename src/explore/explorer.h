@@ -195,7 +195,8 @@ bool explorer_set_params(struct explorer *ex, const struct raster_params *p);
 bool explorer_set_theme(struct explorer *ex, enum theme t);
 /* ... its first half: ex->theme = t and the scene's background for it (no run). */
 void theme_background(struct explorer *ex, enum theme t);
-/* X: the next exhibit (or back to variants[0]); T: the next faster twin. */
+/* X: the next variant shown against the exact rule (or back to variants[0]);
+ * T: the next twin or alternative. */
 bool explorer_cycle_exhibit(struct explorer *ex);
 bool explorer_cycle_twin(struct explorer *ex);
 

@@ -368,7 +368,7 @@ static void box_pixels(struct target *t, const struct replay_undo *u, unsigned c
  * (stepping back then starts from a checkpoint). */
 static void undo_save(struct replay *r, const struct tri_setup *t)
 {
-    if (r->variant->exhibit || r->base.samples) {
+    if (variant_against_exact(r->variant) || r->base.samples) {
         undo_clear(r);          /* the record holds colour, depth and count, not samples */
         return;
     }

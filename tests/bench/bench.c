@@ -1035,13 +1035,13 @@ int main(int argc, char **argv)
             continue;
         for (int v = 0; v < (*l)->nvariants && nrows < MAX_ROWS; v++) {
             const struct lesson_variant *var = &(*l)->variants[v];
-            if ((var->exhibit && !o.exhibits) || (o.only_variant && strcmp(var->name, o.only_variant)))
+            if ((variant_against_exact(var) && !o.exhibits) || (o.only_variant && strcmp(var->name, o.only_variant)))
                 continue;
             rows[nrows++] = (struct row){ .program = (*l)->id, .variant = var->name,
-                                          .exhibit = var->exhibit, .lesson = *l, .var = var };
+                                          .exhibit = variant_against_exact(var), .lesson = *l, .var = var };
             /* a lesson with samples: its exact variants at 4 and 8 samples
              * too, each checked against its own reference */
-            for (int n = 4; n <= 8 && ((*l)->params & LESSON_PARAM_SAMPLES) && !var->exhibit
+            for (int n = 4; n <= 8 && lesson_param(*l, "samples", NULL) && !variant_against_exact(var)
                             && nrows < MAX_ROWS; n += 4) {
                 static char names[MAX_ROWS][48];
                 snprintf(names[nrows], sizeof names[nrows], "%s %d samples", var->name, n);

@@ -62,10 +62,10 @@ int fuzz_explorer(const uint8_t *data, size_t size)
     int variant = (data[0] / 8) % l->nvariants;
     struct explorer ex;
     static const int blocks[] = { 4, 8, 16 };
-    const struct raster_params params = {
+    struct raster_params params = {
         .checker = s.checker, .subpixel_bits = SUBPIXEL_BITS - (data[0] / 32) % 3,
-        .block_size = blocks[(data[0] / 4) % 3],
     };
+    lesson_param_set(l, &params, "block-size", blocks[(data[0] / 4) % 3]);
     struct explorer_desc d = {
         .lesson = l, .scene = &s, .scene_name = "fuzz.scene",
         .variant = &l->variants[variant], .params = &params, .step_end = true,

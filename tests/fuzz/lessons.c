@@ -35,9 +35,9 @@ static void check(const struct test_variant *tv, const struct tri_setup *t,
     for (size_t i = 0; i < n; i++)
         if (fb->count[i] != ref[i]) {
             char label[128];
-            fuzz_fail("%s, triangle %d, %d sub-pixel bits, q = %d: pixel (%zu, %zu) covered "
+            fuzz_fail("%s, triangle %d, %d sub-pixel bits, knob[0] = %d: pixel (%zu, %zu) covered "
                       "%d times, the reference %d", variant_label(tv, label, sizeof label), tri,
-                      p->subpixel_bits, p->block_size, i % (size_t)fb->w, i / (size_t)fb->w,
+                      p->subpixel_bits, p->knob[0], i % (size_t)fb->w, i / (size_t)fb->w,
                       fb->count[i], ref[i]);
         }
 }
@@ -73,11 +73,11 @@ int fuzz_lessons(const uint8_t *data, size_t size)
             reference_mask(&t, ref);
             for (int k = 0; k < nv; k++) {
                 static const int blocks[] = { 4, 8, 16 };
-                bool by_block = tv[k].lesson->params & LESSON_PARAM_BLOCK;
+                bool by_block = lesson_param(tv[k].lesson, "block-size", NULL);
                 for (int b = 0; b < (by_block ? 3 : 1); b++) {
-                    struct raster_params p = { .checker = s.checker, .subpixel_bits = bits,
-                                               .block_size = by_block ? blocks[b] : 0,
-                                               .affine = (i & 1) != 0 };
+                    struct raster_params p = { .checker = s.checker, .subpixel_bits = bits };
+                    lesson_param_set(tv[k].lesson, &p, "block-size", by_block ? blocks[b] : 0);
+                    lesson_param_set(tv[k].lesson, &p, "affine", (i & 1) != 0);
                     if (!tv[k].narrated) {
                         check(&tv[k], &t, &p, &fb, ref, NULL, i);
                         continue;

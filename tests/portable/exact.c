@@ -47,11 +47,11 @@ static void verdict(bool ok, const char *fmt, const char *label, int a, int b)
 static int param_sets(const struct test_variant *tv, struct raster_params out[3])
 {
     static const int blocks[] = { 4, 8, 16 };
-    int n = tv->lesson->params & LESSON_PARAM_BLOCK ? 3 : 1;
+    int n = lesson_param(tv->lesson, "block-size", NULL) ? 3 : 1;
     for (int i = 0; i < n; i++) {
         out[i] = default_params();
         if (n == 3)
-            out[i].block_size = blocks[i];
+            lesson_param_set(tv->lesson, &out[i], "block-size", blocks[i]);
     }
     return n;
 }
