@@ -17,22 +17,13 @@
 
 #include "testlib.h"
 
-static char dir[64];
+/* the grading run's folder: the test's scratch folder (testlib) */
+static const char *dir;
 
 static void make_dir(void)
 {
-    snprintf(dir, sizeof dir, "/tmp/tristep-grade-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    if (dir[0]) {
-        char cmd[128];
-        snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-        if (system(cmd) != 0)
-            cr_log_warn("could not remove %s", dir);
-    }
+    test_scratch_make();
+    dir = test_scratch_dir();
 }
 
 /* A file's text, copied (test_read_text's buffer is reused by the next read). */
@@ -67,7 +58,7 @@ static char *row_of(const char *csv, const char *name, char *row, size_t n)
     return row;
 }
 
-Test(grade, a_folder_of_four_files_gets_four_rows, .init = make_dir, .fini = remove_dir, .timeout = 240)
+Test(grade, a_folder_of_four_files_gets_four_rows, .init = make_dir, .fini = test_scratch_remove, .timeout = 240)
 {
     char path[256], cmd[1024];
     snprintf(path, sizeof path, "%s/sub", dir);

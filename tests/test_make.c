@@ -13,22 +13,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-static char build[64];
+#include "testlib.h"
+
+/* make's build folder: the test's scratch folder (testlib) */
+static const char *build;
 
 static void make_build_dir(void)
 {
-    snprintf(build, sizeof build, "/tmp/tristep-make-XXXXXX");
-    cr_assert_not_null(mkdtemp(build));
-}
-
-static void remove_build_dir(void)
-{
-    if (build[0]) {
-        char cmd[128];
-        snprintf(cmd, sizeof cmd, "rm -rf '%s'", build);
-        if (system(cmd) != 0)
-            cr_log_warn("could not remove %s", build);
-    }
+    test_scratch_make();
+    build = test_scratch_dir();
 }
 
 /* The output of `make -n ARGS` (stdout and stderr), NUL-terminated,
@@ -71,7 +64,7 @@ static bool line_with(const char *text, const char *what, char *line, size_t n)
     return true;
 }
 
-Test(make, user_flags_keep_the_required_ones, .init = make_build_dir, .fini = remove_build_dir)
+Test(make, user_flags_keep_the_required_ones, .init = make_build_dir, .fini = test_scratch_remove)
 {
     char target[128], line[4096];
     snprintf(target, sizeof target, "-B CFLAGS=-O0 LDFLAGS=-Wl,-O1 SANITIZE=1 %s/sanitize/01-scanline", build);
@@ -94,7 +87,7 @@ Test(make, user_flags_keep_the_required_ones, .init = make_build_dir, .fini = re
  * packages first: every compile waits for them (make -j2 test compiled
  * while apt-get was still installing Criterion). */
 Test(make, test_installs_its_packages_before_compiling, .init = make_build_dir,
-     .fini = remove_build_dir)
+     .fini = test_scratch_remove)
 {
     char args[256];
     snprintf(args, sizeof args, "-j2 %s/obj/src/lesson.o test", build);
@@ -105,7 +98,7 @@ Test(make, test_installs_its_packages_before_compiling, .init = make_build_dir,
     free(out);
 }
 
-Test(make, figures_go_where_figures_says, .init = make_build_dir, .fini = remove_build_dir)
+Test(make, figures_go_where_figures_says, .init = make_build_dir, .fini = test_scratch_remove)
 {
     char args[256], want[256], line[4096];
     snprintf(args, sizeof args, "FIGURES=%s/elsewhere figures", build);

@@ -417,6 +417,11 @@ void test_scratch_remove(void)
     scratch[0] = '\0';
 }
 
+const char *test_scratch_dir(void)
+{
+    return scratch;
+}
+
 const char *test_scratch_path(const char *name)
 {
     static char paths[4][256];

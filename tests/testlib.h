@@ -166,6 +166,8 @@ const char *test_build_dir(void);
  * Failures abort the test. */
 void test_scratch_make(void);
 void test_scratch_remove(void);
+/* the folder itself */
+const char *test_scratch_dir(void);
 /* folder/name (static storage, four buffers used in turn) */
 const char *test_scratch_path(const char *name);
 /* Write n bytes (or a text, test_scratch_text) to folder/name. */
