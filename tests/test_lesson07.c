@@ -692,6 +692,54 @@ Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
     }
 }
 
+/* tiles.c: the units as a narrated run that draws every pixel records them */
+long tiles_drawn_units(const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, struct lesson_unit *out, long cap);
+
+/* The units that `f` lists for variant v, counted (*n) then written. */
+static struct lesson_unit *units_by(lesson_units_fn f, const struct scene *s,
+                                    const struct lesson_variant *v, const struct raster_params *p,
+                                    long *n)
+{
+    *n = f(s, v, p, NULL, 0);
+    cr_assert_gt(*n, s->ntris, "%s", v->name);
+    struct lesson_unit *u = malloc((size_t)*n * sizeof *u);
+    cr_assert_not_null(u);
+    cr_assert_eq(f(s, v, p, u, *n), *n, "%s", v->name);
+    return u;
+}
+
+/* The explorer's list of steps comes from a run that draws no pixel: it is
+ * the list that the whole narrated run, drawing every pixel, records, unit
+ * for unit, for every variant, on one to three workers. */
+Test(lesson07, the_steps_are_those_of_the_drawing_run)
+{
+    struct rng rng = rng_for(0x07d7);
+    for (int rep = 0; rep < 3; rep++) {
+        struct scene s;
+        random_scene(&s, &rng, 190 + 37 * rep, 140 - 11 * rep, 120, true, rep == 2 ? 5 : 0);
+        struct raster_params p = default_params();
+        p.checker = s.checker, p.threads = 1 + rep;
+        for (int vi = 0; vi < lesson_07.nvariants; vi++) {
+            const struct lesson_variant *v = &lesson_07.variants[vi];
+            long n, m;
+            struct lesson_unit *a = units_by(lesson_07.narration_units, &s, v, &p, &n);
+            struct lesson_unit *b = units_by(tiles_drawn_units, &s, v, &p, &m);
+            cr_assert_eq(n, m, "%s: another number of steps", v->name);
+            for (long i = 0; i < n; i++)
+                cr_assert(a[i].tri == b[i].tri && a[i].tile == b[i].tile
+                          && a[i].bin_size == b[i].bin_size && a[i].bin_entry == b[i].bin_entry
+                          && a[i].thread == b[i].thread,
+                          "scene %d, %s, step %ld: (%u, %d, %d/%d, %d) instead of (%u, %d, %d/%d, %d)",
+                          rep, v->name, i, a[i].tri, a[i].tile, a[i].bin_entry, a[i].bin_size,
+                          a[i].thread, b[i].tri, b[i].tile, b[i].bin_entry, b[i].bin_size, b[i].thread);
+            free(a);
+            free(b);
+        }
+        scene_free(&s);
+    }
+}
+
 /* Every line of the pseudo-code is lit by some event of the explorer's
  * steps, on the lesson's built-in scenes and its variants. */
 Test(lesson07, every_pseudocode_line_is_lit)

@@ -213,7 +213,10 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
         NARRATE(tr, .kind = TRACE_BLOCK, .line = L_TAKE, .x = rc.x0, .y = rc.y0,
                 .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1, .klass = BLOCK_CLASS_COUNT,
                 .aux = { TILE, 0, (float)whole, 0, (float)worker });
-    struct dst d = r->o.tile_buffers ? tile_load(buf, r->fb, rc, part) : target_dst(r->fb, rc);
+    bool pixels = !(NARRATING && r->o.order_only);
+    struct dst d = { 0 };
+    if (pixels)
+        d = r->o.tile_buffers ? tile_load(buf, r->fb, rc, part) : target_dst(r->fb, rc);
     int entry = first;
     for (int k = 0; k < r->nshares && !frozen(tr); k++) {
         const struct share_out *out = outs[share_at(r, k, worker)];
@@ -233,7 +236,8 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                         .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
                         .klass = full ? BLOCK_FULL : BLOCK_CLASS_COUNT,
                         .aux = { TILE, 0, (float)whole, (float)entry, (float)worker });
-                r->draw(t, rc, full, &d, tr, r->o.corners == CORNERS_FOUR);
+                if (pixels)
+                    r->draw(t, rc, full, &d, tr, r->o.corners == CORNERS_FOUR);
             }
     }
     if (entry == whole)
@@ -242,7 +246,7 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 .aux = { TILE, 0, (float)whole, (float)(whole - 1), (float)worker });
     /* stored even when the narration stops inside the tile: the explorer
      * shows the tile buffer as it stands */
-    if (r->o.tile_buffers)
+    if (r->o.tile_buffers && pixels)
         tile_store(buf, r->fb, rc, part);
 }
 

@@ -175,8 +175,8 @@ static void record(void *ctx, const struct trace_event *ev)
     rec->n++;
 }
 
-static long narration_units(const struct scene *s, const struct lesson_variant *v,
-                            const struct raster_params *p, struct lesson_unit *out, long cap)
+static long units_of(const struct scene *s, const struct lesson_variant *v,
+                     const struct raster_params *p, struct lesson_unit *out, long cap, bool pixels)
 {
     if (v < variants || v >= variants + V_COUNT)
         return -1;
@@ -186,9 +186,26 @@ static long narration_units(const struct scene *s, const struct lesson_variant *
     struct recorder rec = { out, cap, 0, grid_of(s->w, s->h).nx };
     struct trace tr = { .sink = record, .ctx = &rec };
     trace_begin(&tr, 0, TRACE_UNLIMITED);
-    bool ok = draw_scene(s, p, &fb, options[v - variants], &tr);
+    struct tiles_options o = options[v - variants];
+    o.order_only = !pixels;
+    bool ok = draw_scene(s, p, &fb, o, &tr);
     target_free(&fb);
     return ok ? rec.n : -1;
+}
+
+/* The run records its order without drawing its pixels: the order does
+ * not depend on them (threads.c, order_only), and on a large scene the
+ * explorer's first picture waits for it. */
+static long narration_units(const struct scene *s, const struct lesson_variant *v,
+                            const struct raster_params *p, struct lesson_unit *out, long cap)
+{
+    return units_of(s, v, p, out, cap, false);
+}
+
+long tiles_drawn_units(const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, struct lesson_unit *out, long cap)
+{
+    return units_of(s, v, p, out, cap, true);
 }
 
 static const char *const compare[] = { "05-block-classification", NULL };

@@ -50,6 +50,7 @@
 #define draw_scene draw_scene_fast
 #define rasterize_one_tri rasterize_one_tri_fast
 #define default_threads default_threads_fast
+#define tiles_drawn_units tiles_drawn_units_fast
 #endif
 
 /* Lines of the pseudo-code (tiles.c), which the narration lights. */
@@ -272,6 +273,10 @@ struct tiles_options {
     enum corners corners;       /* CORNERS_ONE, or the measurement, or the exhibit */
     bool no_bins;               /* triangle after triangle through all its tiles, in place */
     bool unordered;             /* exhibit: each worker draws its own chunk's bins first */
+    /* narrated only: the run as it is, its workers binning and taking the
+     * tiles, each entry of a bin narrated where it would be drawn, but no
+     * pixel drawn (the order of the explorer's steps, tiles.c) */
+    bool order_only;
 };
 
 /* The scene is cut into a few shares per worker (more shares than workers:
@@ -288,5 +293,9 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
                 struct tiles_options o, struct trace *tr);
 bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
                        struct target *fb, struct trace *tr, struct tiles_options o);
+/* tiles.c: lesson_07.narration_units as a run that draws every pixel
+ * records them (the tests hold the lesson's list to it) */
+long tiles_drawn_units(const struct scene *s, const struct lesson_variant *v,
+                       const struct raster_params *p, struct lesson_unit *out, long cap);
 
 #endif
