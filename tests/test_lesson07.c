@@ -719,7 +719,8 @@ Test(lesson07, the_steps_are_those_of_the_drawing_run)
         struct scene s;
         random_scene(&s, &rng, 190 + 37 * rep, 140 - 11 * rep, 120, true, rep == 2 ? 5 : 0);
         struct raster_params p = default_params();
-        p.checker = s.checker, p.threads = 1 + rep;
+        p.checker = s.checker;
+        cr_assert(lesson_param_set(&lesson_07, &p, "threads", 1 + rep));
         for (int vi = 0; vi < lesson_07.nvariants; vi++) {
             const struct lesson_variant *v = &lesson_07.variants[vi];
             long n, m;
