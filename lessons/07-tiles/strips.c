@@ -82,15 +82,20 @@ static unsigned cover8_c(const struct tri_in_tile *c, int i, int j, unsigned mas
     return in;
 }
 
-/* One pixel, column i + l: the scalar twin, also used by the narration. */
-bool shade1_c(const struct tri_in_tile *c, const struct dst *d, const struct rows *rw, int i, int j,
-              float *z_out, uint32_t *rgba_out)
+/* One pixel, column i, of the scalar twin, in two steps: its depth z, and
+ * (only where z is nearer than the buffer) its colour. */
+static float depth1_c(const struct tri_in_tile *c, const struct rows *rw, int i)
+{
+    const struct tri *t = c->t;
+    float dxf = (float)(c->tx + i - t->minx);
+    return 1.0f / (rw->p[PL_INV_Z] + t->px[PL_INV_Z] * dxf);
+}
+
+static uint32_t colour1_c(const struct tri_in_tile *c, const struct rows *rw, int i, float z)
 {
     const struct tri *t = c->t;
     const float *row = rw->p, *st_row = rw->st;
     float dxf = (float)(c->tx + i - t->minx);
-    float z = 1.0f / (row[PL_INV_Z] + t->px[PL_INV_Z] * dxf);
-    float *dp = d->depth + (size_t)j * (size_t)d->stride + (size_t)i;
     float r = (row[PL_R] + t->px[PL_R] * dxf) * z;
     float g = (row[PL_G] + t->px[PL_G] * dxf) * z;
     float b = (row[PL_B] + t->px[PL_B] * dxf) * z;
@@ -103,24 +108,36 @@ bool shade1_c(const struct tri_in_tile *c, const struct dst *d, const struct row
             b *= (float)CHECKER_DARK;
         }
     }
-    uint32_t rgba = 0xff000000u | byte_of(cvt_round(r)) << 16 | byte_of(cvt_round(g)) << 8
-                  | byte_of(cvt_round(b));
-    *z_out = z;
-    *rgba_out = rgba;
-    return z < *dp;
+    return 0xff000000u | byte_of(cvt_round(r)) << 16 | byte_of(cvt_round(g)) << 8
+         | byte_of(cvt_round(b));
 }
 
+/* Both steps for one pixel, whether it passes or not: what the narration
+ * shows (a hidden pixel's colour too). */
+bool shade1_c(const struct tri_in_tile *c, const struct dst *d, const struct rows *rw, int i, int j,
+              float *z_out, uint32_t *rgba_out)
+{
+    float z = depth1_c(c, rw, i);
+    *z_out = z;
+    *rgba_out = colour1_c(c, rw, i, z);
+    return z < d->depth[(size_t)j * (size_t)d->stride + (size_t)i];
+}
+
+/* The lanes of `mask`: depth test, then colour and write where it passes.
+ * A hidden pixel is not coloured (the SIMD twins skip a register whose
+ * lanes are all hidden): on a scene covered many times over, many are. */
 static void shade8_c(const struct tri_in_tile *c, const struct dst *d, const struct rows *rw, int i, int j,
                      unsigned mask)
 {
     count_lanes(d, i, j, mask);
     for (int l = 0; l < LANES; l++) {
-        float z;
-        uint32_t rgba;
-        if (mask >> l & 1 && shade1_c(c, d, rw, i + l, j, &z, &rgba)) {
-            size_t o = (size_t)j * (size_t)d->stride + (size_t)(i + l);
+        if (!(mask >> l & 1))
+            continue;
+        size_t o = (size_t)j * (size_t)d->stride + (size_t)(i + l);
+        float z = depth1_c(c, rw, i + l);
+        if (z < d->depth[o]) {
             d->depth[o] = z;
-            d->color[o] = rgba;
+            d->color[o] = colour1_c(c, rw, i + l, z);
         }
     }
 }
