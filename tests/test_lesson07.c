@@ -613,6 +613,18 @@ static void on_write(void *ctx, const struct trace_event *ev)
     w->outside += ev->x < w->x0 || ev->x > w->x1 || ev->y < w->y0 || ev->y > w->y1;
 }
 
+/* A random scene of n triangles on a w x h screen (textured with a
+ * checker when checker > 0) and the params that draw it on `threads`
+ * workers. */
+static void random_run(struct scene *s, struct raster_params *p, struct rng *rng, int w, int h,
+                       int n, int checker, int threads)
+{
+    random_scene(s, rng, w, h, n, true, checker);
+    *p = default_params();
+    p->checker = s->checker;
+    cr_assert(lesson_param_set(&lesson_07, p, "threads", threads));
+}
+
 /* The explorer's steps of the scene run, as replay_params hands them to
  * `rasterize`, narrated and fast side by side: after every step both
  * pictures are the same bytes, the narrated step writes only inside its
@@ -625,11 +637,9 @@ Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
     struct rng rng = rng_for(0x07e7);
     for (int rep = 0; rep < 4; rep++) {
         struct scene s;
-        random_scene(&s, &rng, 200 + 31 * rep, 150 - 17 * rep, 150, true, rep == 3 ? 5 : 0);
-        struct raster_params p = default_params();
-        p.checker = s.checker;
+        struct raster_params p;
         int threads = 1 + rep % 3;
-        cr_assert(lesson_param_set(&lesson_07, &p, "threads", threads));
+        random_run(&s, &p, &rng, 200 + 31 * rep, 150 - 17 * rep, 150, rep == 3 ? 5 : 0, threads);
         const struct lesson_variant *vn = variant(&lesson_07, "tiles");
         const struct lesson_variant *vf = variant(&lesson_07_fast, "tiles");
         long n = lesson_07.narration_units(&s, vn, &p, NULL, 0);
@@ -717,10 +727,8 @@ Test(lesson07, the_steps_are_those_of_the_drawing_run)
     struct rng rng = rng_for(0x07d7);
     for (int rep = 0; rep < 3; rep++) {
         struct scene s;
-        random_scene(&s, &rng, 190 + 37 * rep, 140 - 11 * rep, 120, true, rep == 2 ? 5 : 0);
-        struct raster_params p = default_params();
-        p.checker = s.checker;
-        cr_assert(lesson_param_set(&lesson_07, &p, "threads", 1 + rep));
+        struct raster_params p;
+        random_run(&s, &p, &rng, 190 + 37 * rep, 140 - 11 * rep, 120, rep == 2 ? 5 : 0, 1 + rep);
         for (int vi = 0; vi < lesson_07.nvariants; vi++) {
             const struct lesson_variant *v = &lesson_07.variants[vi];
             long n, m;
