@@ -75,6 +75,12 @@ struct lesson_canvas {
     /* an arrow from (x0, y0) to (x1, y1) in the explorer's style */
     void (*arrow)(const struct lesson_canvas *c, double x0, double y0, double x1, double y1,
                   enum ink ink);
+    /* an image of w x h pixels (0xAARRGGBB, row-major, row 0 at the top,
+     * alpha ignored) stretched over the rectangle (x, y)..(x + dw, y + dh),
+     * each pixel a sharp square (no smoothing): a texture, a level of its
+     * pyramid. The data's colours, not the palette's */
+    void (*image)(const struct lesson_canvas *c, double x, double y, double dw, double dh,
+                  const uint32_t *px, int w, int h);
     void *painter;                      /* the explorer's, for the verbs */
 };
 
@@ -105,6 +111,12 @@ struct lesson_view {
     const char *legend;
     bool (*cell)(const struct tri_setup *t, const struct trace_event *test,
                  const struct trace_event *write, double rgb[3]);
+};
+
+/* A colour a view names under its legend (lesson_explorer.swatches). */
+struct lesson_swatch {
+    double rgb[3];
+    char label[48];
 };
 
 struct lesson_explorer {
@@ -139,6 +151,13 @@ struct lesson_explorer {
      * not the centre's alone (lesson 08: any of its samples), so that the
      * centre's edge values printed after it do not contradict it. */
     const char *const *verdict;
+
+    /* The colours view `view` (one of the lesson's own) names one by one
+     * under its legend, or NULL: at most `max` written to out, their count
+     * returned (0: none). For a view whose colours depend on the run (one
+     * colour per level of the scene's texture pyramids, lesson 09). */
+    int (*swatches)(const char *view, const struct raster_params *p, struct lesson_swatch *out,
+                    int max);
 };
 
 /* Every lesson's explorer side, NULL-terminated (the generated lessons.c),
