@@ -74,8 +74,8 @@ struct run {
     int max_aniso;
     struct biased_edges e;
     double inv_area2;
-    /* per vertex A, B, C: 1/z, and s, t, r, g, b over z (or s, t themselves when affine) */
-    double q[3], sq[3], tq[3], cq[3][3], s[3], tv[3];
+    double cz[3][3];            /* per vertex A, B, C: r, g, b */
+    double q[3], sq[3], tq[3];  /* ... and 1/z, s/z, t/z: the analytic derivatives' planes */
 };
 
 /* What is interpolated at one pixel centre. */
@@ -85,21 +85,30 @@ struct at_pixel {
 
 /* The barycentric weights of A, B, C from the raw edge values (F02, F03,
  * F01 over twice the area), then the planes: 1/z = sum w_k / z_k, and each
- * attribute a = (sum w_k a_k / z_k) / (1/z). A helper's 1/z may be <= 0
- * (beyond the horizon): its values are then not used. */
+ * attribute a = (sum w_k a_k / z_k) / (1/z), in this order, so that a
+ * pixel centre exactly on a texel's edge lands where the rule's plain sums
+ * put it. A helper's 1/z may be <= 0 (beyond the horizon): its values are
+ * then not used. */
 static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
 {
-    double w0 = (double)f[EDGE_BC] * r->inv_area2, w1 = (double)f[EDGE_CA] * r->inv_area2,
-           w2 = (double)f[EDGE_AB] * r->inv_area2;
-    struct at_pixel a;
-    a.q = w0 * r->q[0] + w1 * r->q[1] + w2 * r->q[2];
-    a.s = (w0 * r->sq[0] + w1 * r->sq[1] + w2 * r->sq[2]) / a.q;
-    a.t = (w0 * r->tq[0] + w1 * r->tq[1] + w2 * r->tq[2]) / a.q;
-    for (int c = 0; c < 3; c++)
-        a.rgb[c] = (w0 * r->cq[0][c] + w1 * r->cq[1][c] + w2 * r->cq[2][c]) / a.q;
+    double area2 = (double)r->t->area2;
+    double b[3] = { (double)f[EDGE_BC] / area2, (double)f[EDGE_CA] / area2,
+                    (double)f[EDGE_AB] / area2 };
+    struct at_pixel a = { 0 };
+    double s = 0, t = 0, c[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; k++) {
+        double w = b[k] / r->t->v[k].z;
+        a.q += w;
+        s += w * r->t->v[k].s, t += w * r->t->v[k].t;
+        for (int i = 0; i < 3; i++)
+            c[i] += w * r->cz[k][i];
+    }
+    a.s = s / a.q, a.t = t / a.q;
+    for (int i = 0; i < 3; i++)
+        a.rgb[i] = c[i] / a.q;
     if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
-        a.s = w0 * r->s[0] + w1 * r->s[1] + w2 * r->s[2];
-        a.t = w0 * r->tv[0] + w1 * r->tv[1] + w2 * r->tv[2];
+        a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
+        a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
     }
     return a;
 }
@@ -115,8 +124,8 @@ static struct tex_deriv analytic(const struct run *r, const struct at_pixel *a)
             int64_t step = axis == 0 ? r->e.dx[edge_of[k]] : r->e.dy[edge_of[k]];
             double dw = (double)step * r->inv_area2;
             dq[axis] += dw * r->q[k];
-            ds[axis] += dw * (r->o.affine ? r->s[k] : r->sq[k]);
-            dt[axis] += dw * (r->o.affine ? r->tv[k] : r->tq[k]);
+            ds[axis] += dw * (r->o.affine ? r->t->v[k].s : r->sq[k]);
+            dt[axis] += dw * (r->o.affine ? r->t->v[k].t : r->tq[k]);
         }
     double div = r->o.affine ? 1 : a->q;
     double ks = r->o.affine ? 0 : a->s, kt = r->o.affine ? 0 : a->t;
@@ -251,8 +260,7 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
         const struct vertex *v = &t->v[k];
         r.q[k] = 1 / v->z;
         r.sq[k] = v->s * r.q[k], r.tq[k] = v->t * r.q[k];
-        r.s[k] = v->s, r.tv[k] = v->t;
-        r.cq[k][0] = v->r * r.q[k], r.cq[k][1] = v->g * r.q[k], r.cq[k][2] = v->b * r.q[k];
+        r.cz[k][0] = v->r, r.cz[k][1] = v->g, r.cz[k][2] = v->b;
     }
     for (int by = t->miny - t->miny % Q; by <= t->maxy; by += Q) {
         int ya = by < t->miny ? t->miny : by, yb = by + Q - 1 > t->maxy ? t->maxy : by + Q - 1;
