@@ -81,6 +81,9 @@ struct lesson_canvas {
      * pyramid. The data's colours, not the palette's */
     void (*image)(const struct lesson_canvas *c, double x, double y, double dw, double dh,
                   const uint32_t *px, int w, int h);
+    /* paint the whole canvas over in the backing ink: for a view that
+     * draws a picture of its own */
+    void (*cover)(const struct lesson_canvas *c);
     void *painter;                      /* the explorer's, for the verbs */
 };
 
@@ -103,8 +106,9 @@ struct lesson_canvas {
  *
  * `test` or `write` is NULL when the pixel saw no such event this step (a
  * pixel covered without a test of its own, in a full block or a span, gets
- * a test event with its x, y and TRACE_INSIDE, the rest zero); `t`
- * is the triangle's setup (its vertices, for values the events do not carry).
+ * a test event with its x, y and TRACE_INSIDE, the rest zero; its aux and
+ * line are those of the pixel's last test or cell_lines step); `t` is the
+ * triangle's setup (its vertices, for values the events do not carry).
  * The name is what --view accepts; the legend is shown under it. */
 struct lesson_view {
     const char *name;
@@ -151,6 +155,13 @@ struct lesson_explorer {
      * not the centre's alone (lesson 08: any of its samples), so that the
      * centre's edge values printed after it do not contradict it. */
     const char *const *verdict;
+
+    /* Lines whose TRACE_STEP events tell about the pixel (x, y), ending
+     * with -1, or NULL: the explorer keeps such a step's aux in the pixel's
+     * cell, as a pixel test's, and a view's cell() sees it with the line in
+     * test->line (lesson 09: a pixel's (u, v) evaluated, helper or not; its
+     * texel filtered, the levels and weights). */
+    const int *cell_lines;
 
     /* The colours view `view` (one of the lesson's own) names one by one
      * under its legend, or NULL: at most `max` written to out, their count

@@ -165,6 +165,13 @@ static void overlay_image(const struct lesson_canvas *c, double x, double y, dou
     cairo_surface_destroy(img);
 }
 
+static void overlay_cover(const struct lesson_canvas *c)
+{
+    struct painter *p = painter_of(c);
+    set_rgb(p->cr, p->pal->shadow);
+    cairo_paint(p->cr);
+}
+
 /* Build the canvas for the lesson and let its overlay draw: in scene pixel
  * units, after the triangle's edges. */
 void paint_overlay(struct painter *p)
@@ -179,13 +186,14 @@ void paint_overlay(struct painter *p)
         .unit = 1 / L->zoom, .view = explorer_view_name(ex, ex->view),
         .line = overlay_line, .polygon = overlay_polygon, .disc = overlay_disc,
         .label = overlay_label, .arrow = overlay_arrow, .image = overlay_image,
-        .painter = &o,
+        .cover = overlay_cover, .painter = &o,
     };
     cairo_save(p->cr);
     cairo_translate(p->cr, L->ox, L->oy);
     cairo_scale(p->cr, L->zoom, L->zoom);
     cairo_new_path(p->cr);
     struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
+    params.told = ex->told;
     ex->side->overlay(&c, &ex->tri, &params, ex->has_last ? &ex->last : NULL);
     cairo_restore(p->cr);
 }

@@ -194,6 +194,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
     }
     if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
         struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
+        params.told = ex->told;
         ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
@@ -400,7 +401,8 @@ void paint_panel(struct painter *p)
     y += watch(p, x, y, w) + 8 * s;
     if (ex->side && ex->side->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
         buf[0] = '\0';
-        ex->side->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        struct raster_params params = replay_params(&ex->replay, ex->cur >= 0 ? ex->cur : 0);  /* its texture */
+        ex->side->constants(&ex->tri, &params, buf, sizeof buf);
         for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
             buf[e - 1] = '\0';
         y += heading(p, x, y, w, "TRIANGLE");
