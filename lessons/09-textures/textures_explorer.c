@@ -500,9 +500,9 @@ static void draw_quads(const struct lesson_canvas *c, const struct tri_setup *t,
     if (t->area2 <= 0 || t->empty || c->unit > 1.0 / 5)
         return;
     int x0 = t->minx & ~1, y0 = t->miny & ~1, x1 = (t->maxx | 1) + 1, y1 = (t->maxy | 1) + 1;
-    for (int pass = 0; pass < 2; pass++) {     /* white on a dark halo: seen on any cell */
-        struct pen grid = pass ? (struct pen){ .stroke = INK_MARK, .width = 2 }
-                               : (struct pen){ .stroke = INK_OUTLINE, .width = 4.5, .alpha = 0.8 };
+    for (int pass = 0; pass < 2 && c->unit <= 1.0 / 12; pass++) {  /* white on a dark halo: seen on any cell */
+        struct pen grid = pass ? (struct pen){ .stroke = INK_MARK, .width = 1.5 }
+                               : (struct pen){ .stroke = INK_OUTLINE, .width = 4, .alpha = 0.8 };
         for (int x = x0; x <= x1; x += 2)
             c->line(c, x, y0, x, y1, grid);
         for (int y = y0; y <= y1; y += 2)
