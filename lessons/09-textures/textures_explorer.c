@@ -277,7 +277,6 @@ static double draw_pyramid(const struct lesson_canvas *c, struct rect r, const s
     double scale = fmin((r.x1 - r.x0) / (1.5 * w0), (r.y1 - r.y0) / h0);
     double a = w0 * scale, b = h0 * scale, gap = 3 * c->unit, y = r.y0;
     for (int k = 0; k < tex->nlevels; k++) {
-        const struct texture_level *L = &tex->level[k];
         double f = ldexp(1.0, -k);
         struct rect box = { r.x0, r.y0, r.x0 + a, r.y0 + b };
         if (k > 0) {
@@ -286,7 +285,13 @@ static double draw_pyramid(const struct lesson_canvas *c, struct rect r, const s
         }
         if (box.x1 - box.x0 < 3 * c->unit || box.y1 - box.y0 < 3 * c->unit || box.y1 > r.y1)
             break;          /* too small to show */
-        c->image(c, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0, L->texel, L->w, L->h);
+        /* more texels than screen pixels: a coarser level shows them (a 4096 x 4096 image is
+         * not copied at every frame, and averaged texels alias less than picked ones) */
+        int j = k;
+        while (j + 1 < tex->nlevels && tex->level[j].w > 2 * (box.x1 - box.x0) / c->unit)
+            j++;
+        c->image(c, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0, tex->level[j].texel,
+                 tex->level[j].w, tex->level[j].h);
         bool read = shown && (k == lk->level[0] || (lk->nlevels == 2 && k == lk->level[1]));
         rect_pen(c, box, (struct pen){ .stroke = read ? INK_PROBE : INK_TEXT, .width = read ? 2.5 : 1,
                                        .alpha = read ? 1 : 0.5 });
