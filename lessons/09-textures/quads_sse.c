@@ -65,71 +65,88 @@ static inline void wrap_pair(int64_t i, int n, enum texture_wrap wrap, int *x0, 
     }
 }
 
-/* One level's bilinear taps for the quad's four pixels: the wrapped
- * columns and rows of each pixel's four texels and its weights, as
- * bilinear_corner finds them. The quad's u and v at once: u = s W - 1/2,
- * floor(u) from the truncation (exact below 2^31 texels), a = u - floor(u)
- * as a float; a lane out of that range (or a NaN) is found by
- * bilinear_corner itself. Pixels not in `lanes` are left alone. */
+/* One level's bilinear taps for the quad's four pixels: where each
+ * pixel's four texels are in the level (offsets into its texels, wrapped as
+ * texel_at wraps them) and its weights, as bilinear_corner finds them. */
 struct level_taps {
-    int x0[4], x1[4], y0[4], y1[4];
+    int o00[4], o10[4], o01[4], o11[4];
     float a[4], b[4];
 };
 
+/* floor(u) of two doubles below 2^31 in size, and the same as int32 in
+ * the low two lanes of *i: the truncation, one less where it rounded up. */
 static inline __m128d floor2(__m128d u, __m128i *i)
 {
     __m128i t = _mm_cvttpd_epi32(u);
     __m128d f = _mm_cvtepi32_pd(t);
-    __m128d above = _mm_cmpgt_pd(f, u);         /* negative and not whole: one less */
+    __m128d above = _mm_cmpgt_pd(f, u);
     *i = _mm_add_epi32(t, _mm_shuffle_epi32(_mm_castpd_si128(above), _MM_SHUFFLE(3, 3, 2, 0)));
     return _mm_sub_pd(f, _mm_and_pd(above, _mm_set1_pd(1)));
 }
 
+/* u - 1/2 (or v) of four pixels, its floor as four int32 and its fraction
+ * as four floats; false when a lane is 2^30 texels out or more (or NaN). */
+static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
+{
+    const __m128d scale = _mm_set1_pd(w), half = _mm_set1_pd(0.5), limit = _mm_set1_pd(0x1p30);
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d u0 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s), scale), half);
+    __m128d u1 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s + 2), scale), half);
+    __m128d in = _mm_and_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, u0), limit),
+                            _mm_cmplt_pd(_mm_andnot_pd(sign, u1), limit));
+    if (_mm_movemask_pd(in) != 3)
+        return false;
+    __m128i i0, i1;
+    __m128 a0 = _mm_cvtpd_ps(_mm_sub_pd(u0, floor2(u0, &i0)));
+    __m128 a1 = _mm_cvtpd_ps(_mm_sub_pd(u1, floor2(u1, &i1)));
+    *i = _mm_unpacklo_epi64(i0, i1);
+    *a = _mm_movelh_ps(a0, a1);
+    return true;
+}
+
+/* s and t of the quad's pixels (a helper's: anything, even NaN; `lanes`
+ * says which are wanted). */
 static inline void level_taps(const struct texture_level *l, enum texture_wrap wrap, const double s[4],
                               const double t[4], unsigned lanes, struct level_taps *o)
 {
-    const __m128d w = _mm_set1_pd(l->w), h = _mm_set1_pd(l->h), half = _mm_set1_pd(0.5);
-    const __m128d limit = _mm_set1_pd(0x1p30), sign = _mm_set1_pd(-0.0);
-    int64_t ii[4], jj[4];
-    bool wide = false;
-    for (int p = 0; p < 4; p += 2) {
-        __m128d u = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s + p), w), half);
-        __m128d v = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(t + p), h), half);
-        __m128d in = _mm_and_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, u), limit),
-                                _mm_cmplt_pd(_mm_andnot_pd(sign, v), limit));
-        int ok = _mm_movemask_pd(in), want = (int)(lanes >> p & 3);
-        if ((ok & want) != want) {
-            wide = true;
-            break;
-        }
-        __m128i iu, iv;
-        __m128 a = _mm_cvtpd_ps(_mm_sub_pd(u, floor2(u, &iu)));
-        __m128 b = _mm_cvtpd_ps(_mm_sub_pd(v, floor2(v, &iv)));
-        int32_t i32[4], j32[4];
-        _mm_storeu_si128((__m128i *)i32, iu);
-        _mm_storeu_si128((__m128i *)j32, iv);
-        float af[4], bf[4];
-        _mm_storeu_ps(af, a), _mm_storeu_ps(bf, b);
-        for (int k = 0; k < 2; k++)
-            ii[p + k] = i32[k], jj[p + k] = j32[k], o->a[p + k] = af[k], o->b[p + k] = bf[k];
+    double sl[4], tl[4];
+    for (int p = 0; p < 4; p++)
+        sl[p] = lanes >> p & 1 ? s[p] : 0, tl[p] = lanes >> p & 1 ? t[p] : 0;
+    __m128i iu, iv;
+    __m128 a, b;
+    if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
+        /* the mathematical mod of a power of two: the low bits, negatives too */
+        const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
+        int log2w = 0;
+        while (1 << log2w < l->w)
+            log2w++;
+        __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
+        __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
+        __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));
+        _mm_storeu_si128((__m128i *)o->o00, _mm_add_epi32(row0, x0));
+        _mm_storeu_si128((__m128i *)o->o10, _mm_add_epi32(row0, x1));
+        _mm_storeu_si128((__m128i *)o->o01, _mm_add_epi32(row1, x0));
+        _mm_storeu_si128((__m128i *)o->o11, _mm_add_epi32(row1, x1));
+        _mm_storeu_ps(o->a, a);
+        _mm_storeu_ps(o->b, b);
+        return;
     }
-    for (int p = 0; p < 4; p++) {
-        if (!(lanes >> p & 1))
-            continue;
-        if (wide)
-            bilinear_corner(l, s[p], t[p], &ii[p], &jj[p], &o->a[p], &o->b[p]);
-        wrap_pair(ii[p], l->w, wrap, &o->x0[p], &o->x1[p]);
-        wrap_pair(jj[p], l->h, wrap, &o->y0[p], &o->y1[p]);
+    for (int p = 0; p < 4; p++) {       /* clamp, or far out: bilinear_corner itself */
+        int64_t i, j;
+        int x0, x1, y0, y1;
+        bilinear_corner(l, sl[p], tl[p], &i, &j, &o->a[p], &o->b[p]);
+        wrap_pair(i, l->w, wrap, &x0, &x1);
+        wrap_pair(j, l->h, wrap, &y0, &y1);
+        o->o00[p] = y0 * l->w + x0, o->o10[p] = y0 * l->w + x1;
+        o->o01[p] = y1 * l->w + x0, o->o11[p] = y1 * l->w + x1;
     }
 }
 
 /* Pixel p's bilinear tap from its level's taps. */
 static inline __m128 bilinear4(const struct texture_level *l, const struct level_taps *o, int p)
 {
-    const uint32_t *row0 = l->texel + (size_t)o->y0[p] * (size_t)l->w;
-    const uint32_t *row1 = l->texel + (size_t)o->y1[p] * (size_t)l->w;
-    __m128 c00 = texel4(row0[o->x0[p]]), c10 = texel4(row0[o->x1[p]]);
-    __m128 c01 = texel4(row1[o->x0[p]]), c11 = texel4(row1[o->x1[p]]);
+    __m128 c00 = texel4(l->texel[o->o00[p]]), c10 = texel4(l->texel[o->o10[p]]);
+    __m128 c01 = texel4(l->texel[o->o01[p]]), c11 = texel4(l->texel[o->o11[p]]);
     __m128 va = _mm_set1_ps(o->a[p]), vb = _mm_set1_ps(o->b[p]);
     __m128 top = _mm_add_ps(c00, _mm_mul_ps(va, _mm_sub_ps(c10, c00)));
     __m128 bottom = _mm_add_ps(c01, _mm_mul_ps(va, _mm_sub_ps(c11, c01)));
