@@ -3,9 +3,11 @@
  * The same pixels, the same bytes: every value a pixel's colour depends on
  * is computed by the same IEEE operations in the same order, only four
  * pixels at a time (two pairs of doubles for the weights and the divides).
- * What is different is the walk: the box's quads row by row, with no block
- * classification, coverage from the edge values of the quad's four pixels
- * at once, and a pixel's texel sampled only once it passes the depth test.
+ * What is different: a quad's four pixels are evaluated at once (and a
+ * level's taps for all four), trilinear takes one lambda per quad (the
+ * quad's, which every pixel of it uses anyway), and a pixel's texel is
+ * sampled only once it passes the depth test. The walk is the lesson's:
+ * the 8 x 8 blocks of the box, the empty ones skipped, then their quads.
  *
  *      lanes:   [ TL | TR ]  the quad's top row     (x0, x0 + 1) at y0
  *               [ BL | BR ]  its bottom row         (x0, x0 + 1) at y0 + 1
@@ -217,109 +219,128 @@ static inline bool block_empty(const struct biased_edges *e, int x0, int y0, int
     return false;
 }
 
+/* What one triangle's quads share. */
+struct twin {
+    const struct tri_setup *t;
+    struct target *fb;
+    struct trace *tr;
+    const struct texture *tex;
+    enum tex_filter filter;
+    int max_aniso;
+    struct biased_edges e;
+    __m128d area2;
+    double s_k[3], t_k[3], ones[3];
+    double col[3][3];                   /* r, g, b of A, B and C */
+};
+
+/* The quad whose top-left pixel is (qx, qy). */
+static inline void quad_sse(const struct twin *tw, int qx, int qy)
+{
+    static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
+    const struct tri_setup *t = tw->t;
+    const struct texture *tex = tw->tex;
+    /* coverage: the biased edge values of the four pixels, exact */
+    unsigned covered = 0xF;
+    int64_t raw[3];
+    for (int k = 0; k < 3; k++) {
+        int64_t f = biased_edge_at(&tw->e, k, qx, qy), dx = tw->e.dx[k], dy = tw->e.dy[k];
+        covered &= (unsigned)(f >= 0) | (unsigned)(f + dx >= 0) << 1
+                 | (unsigned)(f + dy >= 0) << 2 | (unsigned)(f + dx + dy >= 0) << 3;
+        raw[k] = f - tw->e.bias[k];
+    }
+    /* ... and inside the box (a pixel past the target's edge is never covered) */
+    if (qx < t->minx) covered &= ~5u;
+    if (qx + 1 > t->maxx) covered &= ~10u;
+    if (qy < t->miny) covered &= ~3u;
+    if (qy + 1 > t->maxy) covered &= ~12u;
+    if (!covered)
+        return;
+    /* the weights of A, B, C over z at the four centres (edge values are
+     * exact in doubles, and so are their sums), then 1/z, s and t */
+    struct quad2 w[3];
+    for (int k = 0; k < 3; k++) {
+        int j = edge_of[k];
+        double f = (double)raw[j], dx = (double)tw->e.dx[j], dy = (double)tw->e.dy[j];
+        __m128d z = _mm_set1_pd(t->v[k].z);
+        w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), tw->area2), z);
+        w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), tw->area2), z);
+    }
+    struct quad2 vq = pair_sum3(w, tw->ones);
+    struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
+    double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
+    _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
+    _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
+    _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
+    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
+    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+    _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
+    double *out[3] = { cr, cg, cb };
+    for (int c = 0; c < 3; c++) {
+        struct quad2 sum = pair_sum3(w, tw->col[c]);
+        _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, depth.top));
+        _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, depth.bottom));
+    }
+    /* the quad's derivatives, and trilinear's levels for all four pixels */
+    bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
+    struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
+                           .dtdy = tt[2] - tt[0], .w0 = tex->level[0].w, .h0 = tex->level[0].h,
+                           .beyond = beyond };
+    struct trilinear_at at = { 0, 0, 0 };
+    struct level_taps taps[2];
+    if (tw->filter == FILTER_TRILINEAR) {
+        at = trilinear_at(tex, &d);
+        level_taps(&tex->level[at.k0], tex->wrap, s, tt, covered, &taps[0]);
+        if (at.k1 != at.k0 && at.f != 0)
+            level_taps(&tex->level[at.k1], tex->wrap, s, tt, covered, &taps[1]);
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!(covered >> i & 1))
+            continue;
+        int x = qx + (i & 1), y = qy + (i >> 1);
+        float z = (float)zs[i];
+        if (!target_depth_pass(tw->fb, x, y, z)) {
+            target_write(tw->fb, x, y, z, 0);       /* counted, hidden: no texel needed */
+            continue;
+        }
+        __m128 texel;
+        if (tw->filter == FILTER_TRILINEAR) {
+            texel = trilinear4(tex, at, &taps[0], &taps[1], i);
+        } else {                /* the other filters: the texture unit's own code */
+            struct texel_rgb c = tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d,
+                                                  &tex_stages_lesson, NULL);
+            texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
+        }
+        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z,
+             modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
+    }
+}
+
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
-    const struct texture *tex = p->texture;
-    if (!tex) {     /* untextured: the shared shading, as the lesson draws it */
+    if (!p->texture) {      /* untextured: the shared shading, as the lesson draws it */
         textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_COARSE });
         return;
     }
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
-    enum tex_filter filter = tex_filter_of(p);
-    int max_aniso = tex_max_aniso_of(p);
-    struct biased_edges e;
-    biased_edges_setup(&e, t, true);
-    double s_k[3], t_k[3], ones[3] = { 1, 1, 1 };
-    double col[3][3];                   /* r, g, b of A, B and C */
+    struct twin tw = { .t = t, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
+                       .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
+                       .ones = { 1, 1, 1 } };
+    biased_edges_setup(&tw.e, t, true);
     for (int k = 0; k < 3; k++) {
-        s_k[k] = t->v[k].s, t_k[k] = t->v[k].t;
-        col[0][k] = t->v[k].r, col[1][k] = t->v[k].g, col[2][k] = t->v[k].b;
+        tw.s_k[k] = t->v[k].s, tw.t_k[k] = t->v[k].t;
+        tw.col[0][k] = t->v[k].r, tw.col[1][k] = t->v[k].g, tw.col[2][k] = t->v[k].b;
     }
-    const __m128d area2 = _mm_set1_pd((double)t->area2);
-    static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
-    const int W = tex->level[0].w, H = tex->level[0].h;
     for (int by = t->miny - t->miny % BLOCK; by <= t->maxy; by += BLOCK)
-    for (int bx = t->minx - t->minx % BLOCK; bx <= t->maxx; bx += BLOCK) {
-        int xa = bx < t->minx ? t->minx : bx, xb = bx + BLOCK - 1 > t->maxx ? t->maxx : bx + BLOCK - 1;
-        int ya = by < t->miny ? t->miny : by, yb = by + BLOCK - 1 > t->maxy ? t->maxy : by + BLOCK - 1;
-        if (block_empty(&e, xa, ya, xb, yb))
-            continue;
-        for (int qy = ya & ~1; qy <= yb; qy += 2)
-        for (int qx = xa & ~1; qx <= xb; qx += 2) {
-            /* coverage: the biased edge values of the four pixels, exact */
-            unsigned covered = 0xF;
-            int64_t raw[3];
-            for (int k = 0; k < 3; k++) {
-                int64_t f = biased_edge_at(&e, k, qx, qy), dx = e.dx[k], dy = e.dy[k];
-                covered &= (unsigned)(f >= 0) | (unsigned)(f + dx >= 0) << 1
-                         | (unsigned)(f + dy >= 0) << 2 | (unsigned)(f + dx + dy >= 0) << 3;
-                raw[k] = f - e.bias[k];
-            }
-            /* ... and inside the box (a pixel past the target's edge is never covered) */
-            if (qx < t->minx) covered &= ~5u;
-            if (qx + 1 > t->maxx) covered &= ~10u;
-            if (qy < t->miny) covered &= ~3u;
-            if (qy + 1 > t->maxy) covered &= ~12u;
-            if (!covered)
+        for (int bx = t->minx - t->minx % BLOCK; bx <= t->maxx; bx += BLOCK) {
+            int xa = bx < t->minx ? t->minx : bx, xb = bx + BLOCK - 1 > t->maxx ? t->maxx : bx + BLOCK - 1;
+            int ya = by < t->miny ? t->miny : by, yb = by + BLOCK - 1 > t->maxy ? t->maxy : by + BLOCK - 1;
+            if (block_empty(&tw.e, xa, ya, xb, yb))
                 continue;
-            /* the weights of A, B, C over z at the four centres, then the planes */
-            struct quad2 w[3];
-            for (int k = 0; k < 3; k++) {
-                int j = edge_of[k];
-                double f = (double)raw[j], dx = (double)e.dx[j], dy = (double)e.dy[j];
-                __m128d z = _mm_set1_pd(t->v[k].z);
-                w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), area2), z);
-                w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), area2), z);
-            }
-            struct quad2 vq = pair_sum3(w, ones);
-            struct quad2 vs = pair_div(pair_sum3(w, s_k), vq), vt = pair_div(pair_sum3(w, t_k), vq);
-            double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
-            _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
-            _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
-            _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
-            /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
-            struct quad2 z = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
-            _mm_storeu_pd(zs, z.top), _mm_storeu_pd(zs + 2, z.bottom);
-            double *out[3] = { cr, cg, cb };
-            for (int c = 0; c < 3; c++) {
-                struct quad2 sum = pair_sum3(w, col[c]);
-                _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, z.top));
-                _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, z.bottom));
-            }
-            bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
-            struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
-                                   .dtdy = tt[2] - tt[0], .w0 = W, .h0 = H, .beyond = beyond };
-            struct trilinear_at at = { 0, 0, 0 };
-            struct level_taps taps[2];
-            if (filter == FILTER_TRILINEAR) {
-                at = trilinear_at(tex, &d);         /* one lambda for the quad */
-                level_taps(&tex->level[at.k0], tex->wrap, s, tt, covered, &taps[0]);
-                if (at.k1 != at.k0 && at.f != 0)
-                    level_taps(&tex->level[at.k1], tex->wrap, s, tt, covered, &taps[1]);
-            }
-            for (int i = 0; i < 4; i++) {
-                if (!(covered >> i & 1))
-                    continue;
-                int x = qx + (i & 1), y = qy + (i >> 1);
-                float z = (float)zs[i];
-                if (!target_depth_pass(fb, x, y, z)) {
-                    target_write(fb, x, y, z, 0);   /* counted, hidden: no texel needed */
-                    continue;
-                }
-                __m128d bg = _mm_set_pd(cg[i], cb[i]), r0 = _mm_set_pd(0, cr[i]);
-                __m128 texel;
-                if (filter == FILTER_TRILINEAR) {
-                    texel = trilinear4(tex, at, &taps[0], &taps[1], i);
-                } else {
-                    struct texel_rgb c = tex_filter_texel(tex, filter, max_aniso, s[i], tt[i], &d,
-                                                          &tex_stages_lesson, NULL);
-                    texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
-                }
-                PLOT(fb, tr, L_WRITE, x, y, z, modulate4(texel, bg, r0));
-            }
+            for (int qy = ya & ~1; qy <= yb; qy += 2)
+                for (int qx = xa & ~1; qx <= xb; qx += 2)
+                    quad_sse(&tw, qx, qy);
         }
-    }
 }
