@@ -18,6 +18,7 @@
  */
 #include <math.h>
 
+#include "shade/shade.h"
 #include "simd.h"
 #include "textures.h"
 
@@ -222,6 +223,7 @@ static inline bool block_empty(const struct biased_edges *e, int x0, int y0, int
 /* What one triangle's quads share. */
 struct twin {
     const struct tri_setup *t;
+    const struct raster_params *p;
     struct target *fb;
     struct trace *tr;
     const struct texture *tex;
@@ -280,6 +282,13 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
         _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, depth.top));
         _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, depth.bottom));
     }
+    if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
+        for (int i = 0; i < 4; i++)
+            if (covered >> i & 1)
+                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i],
+                     shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
+        return;
+    }
     /* the quad's derivatives, and trilinear's levels for all four pixels */
     bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
     struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
@@ -318,14 +327,10 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
-    if (!p->texture) {      /* untextured: the shared shading, as the lesson draws it */
-        textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_COARSE });
-        return;
-    }
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
-    struct twin tw = { .t = t, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
+    struct twin tw = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
                        .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
                        .ones = { 1, 1, 1 } };
     biased_edges_setup(&tw.e, t, true);
