@@ -207,19 +207,6 @@ static inline __m128 trilinear4(const struct texture *tex, struct trilinear_at a
     return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(at.f), _mm_sub_ps(b, a)));
 }
 
-#define BLOCK 8             /* the lesson's blocks */
-
-/* Lesson 05's empty block: all four corners outside one edge. */
-static inline bool block_empty(const struct biased_edges *e, int x0, int y0, int x1, int y1)
-{
-    for (int k = 0; k < 3; k++) {
-        int64_t f = biased_edge_at(e, k, x0, y0), dx = e->dx[k] * (x1 - x0), dy = e->dy[k] * (y1 - y0);
-        if (f < 0 && f + dx < 0 && f + dy < 0 && f + dx + dy < 0)
-            return true;
-    }
-    return false;
-}
-
 /* What one triangle's quads share. */
 struct twin {
     const struct tri_setup *t;
@@ -338,11 +325,13 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
         tw.s_k[k] = t->v[k].s, tw.t_k[k] = t->v[k].t;
         tw.col[0][k] = t->v[k].r, tw.col[1][k] = t->v[k].g, tw.col[2][k] = t->v[k].b;
     }
-    for (int by = t->miny - t->miny % BLOCK; by <= t->maxy; by += BLOCK)
-        for (int bx = t->minx - t->minx % BLOCK; bx <= t->maxx; bx += BLOCK) {
-            int xa = bx < t->minx ? t->minx : bx, xb = bx + BLOCK - 1 > t->maxx ? t->maxx : bx + BLOCK - 1;
-            int ya = by < t->miny ? t->miny : by, yb = by + BLOCK - 1 > t->maxy ? t->maxy : by + BLOCK - 1;
-            if (block_empty(&tw.e, xa, ya, xb, yb))
+    for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK)
+        for (int bx = t->minx - t->minx % TEX_BLOCK; bx <= t->maxx; bx += TEX_BLOCK) {
+            int xa = bx < t->minx ? t->minx : bx;
+            int xb = bx + TEX_BLOCK - 1 > t->maxx ? t->maxx : bx + TEX_BLOCK - 1;
+            int ya = by < t->miny ? t->miny : by;
+            int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
+            if (tex_block_empty(&tw.e, xa, ya, xb, yb))
                 continue;
             for (int qy = ya & ~1; qy <= yb; qy += 2)
                 for (int qx = xa & ~1; qx <= xb; qx += 2)
