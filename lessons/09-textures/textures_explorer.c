@@ -529,6 +529,7 @@ static int swatches(const char *view, const struct raster_params *p, struct less
     return n;
 }
 
+/* (texels draws a picture of its own over the canvas: its cells lie under it) */
 static const struct lesson_view views[] = {
     { "texels", "texture space of the last pixel evaluated: the pyramid, its footprint (the "
                 "parallelogram of its quad's derivatives), the levels read magnified, the taps "
