@@ -31,17 +31,17 @@
 #include "textures.h"
 
 static const char *const pseudocode[] = {
-    "setup: F0k, box; 1/z, s/z, t/z, colour/z at A, B, C",                 /* 0 */
-    "loop over the 8 x 8 blocks of the box, classified by corners:",       /* 1 */
-    "  empty: skip",                                                        /* 2 */
-    "  else loop over its 2 x 2 quads, top-left (x & ~1, y & ~1):",        /* 3 */
-    "    covered = F01 >= 0 && F02 >= 0 && F03 >= 0 at each pixel",        /* 4 */
-    "    no pixel covered: skip the quad",                                  /* 5 */
-    "    (s, t) = (s/z, t/z) / (1/z) at all four centres (helpers too)",   /* 6 */
-    "    du/dx, dv/dx, du/dy, dv/dy = differences at the top-left pixel",   /* 7 */
-    "    rho = longer of (du/dx, dv/dx), (du/dy, dv/dy); lambda = log2 rho", /* 8 */
-    "    covered pixels: texel = filter(s, t, lambda)  (levels, taps, mix)", /* 9 */
-    "      colour = texel x vertex colour, rounded once; depth test, write", /* 10 */
+    "setup: F0k, box; 1/z, s/z, t/z, colour/z at A, B, C",  /* 0 */
+    "loop over the box's 8 x 8 blocks, by their corners:",   /* 1 */
+    "  empty: skip",                                          /* 2 */
+    "  else loop over its 2 x 2 quads (x & ~1, y & ~1):",    /* 3 */
+    "    covered = F01, F02, F03 >= 0 at each pixel",        /* 4 */
+    "    no pixel covered: skip the quad",                    /* 5 */
+    "    (s, t) = (s/z, t/z) / (1/z) at all 4, helpers too", /* 6 */
+    "    du/dx, dv/dx, du/dy, dv/dy: top-left differences",  /* 7 */
+    "    rho = longer derivative; lambda = log2 rho",        /* 8 */
+    "    covered: texel = filter(s, t, lambda): levels, taps", /* 9 */
+    "      colour = texel x vertex colour, rounded; write",  /* 10 */
     NULL,
 };
 
