@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "exercise/exercise.h"
+#include "exercise/scenes.h"
 #include "explore/explorer.h"
 #include "shade/shade.h"
 #include "front/front.h"   /* front_scene */
@@ -203,6 +204,13 @@ Test(exercise, any_lessons_check_accepts_a_whole_rasterizer)
              * rasterizer of one sample, at the first scene */
             cr_expect_not(run.ok, "%s accepts a one-sample rasterizer", l->id);
             cr_expect_str_eq(run.r.failed, "single triangle", "%s", run.report);
+        } else if (l->exercise.textures) {
+            /* lesson 09 draws image textures: a rasterizer that draws the
+             * vertex colour alone passes every untextured check and fails
+             * at the first textured one (the lesson's own algorithm, a
+             * whole rasterizer too, passes: above) */
+            cr_expect_not(run.ok, "%s accepts a rasterizer that draws no image texture", l->id);
+            cr_expect_str_eq(run.r.failed, "texels magnified", "%s", run.report);
         } else {
             cr_expect(run.ok, "%s rejects a correct rasterizer written for another lesson:\n%s", l->id,
                       run.report);
@@ -459,6 +467,42 @@ Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
     cr_expect_gt(ex.missing, 0, "the diff marks the pixels the skeleton leaves out");
     explorer_free(&ex);
     scene_free(&s);
+}
+
+/* Lesson 09's textured scenes: every triangle under an image texture, and
+ * each scene written as a counterexample is written reads back to the same
+ * triangles under the same textures (builtin:NAME, the same wrap). */
+Test(exercise, the_textured_scenes_are_textured_and_read_back)
+{
+    static const scene_gen gens[] = { gen_tex_magnify, gen_tex_wrap, gen_tex_nonsquare,
+                                      gen_tex_minify, gen_tex_floor, gen_tex_tiny };
+    int n = 0;
+    for (size_t g = 0; g < sizeof gens / sizeof gens[0]; g++)
+        for (int i = 0;; i++, n++) {
+            struct scene s, back;
+            char what[256], err[256];
+            if (!gens[g](i, &s, what, sizeof what))
+                break;
+            cr_expect_gt(s.ntris, 0, "%s", what);
+            char *text = NULL;
+            size_t len = 0;
+            FILE *f = open_memstream(&text, &len);
+            cr_assert(f && scene_write(&s, f));
+            fclose(f);
+            cr_assert(scene_parse(&back, "back.scene", text, len, err, sizeof err), "%s: %s", what, err);
+            cr_assert_eq(back.ntris, s.ntris, "%s", what);
+            for (int k = 0; k < s.ntris; k++) {
+                const struct texture *a = scene_texture(&s, s.tris[k].texture),
+                                     *b = scene_texture(&back, back.tris[k].texture);
+                cr_assert(a && b, "%s: triangle %d has no image texture", what, k + 1);
+                cr_expect_str_eq(a->name, b->name, "%s", what);
+                cr_expect_eq(a->wrap, b->wrap, "%s", what);
+            }
+            free(text);
+            scene_free(&back);
+            scene_free(&s);
+        }
+    cr_expect_geq(n, 25);
 }
 
 /* --- the counterexample in the explorer --------------------------------------- */

@@ -257,6 +257,14 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
     if (l->exercise.full_blocks)
         c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false };
+    if (l->exercise.textures) {     /* textured scenes, simplest first: colour and the sampler's faults */
+        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false };
+        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false };
+        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false };
+        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false };
+        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false };
+        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false };
+    }
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
         c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };
         c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false };

@@ -100,6 +100,17 @@ struct exercise_fault {
 const struct exercise_fault *exercise_fault(void);
 void exercise_fault_clear(void);
 
+/* A texel read outside its level since the last exercise_fault_clear()
+ * (lesson 09: exercise_texel, student.h): the first one, read as opaque
+ * black. level >= nlevels, or < 0: a level the texture does not have. */
+struct texel_fault {
+    bool any;
+    int level, nlevels;
+    long long i, j;
+    int w, h;                       /* the level's size (0 x 0: no such level) */
+};
+const struct texel_fault *exercise_texel_fault(void);
+
 /* --- make check ---------------------------------------------------------------- */
 
 struct check_options {
