@@ -136,7 +136,7 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     else
         fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
                 v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
-                                                                     : "first wrong pixel",
+                : v.what == WRONG_LOD ? "quad's level of detail" : "first wrong pixel",
                 (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
@@ -259,9 +259,9 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false };
     if (l->exercise.textures) {     /* textured scenes, simplest first: colour and the sampler's faults */
         c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false };
+        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false };
         c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false };
         c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false };
-        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false };
         c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false };
         c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false };
     }

@@ -1,7 +1,7 @@
 /* scenes9.c - the textured scenes of make check for lesson 09's sampler
- * (scenes.h), simplest first: texels magnified, both wraps and negative
- * s and t, a texture that is not square, minified ones at chosen levels of
- * detail, grazing floors and tiny triangles.
+ * (scenes.h), simplest first: texels magnified, minified ones at chosen
+ * levels of detail, both wraps and negative s and t, a texture that is not
+ * square, grazing floors and tiny triangles.
  *
  * Each scene is written as a scene file's text and read by scene_parse, so
  * that its textures are the built-in ones a counterexample names again
@@ -119,13 +119,45 @@ bool gen_tex_magnify(int i, struct scene *s, char *what, size_t n)
         break;
     case 3:
         text_start(&x, 48, 36, "builtin:bricks");
-        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(45.5, 3.5, 4, 0.31, 0.05), V(43.5, 33.5, 2, 0.31, 0.20));
-        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(43.5, 33.5, 2, 0.31, 0.20), V(3.5, 32.5, 1.5, 0.10, 0.20));
+        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(45.5, 3.5, 4, 0.13, 0.05), V(43.5, 33.5, 2, 0.13, 0.08));
+        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(43.5, 33.5, 2, 0.13, 0.08), V(3.5, 32.5, 1.5, 0.10, 0.08));
         snprintf(what, n, "builtin:bricks magnified on two triangles sharing an edge, depths 1 to 4");
         break;
     default:
         return false;
     }
+    return text_end(&x, s);
+}
+
+/* --- minified: levels of detail chosen one by one ---------------------------------- */
+
+bool gen_tex_minify(int i, struct scene *s, char *what, size_t n)
+{
+    /* lambda about log2(256 ds / 44) along x: 1.2, 2.85, 4.1, 5.7, 7.3, and
+     * 9.6 beyond the last level (8 of builtin:checker-numbers); the mixes
+     * frac(lambda) far from one half */
+    static const struct {
+        const char *texture;
+        double ds, dt, z1;
+        bool turn, coloured;
+    } m[] = {
+        { "builtin:checker-numbers", 0.39, 0.2, 1, false, false },
+        { "builtin:checker-numbers", 1.1, 0.5, 1, true, false },
+        { "builtin:checker-numbers", 2.95, 1.1, 1, false, true },
+        { "builtin:grid", 9.0, 2.0, 1, true, false },
+        { "builtin:checker-numbers", 27.0, 5.0, 1, false, false },
+        { "builtin:bricks", 12.2, 8.0, 1.3, false, true },
+        { "builtin:checker-numbers", 28.0, 40.0, 1, true, false },
+        { "builtin:checker-numbers", 1400.0, 900.0, 1, false, false },
+    };
+    if (i >= (int)(sizeof m / sizeof m[0]))
+        return false;
+    struct text x;
+    text_start(&x, 48, 36, m[i].texture);
+    struct rng r = { 0x70d5u + (uint64_t)i };
+    spread(&x, rng_range(&r, -2, 2), rng_range(&r, -2, 2), m[i].ds, m[i].dt, 1, m[i].z1, m[i].turn, m[i].coloured);
+    snprintf(what, n, "%s minified: s spans %g, t %g over some 44 pixels%s", m[i].texture, m[i].ds, m[i].dt,
+             i == 7 ? " (lambda beyond the last level)" : "");
     return text_end(&x, s);
 }
 
@@ -205,38 +237,6 @@ bool gen_tex_nonsquare(int i, struct scene *s, char *what, size_t n)
     default:
         return false;
     }
-    return text_end(&x, s);
-}
-
-/* --- minified: levels of detail chosen one by one ---------------------------------- */
-
-bool gen_tex_minify(int i, struct scene *s, char *what, size_t n)
-{
-    /* lambda about log2(256 ds / 44) along x: 1.2, 2.85, 4.1, 5.7, 7.3, and
-     * 9.6 beyond the last level (8 of builtin:checker-numbers); the mixes
-     * frac(lambda) far from one half */
-    static const struct {
-        const char *texture;
-        double ds, dt, z1;
-        bool turn, coloured;
-    } m[] = {
-        { "builtin:checker-numbers", 0.39, 0.2, 1, false, false },
-        { "builtin:checker-numbers", 1.1, 0.5, 1, true, false },
-        { "builtin:checker-numbers", 2.95, 1.1, 1, false, true },
-        { "builtin:grid", 9.0, 2.0, 1, true, false },
-        { "builtin:checker-numbers", 27.0, 5.0, 1, false, false },
-        { "builtin:bricks", 12.2, 8.0, 1.3, false, true },
-        { "builtin:checker-numbers", 28.0, 40.0, 1, true, false },
-        { "builtin:checker-numbers", 1400.0, 900.0, 1, false, false },
-    };
-    if (i >= (int)(sizeof m / sizeof m[0]))
-        return false;
-    struct text x;
-    text_start(&x, 48, 36, m[i].texture);
-    struct rng r = { 0x70d5u + (uint64_t)i };
-    spread(&x, rng_range(&r, -2, 2), rng_range(&r, -2, 2), m[i].ds, m[i].dt, 1, m[i].z1, m[i].turn, m[i].coloured);
-    snprintf(what, n, "%s minified: s spans %g, t %g over some 44 pixels%s", m[i].texture, m[i].ds, m[i].dt,
-             i == 7 ? " (lambda beyond the last level)" : "");
     return text_end(&x, s);
 }
 
