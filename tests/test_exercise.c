@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L   /* open_memstream, mkdtemp */
 
 #include <criterion/criterion.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -288,6 +289,17 @@ static const struct {
     /* lesson 08's check draws at 4 samples first: the quarter points are
      * not the standard pattern's samples */
     { "08", "grid", false, "single triangle" },
+    /* lesson 09, against the lesson's own picture: level 0 alone blurs
+     * nothing where the minified scenes need a coarser level; (s, t) linear
+     * in the screen moves texels on the first triangle whose depths differ;
+     * each pixel's own derivatives choose other levels than its quad's
+     * where the level of detail changes fastest, on the grazing floors (the
+     * per-pixel level of detail a student might write), and the analytic
+     * ones on the first receding triangle minified */
+    { "09", "no-mipmaps", false, "texels minified" },
+    { "09", "affine", false, "texels magnified" },
+    { "09", "fine-lod", false, "grazing floors and walls" },
+    { "09", "analytic-lod", false, "a texture that is not square" },
 };
 
 Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
@@ -1008,6 +1020,52 @@ Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
     cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
                  "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
     cr_expect_gt(ex.wrong_colour, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}
+
+/* Lesson 09: a level of detail that is not log2(rho) is named at its quad,
+ * with the derivatives, rho and both lambdas, and the printed command opens
+ * the explorer on the step that narrates that quad's level of detail, the
+ * student's lambda on show; a texel read outside its level is named with
+ * its level and size, and opens on a pixel the diff marks. */
+Test(exercise, lesson09_names_the_quad_and_the_texel)
+{
+    const struct lesson *l = lesson_nn("09");
+    cr_assert(l && l->exercise.textures && l->exercise.lod_line > 0);
+    const struct exercise_mutation *m = mutation("09-log2-rho-squared");
+    struct run run;
+    check(&run, l, m->fn, NULL);
+    cr_assert_not(run.ok);
+    cr_expect_not_null(strstr(run.report, "and lambda = log2(rho) = "), "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "your level of detail gave lambda = "), "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "at the quad's level of detail (step"), "%s", run.report);
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_STEP);
+    cr_expect_eq(ex.last.line, l->exercise.lod_line);
+    cr_expect_eq(ex.last.x, run.r.x);
+    cr_expect_eq(ex.last.y, run.r.y);
+    /* the lambda narrated there is the code's own: log2 of rho squared */
+    cr_expect_float_eq(ex.last.aux[5], 2 * log2f(ex.last.aux[4]), 1e-3, "%g, rho %g", ex.last.aux[5],
+                       ex.last.aux[4]);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+
+    m = mutation("09-wrap-c-mod");
+    check(&run, l, m->fn, NULL);
+    cr_assert_not(run.ok);
+    cr_expect_not_null(strstr(run.report, "of level 0, outside its 2 x 2 texels"), "%s", run.report);
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
+    cr_assert_not_null(ex.diff);
+    cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
+                 "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
     explorer_free(&ex);
     scene_free(&s);
     run_free(&run);
