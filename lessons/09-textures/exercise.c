@@ -46,7 +46,7 @@ static struct texel_rgb texel(const struct texture *tex, int k, int64_t i, int64
     return (struct texel_rgb){ { (float)(c >> 16 & 255u), (float)(c >> 8 & 255u), (float)(c & 255u) } };
 }
 
-/* TODO 1, README "Texels and wrap": texel index i, any integer, into
+/* TODO 1, README section 1, "Texels and wrap": texel index i, any integer, into
  * 0 .. n - 1. repeat: i mod n, the mathematical mod (never negative:
  * -1 mod 4 is 3); clamp: the nearest of 0 .. n - 1. */
 static int64_t wrap(int64_t i, int n, enum texture_wrap how)
@@ -55,7 +55,7 @@ static int64_t wrap(int64_t i, int n, enum texture_wrap how)
     return i;
 }
 
-/* TODO 2, README "Nearest and bilinear": the bilinear tap at level k.
+/* TODO 2, README section 2, "Nearest and bilinear": the bilinear tap at level k.
  *
  *     u = s W_k - 1/2,  v = t H_k - 1/2      (texel centres at i + 1/2)
  *     i0 = floor(u), a = u - i0;  j0 = floor(v), b = v - j0
@@ -68,7 +68,7 @@ static struct texel_rgb bilinear(const struct texture *tex, int k, double s, dou
     return (struct texel_rgb){ { 128, 128, 128 } };
 }
 
-/* TODO 3, README "The level of detail": lambda = log2(rho) from the
+/* TODO 3, README section 6, "The level of detail": lambda = log2(rho) from the
  * quad's derivatives. d gives them in texture coordinates per pixel
  * (ds/dx, dt/dx, ds/dy, dt/dy) and the size of level 0, W_0 x H_0:
  *
@@ -82,7 +82,7 @@ static double lod(const struct tex_deriv *d)
     return 0;
 }
 
-/* TODO 4, README "Trilinear": lambda clamped to [0, last level] (lambda
+/* TODO 4, README section 7, "Trilinear": lambda clamped to [0, last level] (lambda
  * <= 0 magnifies: level 0), then the bilinear taps st->bilinear at levels
  * k = floor(lambda) and k + 1 (the last level twice at the end), mixed by
  * f = lambda - k: (1 - f) of level k, f of level k + 1. */
