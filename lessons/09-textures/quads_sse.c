@@ -22,14 +22,16 @@ struct quad2 {
     __m128d top, bottom;
 };
 
-static inline struct quad2 pair_sum3(struct quad2 w[3], const double k[3])
+/* sum_k w_k a_k, from 0 and left to right as the narrated sum */
+static inline struct quad2 pair_sum3(const struct quad2 w[3], const double a[3])
 {
-    /* w0 k0 + w1 k1 + w2 k2, left to right as the narrated sum */
-    __m128d k0 = _mm_set1_pd(k[0]), k1 = _mm_set1_pd(k[1]), k2 = _mm_set1_pd(k[2]);
-    return (struct quad2){
-        _mm_add_pd(_mm_add_pd(_mm_mul_pd(w[0].top, k0), _mm_mul_pd(w[1].top, k1)), _mm_mul_pd(w[2].top, k2)),
-        _mm_add_pd(_mm_add_pd(_mm_mul_pd(w[0].bottom, k0), _mm_mul_pd(w[1].bottom, k1)),
-                   _mm_mul_pd(w[2].bottom, k2)) };
+    struct quad2 sum = { _mm_setzero_pd(), _mm_setzero_pd() };
+    for (int k = 0; k < 3; k++) {
+        __m128d ak = _mm_set1_pd(a[k]);
+        sum.top = _mm_add_pd(sum.top, _mm_mul_pd(w[k].top, ak));
+        sum.bottom = _mm_add_pd(sum.bottom, _mm_mul_pd(w[k].bottom, ak));
+    }
+    return sum;
 }
 
 static inline struct quad2 pair_div(struct quad2 a, struct quad2 b)
@@ -52,16 +54,13 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
     int max_aniso = tex_max_aniso_of(p);
     struct biased_edges e;
     biased_edges_setup(&e, t, true);
-    double inv = 1.0 / (double)t->area2;
-    double q[3], sq[3], tq[3], cq[3][3];
+    double s_k[3], t_k[3], ones[3] = { 1, 1, 1 }, col[3][3];
     for (int k = 0; k < 3; k++) {
-        const struct vertex *v = &t->v[k];
-        q[k] = 1 / v->z;
-        sq[k] = v->s * q[k], tq[k] = v->t * q[k];
-        cq[k][0] = v->r * q[k], cq[k][1] = v->g * q[k], cq[k][2] = v->b * q[k];
+        s_k[k] = t->v[k].s, t_k[k] = t->v[k].t;
+        col[k][0] = t->v[k].r, col[k][1] = t->v[k].g, col[k][2] = t->v[k].b;
     }
+    const __m128d area2 = _mm_set1_pd((double)t->area2);
     static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
-    const __m128d vinv = _mm_set1_pd(inv);
     const int W = tex->level[0].w, H = tex->level[0].h;
     for (int qy = t->miny & ~1; qy <= t->maxy; qy += 2) {
         for (int qx = t->minx & ~1; qx <= t->maxx; qx += 2) {
@@ -81,20 +80,23 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
             if (qy + 1 > t->maxy) covered &= ~12u;
             if (!covered)
                 continue;
-            /* the weights of A, B, C at the four centres, then the planes */
+            /* the weights of A, B, C over z at the four centres, then the planes */
             struct quad2 w[3];
             for (int k = 0; k < 3; k++) {
                 int j = edge_of[k];
                 double f = (double)raw[j], dx = (double)e.dx[j], dy = (double)e.dy[j];
-                w[k].top = _mm_mul_pd(_mm_set_pd(f + dx, f), vinv);
-                w[k].bottom = _mm_mul_pd(_mm_set_pd((f + dy) + dx, f + dy), vinv);
+                __m128d z = _mm_set1_pd(t->v[k].z);
+                w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), area2), z);
+                w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), area2), z);
             }
-            struct quad2 vq = pair_sum3(w, q);
-            struct quad2 vs = pair_div(pair_sum3(w, sq), vq), vt = pair_div(pair_sum3(w, tq), vq);
-            double qs[4], s[4], tt[4];
+            struct quad2 vq = pair_sum3(w, ones);
+            struct quad2 vs = pair_div(pair_sum3(w, s_k), vq), vt = pair_div(pair_sum3(w, t_k), vq);
+            double qs[4], s[4], tt[4], wl[3][4];
             _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
             _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
             _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
+            for (int k = 0; k < 3; k++)
+                _mm_storeu_pd(wl[k], w[k].top), _mm_storeu_pd(wl[k] + 2, w[k].bottom);
             bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
             struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
                                    .dtdy = tt[2] - tt[0], .w0 = W, .h0 = H, .beyond = beyond };
@@ -107,15 +109,12 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                     target_write(fb, x, y, z, 0);   /* counted, hidden: no texel needed */
                     continue;
                 }
-                double wk[3];
-                for (int k = 0; k < 3; k++) {
-                    double f = (double)raw[edge_of[k]] + ((i & 2) ? (double)e.dy[edge_of[k]] : 0);
-                    f = (i & 1) ? f + (double)e.dx[edge_of[k]] : f;
-                    wk[k] = f * inv;
-                }
-                double rgb[3];
+                double rgb[3] = { 0, 0, 0 };
+                for (int k = 0; k < 3; k++)
+                    for (int c = 0; c < 3; c++)
+                        rgb[c] += wl[k][i] * col[k][c];
                 for (int c = 0; c < 3; c++)
-                    rgb[c] = (wk[0] * cq[0][c] + wk[1] * cq[1][c] + wk[2] * cq[2][c]) / qs[i];
+                    rgb[c] /= qs[i];
                 struct texel_rgb texel = tex_filter_texel(tex, filter, max_aniso, s[i], tt[i], &d,
                                                           &tex_stages_lesson, NULL);
                 PLOT(fb, tr, L_WRITE, x, y, z, tex_modulate(texel, rgb[0], rgb[1], rgb[2]));

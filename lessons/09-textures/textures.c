@@ -46,6 +46,20 @@ static const char *const pseudocode[] = {
 };
 
 #define Q 8                 /* block size, as lesson 05's default */
+#define CORNERS_COST { .mul = 8, .add = 8 }     /* one edge at a block's four corners */
+/* A pixel centre's values (at_pixel): three weights F / 2 area and three
+ * over z (divisions, counted as multiplications), 1/z, s and t summed, s
+ * and t divided by 1/z. Its colour, a covered pixel's: three channels
+ * summed and divided. */
+#define TEX_EVAL_COST { .mul = 14, .add = 9 }
+#define TEX_COLOUR_COST { .mul = 12, .add = 9 }
+/* The texture unit (sampling.c), per tap: a bilinear tap (u, v, the
+ * weights, three channels lerped three times), the level of detail, the
+ * mix of two levels, the modulation by the vertex colour. */
+#define BILINEAR_TAP_COST { .mul = 11, .add = 22 }
+#define LOD_COST { .mul = 9, .add = 3 }
+#define MIX_COST { .mul = 3, .add = 6 }
+#define MODULATE_COST { .mul = 3, .add = 3 }
 
 enum tex_filter tex_filter_of(const struct raster_params *p)
 {
@@ -74,8 +88,8 @@ struct run {
     int max_aniso;
     struct biased_edges e;
     double inv_area2;
-    /* per vertex A, B, C: 1/z, and s, t, r, g, b over z (or s, t themselves when affine) */
-    double q[3], sq[3], tq[3], cq[3][3], s[3], tv[3];
+    double cz[3][3];            /* per vertex A, B, C: r, g, b */
+    double q[3], sq[3], tq[3];  /* ... and 1/z, s/z, t/z: the analytic derivatives' planes */
 };
 
 /* What is interpolated at one pixel centre. */
@@ -85,21 +99,30 @@ struct at_pixel {
 
 /* The barycentric weights of A, B, C from the raw edge values (F02, F03,
  * F01 over twice the area), then the planes: 1/z = sum w_k / z_k, and each
- * attribute a = (sum w_k a_k / z_k) / (1/z). A helper's 1/z may be <= 0
- * (beyond the horizon): its values are then not used. */
+ * attribute a = (sum w_k a_k / z_k) / (1/z), in this order, so that a
+ * pixel centre exactly on a texel's edge lands where the rule's plain sums
+ * put it. A helper's 1/z may be <= 0 (beyond the horizon): its values are
+ * then not used. */
 static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
 {
-    double w0 = (double)f[EDGE_BC] * r->inv_area2, w1 = (double)f[EDGE_CA] * r->inv_area2,
-           w2 = (double)f[EDGE_AB] * r->inv_area2;
-    struct at_pixel a;
-    a.q = w0 * r->q[0] + w1 * r->q[1] + w2 * r->q[2];
-    a.s = (w0 * r->sq[0] + w1 * r->sq[1] + w2 * r->sq[2]) / a.q;
-    a.t = (w0 * r->tq[0] + w1 * r->tq[1] + w2 * r->tq[2]) / a.q;
-    for (int c = 0; c < 3; c++)
-        a.rgb[c] = (w0 * r->cq[0][c] + w1 * r->cq[1][c] + w2 * r->cq[2][c]) / a.q;
+    double area2 = (double)r->t->area2;
+    double b[3] = { (double)f[EDGE_BC] / area2, (double)f[EDGE_CA] / area2,
+                    (double)f[EDGE_AB] / area2 };
+    struct at_pixel a = { 0 };
+    double s = 0, t = 0, c[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; k++) {
+        double w = b[k] / r->t->v[k].z;
+        a.q += w;
+        s += w * r->t->v[k].s, t += w * r->t->v[k].t;
+        for (int i = 0; i < 3; i++)
+            c[i] += w * r->cz[k][i];
+    }
+    a.s = s / a.q, a.t = t / a.q;
+    for (int i = 0; i < 3; i++)
+        a.rgb[i] = c[i] / a.q;
     if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
-        a.s = w0 * r->s[0] + w1 * r->s[1] + w2 * r->s[2];
-        a.t = w0 * r->tv[0] + w1 * r->tv[1] + w2 * r->tv[2];
+        a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
+        a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
     }
     return a;
 }
@@ -115,8 +138,8 @@ static struct tex_deriv analytic(const struct run *r, const struct at_pixel *a)
             int64_t step = axis == 0 ? r->e.dx[edge_of[k]] : r->e.dy[edge_of[k]];
             double dw = (double)step * r->inv_area2;
             dq[axis] += dw * r->q[k];
-            ds[axis] += dw * (r->o.affine ? r->s[k] : r->sq[k]);
-            dt[axis] += dw * (r->o.affine ? r->tv[k] : r->tq[k]);
+            ds[axis] += dw * (r->o.affine ? r->t->v[k].s : r->sq[k]);
+            dt[axis] += dw * (r->o.affine ? r->t->v[k].t : r->tq[k]);
         }
     double div = r->o.affine ? 1 : a->q;
     double ks = r->o.affine ? 0 : a->s, kt = r->o.affine ? 0 : a->t;
@@ -160,8 +183,8 @@ static struct tex_deriv deriv_of(const struct run *r, const struct at_pixel a[4]
 }
 
 /* The quad whose top-left pixel is (qx, qy), inside block [xa, xb] x [ya,
- * yb] (clipped to the box): full says the block is covered in full. */
-static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, bool full)
+ * yb] (clipped to the box). */
+static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
 {
     int64_t f[4][3];
     unsigned covered = 0;
@@ -170,9 +193,10 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
         bool in = x >= xa && x <= xb && y >= ya && y <= yb;
         for (int k = 0; k < 3; k++) {
             f[i][k] = biased_edge_at(&r->e, k, x, y);
-            in = in && (full || f[i][k] >= 0);
+            in = in && f[i][k] >= 0;
             f[i][k] -= r->e.bias[k];                /* the edge value itself, for the weights */
         }
+        COUNT(r->tr, 3, EDGE_VALUE_COST);
         NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_COVER, .x = x, .y = y,
                 .e = { f[i][0], f[i][1], f[i][2] }, .flags = in ? TRACE_INSIDE : 0);
         covered |= (unsigned)in << i;
@@ -187,6 +211,7 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
     double W = r->tex ? r->tex->level[0].w : 1, H = r->tex ? r->tex->level[0].h : 1;
     for (int i = 0; i < 4; i++) {
         a[i] = at_pixel(r, f[i]);
+        COUNT(r->tr, 1, TEX_EVAL_COST);
         beyond = beyond || !(a[i].q > 0);
         NARRATE(r->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = QX(qx, i), .y = QY(qy, i),
                 .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
@@ -201,6 +226,7 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
             continue;
         int x = QX(qx, i), y = QY(qy, i);
         uint32_t rgba;
+        COUNT(r->tr, 1, TEX_COLOUR_COST);
         if (!r->tex) {          /* untextured: the shared shading (and the checker) */
             rgba = shade_pixel(r->p, r->tr, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2], a[i].s, a[i].t);
         } else {
@@ -214,6 +240,12 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
                     .mask = { (uint16_t)covered, (uint16_t)u.taps, (uint16_t)r->filter },
                     .aux = { (float)(a[i].s * W), (float)(a[i].t * H), u.lambda, (float)u.level0,
                              (float)u.level1, u.mix });
+            bool two = u.level1 != u.level0 && u.mix != 0;
+            COUNT(r->tr, r->filter == FILTER_NEAREST ? 0 : (unsigned)u.taps * (two ? 2 : 1),
+                  BILINEAR_TAP_COST);
+            COUNT(r->tr, r->filter == FILTER_NEAREST ? 0 : 1, LOD_COST);
+            COUNT(r->tr, two ? (unsigned)u.taps : 0, MIX_COST);
+            COUNT(r->tr, 1, MODULATE_COST);
             rgba = tex_modulate(texel, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2]);
         }
         PLOT(r->fb, r->tr, L_WRITE, x, y, (float)(1 / a[i].q), rgba);
@@ -222,19 +254,19 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
 
 /* --- blocks (lesson 05), then quads ---------------------------------------------- */
 
-/* The class of block [x0, x1] x [y0, y1] by its corners' edge signs. */
-static enum block_class classify(const struct run *r, int x0, int y0, int x1, int y1)
+/* Is block [x0, x1] x [y0, y1] empty: all four corners outside one edge?
+ * (Lesson 05's classification. A full block is walked like a partial one
+ * here: its quads still evaluate four centres each, and a pixel's edge
+ * test costs little beside its texels.) */
+static bool block_empty(const struct run *r, int x0, int y0, int x1, int y1)
 {
-    bool all_in = true;
     for (int k = 0; k < 3; k++) {
-        int64_t c[4] = { biased_edge_at(&r->e, k, x0, y0), biased_edge_at(&r->e, k, x1, y0),
-                         biased_edge_at(&r->e, k, x0, y1), biased_edge_at(&r->e, k, x1, y1) };
-        int inside = (c[0] >= 0) + (c[1] >= 0) + (c[2] >= 0) + (c[3] >= 0);
-        if (inside == 0)
-            return BLOCK_EMPTY;
-        all_in = all_in && inside == 4;
+        COUNT(r->tr, 1, CORNERS_COST);
+        if (biased_edge_at(&r->e, k, x0, y0) < 0 && biased_edge_at(&r->e, k, x1, y0) < 0
+            && biased_edge_at(&r->e, k, x0, y1) < 0 && biased_edge_at(&r->e, k, x1, y1) < 0)
+            return true;
     }
-    return all_in ? BLOCK_FULL : BLOCK_PARTIAL;
+    return false;
 }
 
 void textures_rasterize(const struct tri_setup *t, const struct raster_params *p,
@@ -252,23 +284,23 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
         const struct vertex *v = &t->v[k];
         r.q[k] = 1 / v->z;
         r.sq[k] = v->s * r.q[k], r.tq[k] = v->t * r.q[k];
-        r.s[k] = v->s, r.tv[k] = v->t;
-        r.cq[k][0] = v->r * r.q[k], r.cq[k][1] = v->g * r.q[k], r.cq[k][2] = v->b * r.q[k];
+        r.cz[k][0] = v->r, r.cz[k][1] = v->g, r.cz[k][2] = v->b;
     }
     for (int by = t->miny - t->miny % Q; by <= t->maxy; by += Q) {
         int ya = by < t->miny ? t->miny : by, yb = by + Q - 1 > t->maxy ? t->maxy : by + Q - 1;
         for (int bx = t->minx - t->minx % Q; bx <= t->maxx; bx += Q) {
             int xa = bx < t->minx ? t->minx : bx, xb = bx + Q - 1 > t->maxx ? t->maxx : bx + Q - 1;
-            enum block_class klass = classify(&r, xa, ya, xb, yb);
-            int line = klass == BLOCK_EMPTY ? L_EMPTY : L_QUADS;
+            bool empty = block_empty(&r, xa, ya, xb, yb);
+            int line = empty ? L_EMPTY : L_QUADS;
             NARRATE(tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
-                    .x = xa, .y = ya, .x1 = xb, .y1 = yb, .klass = (uint8_t)klass, .aux = { Q });
-            if (klass == BLOCK_EMPTY)
+                    .x = xa, .y = ya, .x1 = xb, .y1 = yb,
+                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { Q });
+            if (empty)
                 continue;
             /* blocks start on even pixels, so a quad never straddles two */
             for (int qy = ya & ~1; qy <= yb; qy += 2)
                 for (int qx = xa & ~1; qx <= xb; qx += 2)
-                    quad(&r, qx, qy, xa, ya, xb, yb, klass == BLOCK_FULL);
+                    quad(&r, qx, qy, xa, ya, xb, yb);
         }
     }
 }
@@ -343,6 +375,9 @@ const struct lesson lesson_09 = {
                           .key_down = '[', .min = 1, .max = 16, .def = MAX_ANISO_DEFAULT,
                           .help = "most taps of the aniso filter (1..16)" },
         { 0 } },
+    .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_VALUE_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, TEX_COLOUR_COST), COST_TERM(1, PACK_RGB_COST), { 0 } },
     .compare = compare,
     .texturing = "by its image: 2 x 2 quads with helper pixels, coarse derivatives, the level of "
                  "detail and --filter (trilinear by default), times the vertex colour",
