@@ -243,7 +243,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
-        C->p.texture = scene_texture(s, s->tris[i].texture);
+        C->p = lesson_params_tri(&C->p, s, i);
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
@@ -303,7 +303,7 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
     for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);
-        p.texture = scene_texture(s, s->tris[*i].texture);
+        p = lesson_params_tri(&p, s, *i);
         struct trace tr = { .sink = NULL };
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)

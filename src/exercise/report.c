@@ -270,8 +270,7 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         replay_setup(&r, v->tri, &t);
         struct trace tr = { .sink = follow, .ctx = f };
         trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
-        struct raster_params p = C->p;
-        p.texture = scene_texture(s, s->tris[v->tri].texture);
+        struct raster_params p = lesson_params_tri(&C->p, s, v->tri);
         exercise_variant.rasterize(&t, &p, &fb, &tr);
         bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
         if (!missing && f->written)
