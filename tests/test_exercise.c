@@ -814,6 +814,22 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     cr_expect(strstr(log, "--file NAME") && strstr(log, "--check ") && strstr(log, "--check-scene FILE")
               && strstr(log, "--out DIR") && strstr(log, "--scene FILE"), "%s", log);
 
+    /* lesson 09: the student's stages inside the lesson's own rasterizer,
+     * its textured counterexample opened where the check says */
+    snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09 FILE=lessons/09-textures/answer.c", dir);
+    st = shell(cmd, &log);
+    cr_expect_eq(st, 0, "make check on lesson 09's answer:\n%s", log);
+    cr_expect_not_null(strstr(log, "all 12 checks pass"), "%s", log);
+    snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09", dir);
+    st = shell(cmd, &log);
+    cr_expect_neq(st, 0, "make check passes lesson 09's untouched skeleton:\n%s", log);
+    open = strstr(log, "make exercise LESSON=09 SCENE=");
+    cr_assert_not_null(open, "%s", log);
+    cr_assert_eq(sscanf(open, "make exercise LESSON=09 SCENE=%255s STEP=%llu", scene, &step), 2, "%s", open);
+    snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-09 --scene %s --step %llu --figure f.png && test -s f.png",
+             dir, scene, step);
+    cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+
     /* the mistakes the lesson texts name: tests/mutations/, in-process (every_mistake_...) */
 
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);

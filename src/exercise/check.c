@@ -264,6 +264,7 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false };
         c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false };
         c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false };
+        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false };
     }
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
         c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };

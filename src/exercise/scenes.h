@@ -36,5 +36,6 @@ bool gen_tex_nonsquare(int i, struct scene *s, char *what, size_t n);   /* a 32 
 bool gen_tex_minify(int i, struct scene *s, char *what, size_t n);      /* levels of detail chosen */
 bool gen_tex_floor(int i, struct scene *s, char *what, size_t n);       /* grazing floors and walls */
 bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n);        /* helper pixels */
+bool gen_tex_world(int i, struct scene *s, char *what, size_t n);       /* 3-D: OBJ vt, clipped s and t */
 
 #endif

@@ -1,7 +1,8 @@
 /* scenes9.c - the textured scenes of make check for lesson 09's sampler
  * (scenes.h), simplest first: texels magnified, minified ones at chosen
  * levels of detail, both wraps and negative s and t, a texture that is not
- * square, grazing floors and tiny triangles.
+ * square, grazing floors and tiny triangles; then 3-D scenes (an OBJ's
+ * own texture coordinates, a floor cut by near).
  *
  * Each scene is written as a scene file's text and read by scene_parse, so
  * that its textures are the built-in ones a counterexample names again
@@ -311,5 +312,32 @@ bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n)
         snprintf(what, n, "%d textured triangles %s a pixel across, each minified its own way", count,
                  i == 1 ? "of some 2 to 5 pixels" : "smaller than");
     }
+    return text_end(&x, s);
+}
+
+/* --- 3-D: an OBJ's own texture coordinates, clipping that carries s and t ------ */
+
+bool gen_tex_world(int i, struct scene *s, char *what, size_t n)
+{
+    char err[256];
+    if (i == 0) {
+        /* the torus's vt lines, t = 1 - v (OBJ's v points up) */
+        snprintf(what, n, "builtin:texture-model, the torus under bricks by its own vt (t flipped)");
+        if (scene_builtin(s, "texture-model", err, sizeof err))
+            return true;
+        fprintf(stderr, "make check: %s\n", err);
+        check_scene_start(s, 8, 8);
+        return true;
+    }
+    if (i > 1)
+        return false;
+    /* a floor from under the eye to far away, cut by near: the new
+     * vertices carry s and t, interpolated as positions are */
+    struct text x;
+    text_start(&x, 64, 48, NULL);
+    fprintf(x.f, "camera  0 1 0   0 0.4 -4   0 1 0   60  0.5 60\ntexture builtin:checker-numbers\n"
+                 "tri3 -6 0 2 1 1 1 0 0   6 0 2 1 1 1 3 0   6 0 -40 1 1 1 3 10.5\n"
+                 "tri3 -6 0 2 1 1 1 0 0   6 0 -40 1 1 1 3 10.5   -6 0 -40 1 1 1 0 10.5\n");
+    snprintf(what, n, "a 3-D floor under builtin:checker-numbers from behind the eye to depth 40, cut by near");
     return text_end(&x, s);
 }
