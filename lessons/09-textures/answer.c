@@ -28,7 +28,7 @@
  *     make check LESSON=09           the checks: the rasterizer's first
  *                                    (given, they pass), then yours on
  *                                    textured scenes, from texels
- *                                    magnified to tiny triangles
+ *                                    magnified to textured 3-D scenes
  */
 #include <math.h>
 
