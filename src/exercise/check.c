@@ -14,12 +14,15 @@
  *   property   what the lesson is about: no multiplication between two
  *              pixels of a row (lesson 03); every tile and block narrated
  *              with exactly the class its four corner pixel centres give
- *              it, EMPTY, FULL or PARTIAL (lessons 05, 07).
+ *              it, EMPTY, FULL or PARTIAL (lessons 05, 07); every quad's
+ *              lambda log2(rho) of its derivatives (lesson 09).
  *
  * Lesson 07 adds a check of its own scenes, over many tiles (gen_tiles),
- * that compares all three at once.
+ * that compares all three at once; lesson 09 textured scenes (scenes9.c),
+ * held to the lesson's own picture, whose sampler the student writes.
  *
- * A write outside the target fails any check. */
+ * A write outside the target fails any check, and so does a texel read
+ * outside its level (lesson 09). */
 #define _DEFAULT_SOURCE           /* fork, MAP_ANONYMOUS, strsignal */
 
 #include "checker.h"

@@ -15,7 +15,8 @@
  *     written (the Makefile lists both for the tests, build/exercises.c);
  *   - `.exercise` in the lesson's descriptor (struct lesson_exercise,
  *     lesson.h): the pseudo-code line of a bare write, and the lesson's own
- *     property among those the check knows (no_pixel_mul, full_blocks);
+ *     property among those the check knows (no_pixel_mul, full_blocks,
+ *     clip, textures with lod_line);
  *   - the lesson's exhibits each name the check they fail in
  *     tests/test_exercise.c (the test fails on an exhibit it does not know);
  *   - the "Write it yourself" section that ends the lesson's README. */
