@@ -14,6 +14,8 @@
  * are exact in doubles too: coverage tested on doubles is the integer
  * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
  */
+#include <math.h>
+
 #include "simd.h"
 #include "textures.h"
 
@@ -176,6 +178,13 @@ struct trilinear_at {
 static inline struct trilinear_at trilinear_at(const struct texture *tex, const struct tex_deriv *d)
 {
     double last = tex->nlevels - 1;
+    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho <= 1, no log2 needed */
+        double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
+        double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+        double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
+        if (!(sqrt(px2 > py2 ? px2 : py2) > 1))
+            return (struct trilinear_at){ 0, 0, 0 };
+    }
     double lambda = d->beyond ? last : tex_lod(d);
     if (!(lambda > 0))
         return (struct trilinear_at){ 0, 0, 0 };
@@ -195,6 +204,19 @@ static inline __m128 trilinear4(const struct texture *tex, struct trilinear_at a
     return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(at.f), _mm_sub_ps(b, a)));
 }
 
+#define BLOCK 8             /* the lesson's blocks */
+
+/* Lesson 05's empty block: all four corners outside one edge. */
+static inline bool block_empty(const struct biased_edges *e, int x0, int y0, int x1, int y1)
+{
+    for (int k = 0; k < 3; k++) {
+        int64_t f = biased_edge_at(e, k, x0, y0), dx = e->dx[k] * (x1 - x0), dy = e->dy[k] * (y1 - y0);
+        if (f < 0 && f + dx < 0 && f + dy < 0 && f + dx + dy < 0)
+            return true;
+    }
+    return false;
+}
+
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
@@ -211,17 +233,22 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
     struct biased_edges e;
     biased_edges_setup(&e, t, true);
     double s_k[3], t_k[3], ones[3] = { 1, 1, 1 };
-    __m128d col_bg[3], col_r0[3];       /* the vertex colours, lanes (b, g) and (r, 0) */
+    double col[3][3];                   /* r, g, b of A, B and C */
     for (int k = 0; k < 3; k++) {
         s_k[k] = t->v[k].s, t_k[k] = t->v[k].t;
-        col_bg[k] = _mm_set_pd(t->v[k].g, t->v[k].b);
-        col_r0[k] = _mm_set_pd(0, t->v[k].r);
+        col[0][k] = t->v[k].r, col[1][k] = t->v[k].g, col[2][k] = t->v[k].b;
     }
     const __m128d area2 = _mm_set1_pd((double)t->area2);
     static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
     const int W = tex->level[0].w, H = tex->level[0].h;
-    for (int qy = t->miny & ~1; qy <= t->maxy; qy += 2) {
-        for (int qx = t->minx & ~1; qx <= t->maxx; qx += 2) {
+    for (int by = t->miny - t->miny % BLOCK; by <= t->maxy; by += BLOCK)
+    for (int bx = t->minx - t->minx % BLOCK; bx <= t->maxx; bx += BLOCK) {
+        int xa = bx < t->minx ? t->minx : bx, xb = bx + BLOCK - 1 > t->maxx ? t->maxx : bx + BLOCK - 1;
+        int ya = by < t->miny ? t->miny : by, yb = by + BLOCK - 1 > t->maxy ? t->maxy : by + BLOCK - 1;
+        if (block_empty(&e, xa, ya, xb, yb))
+            continue;
+        for (int qy = ya & ~1; qy <= yb; qy += 2)
+        for (int qx = xa & ~1; qx <= xb; qx += 2) {
             /* coverage: the biased edge values of the four pixels, exact */
             unsigned covered = 0xF;
             int64_t raw[3];
@@ -249,12 +276,19 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
             }
             struct quad2 vq = pair_sum3(w, ones);
             struct quad2 vs = pair_div(pair_sum3(w, s_k), vq), vt = pair_div(pair_sum3(w, t_k), vq);
-            double qs[4], s[4], tt[4], wl[3][4];
+            double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
             _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
             _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
             _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
-            for (int k = 0; k < 3; k++)
-                _mm_storeu_pd(wl[k], w[k].top), _mm_storeu_pd(wl[k] + 2, w[k].bottom);
+            /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
+            struct quad2 z = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+            _mm_storeu_pd(zs, z.top), _mm_storeu_pd(zs + 2, z.bottom);
+            double *out[3] = { cr, cg, cb };
+            for (int c = 0; c < 3; c++) {
+                struct quad2 sum = pair_sum3(w, col[c]);
+                _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, z.top));
+                _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, z.bottom));
+            }
             bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
             struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
                                    .dtdy = tt[2] - tt[0], .w0 = W, .h0 = H, .beyond = beyond };
@@ -270,19 +304,12 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                 if (!(covered >> i & 1))
                     continue;
                 int x = qx + (i & 1), y = qy + (i >> 1);
-                float z = (float)(1 / qs[i]);
+                float z = (float)zs[i];
                 if (!target_depth_pass(fb, x, y, z)) {
                     target_write(fb, x, y, z, 0);   /* counted, hidden: no texel needed */
                     continue;
                 }
-                /* the vertex colour: sum_k w_k c_k from 0, over 1/z, as the narrated sum */
-                __m128d bg = _mm_setzero_pd(), r0 = _mm_setzero_pd(), q = _mm_set1_pd(qs[i]);
-                for (int k = 0; k < 3; k++) {
-                    __m128d wk = _mm_set1_pd(wl[k][i]);
-                    bg = _mm_add_pd(bg, _mm_mul_pd(wk, col_bg[k]));
-                    r0 = _mm_add_pd(r0, _mm_mul_pd(wk, col_r0[k]));
-                }
-                bg = _mm_div_pd(bg, q), r0 = _mm_div_pd(r0, q);
+                __m128d bg = _mm_set_pd(cg[i], cb[i]), r0 = _mm_set_pd(0, cr[i]);
                 __m128 texel;
                 if (filter == FILTER_TRILINEAR) {
                     texel = trilinear4(tex, at, &taps[0], &taps[1], i);
