@@ -141,7 +141,8 @@ port-run: $(if $(filter aarch64,$(PORT)),$(B)/include/simde) $(B)/exact ; $(RUN)
 
 # Exercises (lessons/NN-name/exercise.c): the student's FILE, compiled with
 # src/exercise/student.h in front, linked into build/exercise-NN; the tests
-# link every skeleton and answer under its own name (build/exercises.c).
+# link every skeleton and answer under its own name (build/exercises.c). A
+# FILE anywhere sees its lesson's headers (lesson 09's textures.h).
 STUDENT   = -DTRISTEP_NARRATE -include exercise/student.h
 EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
 FILE     ?= $(EX_LESSON)/exercise.c
@@ -178,7 +179,7 @@ $(B)/mutations/%.c: tests/mutations/%.patch $$(call mut_answer,$$*) | $(FIRST)
 	@mkdir -p $(@D) && patch --batch --quiet --no-backup-if-mismatch -r - -o $@ $(call mut_answer,$*) < $< >/dev/null \
 	  || { rm -f $@; echo "$<: does not apply to $(call mut_answer,$*)"; exit 1; }
 $(B)/mutations/%.o: $(B)/mutations/%.c | $(FIRST)
-	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
+	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -I$(dir $(call mut_answer,$*)) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
 $(B)/mutations.c: Makefile $(MUTATIONS:%=tests/mutations/%.patch) $(MUTATIONS:%=$(B)/mutations/%.c) | $(FIRST)
 	@printf '#include "exercise/exercise.h"\nstruct poly;\nstruct plane;\n' > $@
 	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); printf 'void %s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$f; \
@@ -193,7 +194,7 @@ $(B)/obj/mutations.o: $(B)/mutations.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
-	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -c $(FILE) -o $@
+	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
@@ -212,7 +213,7 @@ grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/lib
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
 	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
 	@mkdir -p $(dir $(CSV)) && GRADE_LESSON=$(LESSON) GRADE_DIR='$(DIR)' GRADE_OUT='$(OUT)' \
-	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT)' GRADE_LD='$(LD_ALL)' \
+	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT) -I$(EX_LESSON)' GRADE_LD='$(LD_ALL)' \
 	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
 	  GRADE_LIBS='$(LIBS)' sh src/exercise/grade.sh
 

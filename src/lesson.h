@@ -185,6 +185,19 @@ struct lesson_exercise {
      * checks, each scene projected by the lesson's front end for the exact
      * picture and by the front end around the student's clipper for theirs */
     bool clip;
+    /* the student writes parts of lesson 09's sampler, run inside the
+     * lesson's own rasterizer: the check adds textured scenes (texels
+     * magnified and minified, both wraps, a texture that is not square,
+     * grazing floors, tiny triangles), and the exact picture is the
+     * lesson's own (variants[0], held to the independent reference by its
+     * tests) rather than the shared rule's */
+    bool textures;
+    /* ... and the pseudo-code line whose TRACE_STEP narrates a quad's level
+     * of detail (0: none): aux[0..3] du/dx, dv/dx, du/dy, dv/dy in level-0
+     * texels per pixel, aux[4] rho, aux[5] the lambda the code chose, flags
+     * TRACE_INSIDE unless beyond the horizon. The check holds that lambda to
+     * log2(rho) of those derivatives, quad by quad */
+    int lod_line;
 };
 
 struct lesson {

@@ -155,7 +155,8 @@ static struct tex_deriv analytic(const struct run *r, const struct at_pixel *a)
 #define QY(qy, i) ((qy) + ((i) >> 1))
 
 /* Narrate a set of derivatives (the quad's at its top-left pixel, or one
- * pixel's) with rho and lambda in level-0 texels. */
+ * pixel's) with rho in level-0 texels and the lambda the level-of-detail
+ * stage makes of them (an exercise's: make check holds it to log2(rho)). */
 static void narrate_deriv(const struct run *r, int x, int y, unsigned covered, const struct tex_deriv *d)
 {
     double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0, dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
@@ -163,7 +164,7 @@ static void narrate_deriv(const struct run *r, int x, int y, unsigned covered, c
     NARRATE(r->tr, .kind = TRACE_STEP, .line = L_LOD, .span = L_LOD - L_DERIV, .x = x, .y = y,
             .mask = { (uint16_t)covered }, .flags = d->beyond ? 0 : TRACE_INSIDE,
             .aux = { (float)dudx, (float)dvdx, (float)dudy, (float)dvdy, (float)rho,
-                     d->beyond ? (float)(r->tex->nlevels - 1) : (float)log2(rho) });
+                     d->beyond ? (float)(r->tex->nlevels - 1) : (float)r->st->lod(d) });
 }
 
 /* The derivatives pixel i uses: the quad's (coarse), its own row's and
@@ -371,5 +372,5 @@ const struct lesson lesson_09 = {
     .compare = compare,
     .texturing = "by its image: 2 x 2 quads with helper pixels, coarse derivatives, the level of "
                  "detail and --filter (trilinear by default), times the vertex colour",
-    .exercise = { .write_line = L_WRITE },
+    .exercise = { .write_line = L_WRITE, .textures = true, .lod_line = L_LOD },
 };
