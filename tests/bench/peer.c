@@ -56,9 +56,9 @@
  * (PEER_EXACT_OPTIONS, set before OSMesa makes its screen): GALLIVM_PERF
  * without `brilinear` (a bilinear tap instead of trilinear near integer
  * levels) and `rho_approx` (the level of detail from an approximate
- * length), with `no_quad_lod` (a level of detail per pixel, not one per
- * quad's first pixel) and `no_aos_sampling` (filtering in floats, not in
- * 8-bit fixed point); LP_PERF unset.
+ * length), with `no_quad_lod` (the level of detail computed for each pixel,
+ * not once a quad) and `no_aos_sampling` (filtering in floats, not in 8-bit
+ * fixed point); LP_PERF (switches that turn features off) unset.
  *
  * llvmpipe reads LP_NUM_THREADS once, when OSMesa makes its screen, so each
  * thread setting runs in a child process; results come back through shared
