@@ -153,10 +153,12 @@ void bench_draw(const struct lesson *l, const struct lesson_variant *v, const st
         }
         return;
     }
+    struct raster_params each = *p;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        v->rasterize(&t, p, fb, NULL);
+        each.texture = scene_texture(s, s->tris[i].texture);   /* NULL: none */
+        v->rasterize(&t, &each, fb, NULL);
     }
 }
 
