@@ -264,7 +264,8 @@ void bench_textured_markdown(FILE *f)
                    "approximations off: %s\n", PEER_EXACT_OPTIONS);
     fprintf(f, "- within 2, within 8: of the pixels the exact reference covers, the share whose "
                "colour is within 2 (8) levels of llvmpipe's in every channel; diff: pixels whose "
-               "coverage count differs; x llvmpipe: llvmpipe's median over the row's\n");
+               "coverage count differs; x llvmpipe: llvmpipe's median over the row's (the Targets "
+               "take the fastest exact variant of the last texture-mapping lesson)\n");
     for (int i = 0; i < NTEX; i++) {
         scene_line(f, i, "\n### ");
         fprintf(f, "\n\n%s\n\n", sc[i].what);
