@@ -13,6 +13,14 @@
  * triangles lie wholly on the screen, a quarter of them with vertices on
  * the half-pixel grid so that edges pass through pixel centres. The quick mode makes the same kinds
  * of scene at 320 x 176 with fewer triangles.
+ *
+ * The textured scenes, each under a builtin texture of 256 x 256 texels:
+ *
+ *   floor      a floor to the horizon and a wall along it, seen at a
+ *              grazing angle, in 48 large triangles, white (make_floor);
+ *   small-tex  100,000 triangles of about 10 pixels (clamp),
+ *   mixed-tex  50,000 of the mixed sizes (repeat), each with (s, t) of its
+ *              own: 1/4 to 4 texels a pixel, turned by a random angle.
  */
 #include <math.h>
 #include <stdio.h>
@@ -180,46 +188,6 @@ static bool make_sized(struct rng *r, struct bench_scene *b, int n, const double
     return true;
 }
 
-bool bench_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
-{
-    static const double small_area[] = { 10 };
-    static const double small_share[] = { 1 };
-    static const double mixed_area[] = { 10, 100, 1000, 20000 };
-    static const double mixed_area_quick[] = { 10, 100, 1000, 4000 };
-    static const double mixed_share[] = { 0.95, 0.04, 0.009, 0.001 };
-    const char *names[3] = { "large", "small", "mixed" };
-    const char *what[3] = {
-        "a few large triangles covering the screen 16 times",
-        "triangles of about 10 pixels",
-        "mostly 10 pixels, some 100, 1,000 and 20,000",
-    };
-    int w = quick ? QUICK_W : SCREEN_W, h = quick ? QUICK_H : SCREEN_H;
-
-    memset(sc, 0, 3 * sizeof *sc);
-    for (int i = 0; i < 3; i++) {
-        struct rng r = { seed * 3 + (uint64_t)i };
-        sc[i].name = names[i];
-        sc[i].what = what[i];
-        sc[i].s.w = w;
-        sc[i].s.h = h;
-        sc[i].coverage = calloc((size_t)w * (size_t)h, 1);
-        if (!sc[i].coverage)
-            return false;
-        struct counting c = { sc[i].coverage, w, 0 };
-        bool ok = i == 0 ? make_large(&r, &sc[i], &c)
-                : i == 1 ? make_sized(&r, &sc[i], quick ? 2000 : 200000, small_area, small_share, 1, 0, 0, 0)
-                : make_sized(&r, &sc[i], quick ? 2000 : 100000,
-                             quick ? mixed_area_quick : mixed_area, mixed_share, 4, 0, 0, 0);
-        if (!ok)
-            return false;
-        if (i > 0)
-            for (int t = 0; t < sc[i].s.ntris; t++)
-                count_triangle(&sc[i].s, t, &c);
-        sc[i].pixels = c.n;
-    }
-    return true;
-}
-
 /* --- the textured scenes -------------------------------------------------- */
 
 /* A quadrilateral of the floor or the wall, p[0..3] in order around it, as
@@ -274,7 +242,9 @@ static bool make_floor(struct rng *r, struct bench_scene *b, int bands)
     return true;
 }
 
-bool bench_tex_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
+/* The three scenes, plain (Gouraud) or textured (image textures, other
+ * streams of the same seed). */
+static bool make_scenes(struct bench_scene sc[3], uint64_t seed, bool quick, bool textured)
 {
     static const double small_area[] = { 10 };
     static const double small_share[] = { 1 };
@@ -286,42 +256,64 @@ bool bench_tex_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
         "texture builtin:grid clamp\n",
         "texture builtin:checker-numbers repeat\n",
     };
-    const char *names[3] = { "floor", "small-tex", "mixed-tex" };
-    const char *what[3] = {
+    static const char *const names[2][3] = {
+        { "large", "small", "mixed" }, { "floor", "small-tex", "mixed-tex" },
+    };
+    static const char *const what[2][3] = { {
+        "a few large triangles covering the screen 16 times",
+        "triangles of about 10 pixels",
+        "mostly 10 pixels, some 100, 1,000 and 20,000",
+    }, {
         "a floor to the horizon and a wall at a grazing angle, 256 x 256 textures (repeat), "
         "magnified near the eye, minified far away",
         "triangles of about 10 pixels, a 256 x 256 texture (clamp), 1/4 to 4 texels a pixel",
         "mostly 10 pixels, some 100, 1,000 and 20,000, a 256 x 256 texture (repeat), "
         "1/4 to 4 texels a pixel",
-    };
+    } };
     int w = quick ? QUICK_W : SCREEN_W, h = quick ? QUICK_H : SCREEN_H;
+    int tex = textured ? 1 : 0;         /* the image texture of the sized triangles */
 
     memset(sc, 0, 3 * sizeof *sc);
     for (int i = 0; i < 3; i++) {
-        struct rng r = { seed * 3 + 1000 + (uint64_t)i };
-        char text[256], err[256];
-        snprintf(text, sizeof text, "size %d %d\n%s", w, h, textures[i]);
-        if (!scene_parse(&sc[i].s, names[i], text, strlen(text), err, sizeof err))
-            return false;
-        sc[i].s.has_st = true;
-        sc[i].name = names[i];
-        sc[i].what = what[i];
+        struct rng r = { seed * 3 + (textured ? 1000 : 0) + (uint64_t)i };
+        sc[i].name = names[tex][i];
+        sc[i].what = what[tex][i];
+        sc[i].s.w = w;
+        sc[i].s.h = h;
+        if (textured) {     /* the textures, through the scene's own reader */
+            char text[256], err[256];
+            snprintf(text, sizeof text, "size %d %d\n%s", w, h, textures[i]);
+            if (!scene_parse(&sc[i].s, names[tex][i], text, strlen(text), err, sizeof err))
+                return false;
+            sc[i].s.has_st = true;
+        }
         sc[i].coverage = calloc((size_t)w * (size_t)h, 1);
         if (!sc[i].coverage)
             return false;
         struct counting c = { sc[i].coverage, w, 0 };
-        bool ok = i == 0 ? make_floor(&r, &sc[i], 12)
-                : i == 1 ? make_sized(&r, &sc[i], quick ? 2000 : 100000, small_area, small_share, 1,
-                                      1, -0.25, 1.25)
-                : make_sized(&r, &sc[i], quick ? 2000 : 50000, quick ? mixed_area_quick : mixed_area,
-                             mixed_share, 4, 1, -4, 4);
+        bool ok = i == 0 ? (textured ? make_floor(&r, &sc[i], 12) : make_large(&r, &sc[i], &c))
+                : i == 1 ? make_sized(&r, &sc[i], quick ? 2000 : textured ? 100000 : 200000,
+                                      small_area, small_share, 1, tex, -0.25, 1.25)
+                : make_sized(&r, &sc[i], quick ? 2000 : textured ? 50000 : 100000,
+                             quick ? mixed_area_quick : mixed_area, mixed_share, 4, tex, -4, 4);
         if (!ok)
             return false;
-        for (int t = 0; t < sc[i].s.ntris; t++)
-            count_triangle(&sc[i].s, t, &c);
+        if (i > 0 || textured)  /* make_large counts as it goes */
+            for (int t = 0; t < sc[i].s.ntris; t++)
+                count_triangle(&sc[i].s, t, &c);
         sc[i].pixels = c.n;
     }
     return true;
+}
+
+bool bench_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
+{
+    return make_scenes(sc, seed, quick, false);
+}
+
+bool bench_tex_scenes_make(struct bench_scene sc[3], uint64_t seed, bool quick)
+{
+    return make_scenes(sc, seed, quick, true);
 }
 
 void bench_scenes_free(struct bench_scene sc[3])
