@@ -133,7 +133,7 @@ static uint64_t run_frozen_with(const struct lesson *l, int variant, const struc
             up.thread = units[i].thread;
         }
         int tri = units ? (int)units[i].tri : i;
-        up.texture = scene_texture(s, s->tris[tri].texture);   /* as the drivers set it */
+        up.texture = lesson_params_tri(&p, s, tri).texture;     /* as the drivers set it */
         tri_setup_bits(&t, s->tris[tri].v, s->w, s->h, p.subpixel_bits);
         struct trace tr = { .sink = count_kind, .ctx = k };
         k->base = done;

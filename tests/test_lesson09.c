@@ -119,9 +119,10 @@ Test(lesson09, builtin_3d_scenes_match_the_reference_every_filter, .timeout = 60
         char err[256];
         cr_assert(scene_builtin(&s, names[i], err, sizeof err), "%s", err);
         cr_assert(front_scene(&s));
-        for (int f = FILTER_NEAREST; f <= FILTER_ANISO; f++)
+        for (int f = FILTER_NEAREST; f <= FILTER_ANISO; f++) {
             expect_reference(&s, &lesson_09_fast.variants[1], f, 16, names[i]);
-        expect_reference(&s, &lesson_09.variants[0], FILTER_TRILINEAR, 16, names[i]);
+            expect_reference(&s, &lesson_09.variants[0], f, 16, names[i]);
+        }
         scene_free(&s);
     }
 }

@@ -14,6 +14,8 @@
  * are exact in doubles too: coverage tested on doubles is the integer
  * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
  */
+#include <math.h>
+
 #include "simd.h"
 #include "textures.h"
 
@@ -39,6 +41,182 @@ static inline struct quad2 pair_div(struct quad2 a, struct quad2 b)
     return (struct quad2){ _mm_div_pd(a.top, b.top), _mm_div_pd(a.bottom, b.bottom) };
 }
 
+/* --- the texture unit, a texel's channels in four float lanes ------------------
+ *
+ * tex_bilinear, tex_trilinear and tex_modulate (sampling.c) with the three
+ * channels of a texel side by side: lanes b, g, r, a, its bytes in memory
+ * order. Each lane does the scalar code's operations on its channel, in
+ * the same order, so each channel comes out the same. */
+
+static inline __m128 texel4(uint32_t texel)
+{
+    __m128i c = _mm_cvtsi32_si128((int)texel);
+    __m128i zero = _mm_setzero_si128();
+    return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(c, zero), zero));
+}
+
+/* Columns (or rows) i and i + 1 wrapped as texel_at wraps them. */
+static inline void wrap_pair(int64_t i, int n, enum texture_wrap wrap, int *x0, int *x1)
+{
+    if (wrap == TEXTURE_REPEAT) {
+        *x0 = (int)((uint64_t)i & (uint64_t)(n - 1));
+        *x1 = (int)((uint64_t)(i + 1) & (uint64_t)(n - 1));
+    } else {
+        *x0 = i < 0 ? 0 : i >= n ? n - 1 : (int)i;
+        *x1 = i + 1 < 0 ? 0 : i + 1 >= n ? n - 1 : (int)(i + 1);
+    }
+}
+
+/* One level's bilinear taps for the quad's four pixels: where each
+ * pixel's four texels are in the level (offsets into its texels, wrapped as
+ * texel_at wraps them) and its weights, as bilinear_corner finds them. */
+struct level_taps {
+    int o00[4], o10[4], o01[4], o11[4];
+    float a[4], b[4];
+};
+
+/* floor(u) of two doubles below 2^31 in size, and the same as int32 in
+ * the low two lanes of *i: the truncation, one less where it rounded up. */
+static inline __m128d floor2(__m128d u, __m128i *i)
+{
+    __m128i t = _mm_cvttpd_epi32(u);
+    __m128d f = _mm_cvtepi32_pd(t);
+    __m128d above = _mm_cmpgt_pd(f, u);
+    *i = _mm_add_epi32(t, _mm_shuffle_epi32(_mm_castpd_si128(above), _MM_SHUFFLE(3, 3, 2, 0)));
+    return _mm_sub_pd(f, _mm_and_pd(above, _mm_set1_pd(1)));
+}
+
+/* u - 1/2 (or v) of four pixels, its floor as four int32 and its fraction
+ * as four floats; false when a lane is 2^30 texels out or more (or NaN). */
+static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
+{
+    const __m128d scale = _mm_set1_pd(w), half = _mm_set1_pd(0.5), limit = _mm_set1_pd(0x1p30);
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d u0 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s), scale), half);
+    __m128d u1 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s + 2), scale), half);
+    __m128d in = _mm_and_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, u0), limit),
+                            _mm_cmplt_pd(_mm_andnot_pd(sign, u1), limit));
+    if (_mm_movemask_pd(in) != 3)
+        return false;
+    __m128i i0, i1;
+    __m128 a0 = _mm_cvtpd_ps(_mm_sub_pd(u0, floor2(u0, &i0)));
+    __m128 a1 = _mm_cvtpd_ps(_mm_sub_pd(u1, floor2(u1, &i1)));
+    *i = _mm_unpacklo_epi64(i0, i1);
+    *a = _mm_movelh_ps(a0, a1);
+    return true;
+}
+
+/* s and t of the quad's pixels (a helper's: anything, even NaN; `lanes`
+ * says which are wanted). */
+static inline void level_taps(const struct texture_level *l, enum texture_wrap wrap, const double s[4],
+                              const double t[4], unsigned lanes, struct level_taps *o)
+{
+    double sl[4], tl[4];
+    for (int p = 0; p < 4; p++)
+        sl[p] = lanes >> p & 1 ? s[p] : 0, tl[p] = lanes >> p & 1 ? t[p] : 0;
+    __m128i iu, iv;
+    __m128 a, b;
+    if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
+        /* the mathematical mod of a power of two: the low bits, negatives too */
+        const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
+        int log2w = 0;
+        while (1 << log2w < l->w)
+            log2w++;
+        __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
+        __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
+        __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));
+        _mm_storeu_si128((__m128i *)o->o00, _mm_add_epi32(row0, x0));
+        _mm_storeu_si128((__m128i *)o->o10, _mm_add_epi32(row0, x1));
+        _mm_storeu_si128((__m128i *)o->o01, _mm_add_epi32(row1, x0));
+        _mm_storeu_si128((__m128i *)o->o11, _mm_add_epi32(row1, x1));
+        _mm_storeu_ps(o->a, a);
+        _mm_storeu_ps(o->b, b);
+        return;
+    }
+    for (int p = 0; p < 4; p++) {       /* clamp, or far out: bilinear_corner itself */
+        int64_t i, j;
+        int x0, x1, y0, y1;
+        bilinear_corner(l, sl[p], tl[p], &i, &j, &o->a[p], &o->b[p]);
+        wrap_pair(i, l->w, wrap, &x0, &x1);
+        wrap_pair(j, l->h, wrap, &y0, &y1);
+        o->o00[p] = y0 * l->w + x0, o->o10[p] = y0 * l->w + x1;
+        o->o01[p] = y1 * l->w + x0, o->o11[p] = y1 * l->w + x1;
+    }
+}
+
+/* Pixel p's bilinear tap from its level's taps. */
+static inline __m128 bilinear4(const struct texture_level *l, const struct level_taps *o, int p)
+{
+    __m128 c00 = texel4(l->texel[o->o00[p]]), c10 = texel4(l->texel[o->o10[p]]);
+    __m128 c01 = texel4(l->texel[o->o01[p]]), c11 = texel4(l->texel[o->o11[p]]);
+    __m128 va = _mm_set1_ps(o->a[p]), vb = _mm_set1_ps(o->b[p]);
+    __m128 top = _mm_add_ps(c00, _mm_mul_ps(va, _mm_sub_ps(c10, c00)));
+    __m128 bottom = _mm_add_ps(c01, _mm_mul_ps(va, _mm_sub_ps(c11, c01)));
+    return _mm_add_ps(top, _mm_mul_ps(vb, _mm_sub_ps(bottom, top)));
+}
+
+/* The texel times the colour (lanes b, g and r, 0), clamped, rounded once. */
+static inline uint32_t modulate4(__m128 texel, __m128d bg, __m128d r0)
+{
+    __m128d lo = _mm_mul_pd(_mm_cvtps_pd(texel), bg);
+    __m128d hi = _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(texel, texel)), r0);
+    const __m128d zero = _mm_setzero_pd(), top = _mm_set1_pd(255), half = _mm_set1_pd(0.5);
+    lo = _mm_add_pd(_mm_min_pd(_mm_max_pd(lo, zero), top), half);    /* a NaN becomes 0 */
+    hi = _mm_add_pd(_mm_min_pd(_mm_max_pd(hi, zero), top), half);
+    __m128i c = _mm_unpacklo_epi64(_mm_cvttpd_epi32(lo), _mm_cvttpd_epi32(hi));
+    c = _mm_packus_epi16(_mm_packs_epi32(c, c), c);
+    return 0xff000000u | (uint32_t)_mm_cvtsi128_si32(c);
+}
+
+/* Trilinear as the quad's lambda asks: levels k0 and k1 mixed by f (one
+ * level when they are the same or f is 0): tex_filter_texel's rule. */
+struct trilinear_at {
+    int k0, k1;
+    float f;
+};
+
+static inline struct trilinear_at trilinear_at(const struct texture *tex, const struct tex_deriv *d)
+{
+    double last = tex->nlevels - 1;
+    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho <= 1, no log2 needed */
+        double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
+        double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+        double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
+        if (!(sqrt(px2 > py2 ? px2 : py2) > 1))
+            return (struct trilinear_at){ 0, 0, 0 };
+    }
+    double lambda = d->beyond ? last : tex_lod(d);
+    if (!(lambda > 0))
+        return (struct trilinear_at){ 0, 0, 0 };
+    lambda = lambda < last ? lambda : last;
+    int k0 = (int)lambda, k1 = k0 + 1 < tex->nlevels ? k0 + 1 : k0;
+    return (struct trilinear_at){ k0, k1, (float)(lambda - k0) };
+}
+
+/* Pixel p's trilinear texel from the taps of levels k0 and k1. */
+static inline __m128 trilinear4(const struct texture *tex, struct trilinear_at at, const struct level_taps *o0,
+                                const struct level_taps *o1, int p)
+{
+    __m128 a = bilinear4(&tex->level[at.k0], o0, p);
+    if (at.k1 == at.k0 || at.f == 0)
+        return a;
+    __m128 b = bilinear4(&tex->level[at.k1], o1, p);
+    return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(at.f), _mm_sub_ps(b, a)));
+}
+
+#define BLOCK 8             /* the lesson's blocks */
+
+/* Lesson 05's empty block: all four corners outside one edge. */
+static inline bool block_empty(const struct biased_edges *e, int x0, int y0, int x1, int y1)
+{
+    for (int k = 0; k < 3; k++) {
+        int64_t f = biased_edge_at(e, k, x0, y0), dx = e->dx[k] * (x1 - x0), dy = e->dy[k] * (y1 - y0);
+        if (f < 0 && f + dx < 0 && f + dy < 0 && f + dx + dy < 0)
+            return true;
+    }
+    return false;
+}
+
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
@@ -54,16 +232,23 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
     int max_aniso = tex_max_aniso_of(p);
     struct biased_edges e;
     biased_edges_setup(&e, t, true);
-    double s_k[3], t_k[3], ones[3] = { 1, 1, 1 }, col[3][3];
+    double s_k[3], t_k[3], ones[3] = { 1, 1, 1 };
+    double col[3][3];                   /* r, g, b of A, B and C */
     for (int k = 0; k < 3; k++) {
         s_k[k] = t->v[k].s, t_k[k] = t->v[k].t;
-        col[k][0] = t->v[k].r, col[k][1] = t->v[k].g, col[k][2] = t->v[k].b;
+        col[0][k] = t->v[k].r, col[1][k] = t->v[k].g, col[2][k] = t->v[k].b;
     }
     const __m128d area2 = _mm_set1_pd((double)t->area2);
     static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
     const int W = tex->level[0].w, H = tex->level[0].h;
-    for (int qy = t->miny & ~1; qy <= t->maxy; qy += 2) {
-        for (int qx = t->minx & ~1; qx <= t->maxx; qx += 2) {
+    for (int by = t->miny - t->miny % BLOCK; by <= t->maxy; by += BLOCK)
+    for (int bx = t->minx - t->minx % BLOCK; bx <= t->maxx; bx += BLOCK) {
+        int xa = bx < t->minx ? t->minx : bx, xb = bx + BLOCK - 1 > t->maxx ? t->maxx : bx + BLOCK - 1;
+        int ya = by < t->miny ? t->miny : by, yb = by + BLOCK - 1 > t->maxy ? t->maxy : by + BLOCK - 1;
+        if (block_empty(&e, xa, ya, xb, yb))
+            continue;
+        for (int qy = ya & ~1; qy <= yb; qy += 2)
+        for (int qx = xa & ~1; qx <= xb; qx += 2) {
             /* coverage: the biased edge values of the four pixels, exact */
             unsigned covered = 0xF;
             int64_t raw[3];
@@ -91,33 +276,49 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
             }
             struct quad2 vq = pair_sum3(w, ones);
             struct quad2 vs = pair_div(pair_sum3(w, s_k), vq), vt = pair_div(pair_sum3(w, t_k), vq);
-            double qs[4], s[4], tt[4], wl[3][4];
+            double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
             _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
             _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
             _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
-            for (int k = 0; k < 3; k++)
-                _mm_storeu_pd(wl[k], w[k].top), _mm_storeu_pd(wl[k] + 2, w[k].bottom);
+            /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
+            struct quad2 z = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+            _mm_storeu_pd(zs, z.top), _mm_storeu_pd(zs + 2, z.bottom);
+            double *out[3] = { cr, cg, cb };
+            for (int c = 0; c < 3; c++) {
+                struct quad2 sum = pair_sum3(w, col[c]);
+                _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, z.top));
+                _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, z.bottom));
+            }
             bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
             struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
                                    .dtdy = tt[2] - tt[0], .w0 = W, .h0 = H, .beyond = beyond };
+            struct trilinear_at at = { 0, 0, 0 };
+            struct level_taps taps[2];
+            if (filter == FILTER_TRILINEAR) {
+                at = trilinear_at(tex, &d);         /* one lambda for the quad */
+                level_taps(&tex->level[at.k0], tex->wrap, s, tt, covered, &taps[0]);
+                if (at.k1 != at.k0 && at.f != 0)
+                    level_taps(&tex->level[at.k1], tex->wrap, s, tt, covered, &taps[1]);
+            }
             for (int i = 0; i < 4; i++) {
                 if (!(covered >> i & 1))
                     continue;
                 int x = qx + (i & 1), y = qy + (i >> 1);
-                float z = (float)(1 / qs[i]);
+                float z = (float)zs[i];
                 if (!target_depth_pass(fb, x, y, z)) {
                     target_write(fb, x, y, z, 0);   /* counted, hidden: no texel needed */
                     continue;
                 }
-                double rgb[3] = { 0, 0, 0 };
-                for (int k = 0; k < 3; k++)
-                    for (int c = 0; c < 3; c++)
-                        rgb[c] += wl[k][i] * col[k][c];
-                for (int c = 0; c < 3; c++)
-                    rgb[c] /= qs[i];
-                struct texel_rgb texel = tex_filter_texel(tex, filter, max_aniso, s[i], tt[i], &d,
+                __m128d bg = _mm_set_pd(cg[i], cb[i]), r0 = _mm_set_pd(0, cr[i]);
+                __m128 texel;
+                if (filter == FILTER_TRILINEAR) {
+                    texel = trilinear4(tex, at, &taps[0], &taps[1], i);
+                } else {
+                    struct texel_rgb c = tex_filter_texel(tex, filter, max_aniso, s[i], tt[i], &d,
                                                           &tex_stages_lesson, NULL);
-                PLOT(fb, tr, L_WRITE, x, y, z, tex_modulate(texel, rgb[0], rgb[1], rgb[2]));
+                    texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
+                }
+                PLOT(fb, tr, L_WRITE, x, y, z, modulate4(texel, bg, r0));
             }
         }
     }

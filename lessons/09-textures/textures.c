@@ -118,8 +118,9 @@ static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
             c[i] += w * r->cz[k][i];
     }
     a.s = s / a.q, a.t = t / a.q;
+    double z = 1 / a.q;                 /* the depth, and what the colour is multiplied by */
     for (int i = 0; i < 3; i++)
-        a.rgb[i] = c[i] / a.q;
+        a.rgb[i] = c[i] * z;
     if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
         a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
         a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
