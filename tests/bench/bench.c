@@ -153,11 +153,10 @@ void bench_draw(const struct lesson *l, const struct lesson_variant *v, const st
         }
         return;
     }
-    struct raster_params each = *p;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        each.texture = scene_texture(s, s->tris[i].texture);   /* NULL: none */
+        struct raster_params each = lesson_params_tri(p, s, i);    /* with its image texture */
         v->rasterize(&t, &each, fb, NULL);
     }
 }
