@@ -57,7 +57,6 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_L07_SCALE_SMALL_X 1.6    /* ... on small */
 #define TARGET_L07_LOADED_X 0.9 /* with one core kept busy: every core vs 1 thread, every scene */
 #define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
-#define TARGET_L09_LP_X 1.0     /* lesson 09 vs llvmpipe, 1 thread each, textured (trilinear) */
 /* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
  * 2015: their best speed-up of block classification over the bounding box is
  * 9.72x on large triangles; on tiny ones blocks lose, 0.85x). */
@@ -67,6 +66,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_BIG_FIRST_S 5.0  /* 2,000,000 triangles: first frame */
 #define TARGET_BIG_RSS_MIB 2048 /* ... within 2 GiB */
 #define TARGET_BIG_STEP_MS 100  /* ... every step interactive */
+#define TARGET_L09_LP_X 1.0     /* lesson 09 vs llvmpipe, 1 thread each, textured (trilinear) */
 #define BIG_TRIS 2000000
 #define BIG_TRIS_QUICK 20000
 #define MAX_BIG 16
@@ -115,11 +115,16 @@ struct target_line {
 static struct target_line targets[40];
 static int ntargets;
 
-double bench_now(void)
+static double now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double bench_now(void)
+{
+    return now();
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -139,16 +144,25 @@ void bench_timing_stats(struct bench_timing *bt)
     bt->hi = s[n - 1];
 }
 
+/* Pixels whose counts differ (agree.c). */
+static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
+{
+    return bench_count_diff(a, b, n);
+}
+
 
 /* --- the lessons ------------------------------------------------------------ */
 
-void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
-                const struct raster_params *p, struct target *fb)
+/* The whole scene: through the lesson's scene-level twin when it has one
+ * (lesson 07 bins every triangle, then draws tile by tile on every core),
+ * else tri_setup + rasterize triangle after triangle. */
+static void draw_scene(const struct row *row, const struct scene *s,
+                       const struct raster_params *p, struct target *fb)
 {
-    rasterize_scene_fn whole = lesson_scene_fn(l, v);
+    rasterize_scene_fn whole = lesson_scene_fn(row->lesson, row->var);
     if (whole) {
         if (!whole(s, p, fb)) {
-            fprintf(stderr, "tristep-bench: %s %s: out of memory\n", l->id, v->name);
+            fprintf(stderr, "tristep-bench: %s %s: out of memory\n", row->program, row->variant);
             exit(1);
         }
         return;
@@ -156,8 +170,8 @@ void bench_draw(const struct lesson *l, const struct lesson_variant *v, const st
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        struct raster_params each = lesson_params_tri(p, s, i);    /* with its image texture */
-        v->rasterize(&t, &each, fb, NULL);
+        const struct raster_params each = lesson_params_tri(p, s, i);   /* its image texture */
+        row->var->rasterize(&t, &each, fb, NULL);
     }
 }
 
@@ -207,10 +221,10 @@ static void time_once(struct row *row, int i, const struct scene *s, struct targ
     target_clear(fb);
     struct target timed = *fb;
     timed.count = NULL;
-    double t0 = bench_now();
-    bench_draw(row->lesson, row->var, s, &p, &timed);
+    double t0 = now();
+    draw_scene(row, s, &p, &timed);
     if (r >= 0)
-        row->t[i].t[r] = bench_now() - t0;
+        row->t[i].t[r] = now() - t0;
 }
 
 /* A row's target on one scene, among that scene's targets by sample count. */
@@ -247,16 +261,23 @@ static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
 {
     const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
     target_clear(fb);
-    bench_draw(row->lesson, row->var, &sc->s, &p, fb);
+    draw_scene(row, &sc->s, &p, fb);
     size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
     if (row->samples > 1) {
-        row->t[i].diff_ref = bench_count_diff(fb->count, sample_reference_of(i, &sc->s, row->samples), n);
+        row->t[i].diff_ref = count_diff(fb->count, sample_reference_of(i, &sc->s, row->samples), n);
         row->t[i].diff_peer = row->samples == PEER_SAMPLES && peer_cov4 && peer_samples_standard()
-                            ? bench_count_diff(fb->count, peer_cov4[i], n) : -1;
+                            ? count_diff(fb->count, peer_cov4[i], n) : -1;
         return;
     }
-    row->t[i].diff_ref = bench_count_diff(fb->count, sc->coverage, n);
-    row->t[i].diff_peer = peer_cov ? bench_count_diff(fb->count, peer_cov[i], n) : -1;
+    row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
+    row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
+}
+
+void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
+                const struct raster_params *p, struct target *fb)
+{
+    const struct row row = { .program = l->id, .variant = v->name, .lesson = l, .var = v };
+    draw_scene(&row, s, p, fb);
 }
 
 /* --- the memory limit ----------------------------------------------------- */
@@ -278,13 +299,13 @@ static double bandwidth_limit(size_t n, int runs, double *gbs)
     }
     struct bench_timing bt = { .runs = runs };
     for (int r = -1; r < runs; r++) {
-        double t0 = bench_now();
+        double t0 = now();
         for (size_t i = 0; i < n; i++) {
             c[i] ^= 0x00010101u;
             d[i] += 1.0f;
         }
         if (r >= 0)
-            bt.t[r] = bench_now() - t0;
+            bt.t[r] = now() - t0;
     }
     bench_timing_stats(&bt);
     /* keep the result alive so the passes are not optimised away */
@@ -311,7 +332,7 @@ static double cache_resident_limit(size_t n, int runs, double *gbs)
     size_t passes = n / TILE_PIX + 1;
     struct bench_timing bt = { .runs = runs };
     for (int r = -1; r < runs; r++) {
-        double t0 = bench_now();
+        double t0 = now();
         for (size_t p = 0; p < passes; p++) {
             for (size_t i = 0; i < TILE_PIX; i++) {
                 c[i] ^= 0x00010101u;
@@ -320,7 +341,7 @@ static double cache_resident_limit(size_t n, int runs, double *gbs)
             __asm__ volatile("" ::: "memory");  /* each pass really reads and writes */
         }
         if (r >= 0)
-            bt.t[r] = bench_now() - t0;
+            bt.t[r] = now() - t0;
     }
     bench_timing_stats(&bt);
     double pix = (double)(passes * TILE_PIX);
@@ -387,9 +408,9 @@ static double time_command(const char *cmd, char *note, size_t notelen)
         return 0;
     }
     fflush(NULL);
-    double t0 = bench_now();
+    double t0 = now();
     int status = system(cmd);
-    double t = bench_now() - t0;
+    double t = now() - t0;
     if (status != 0) {
         snprintf(note, notelen, "failed (status %d)", status);
         return -1;
@@ -1005,7 +1026,7 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    double start = bench_now();
+    double start = now();
     char cpu[160], date[64];
     cpu_model(cpu, sizeof cpu);
     time_t tnow = time(NULL);
@@ -1126,14 +1147,14 @@ int main(int argc, char **argv)
                     size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
                     const int (*at)[2] = (const int (*)[2])peer_sample_pos;
                     uint8_t *ref = sample_reference(&sc[i].s, cfg[c].samples, at);
-                    rows[c].t[i].diff_ref = bench_count_diff(cov[i], ref, n);
+                    rows[c].t[i].diff_ref = count_diff(cov[i], ref, n);
                     rows[c].t[i].diff_peer = c == 2 ? 0
-                                           : peer_ok[2] ? bench_count_diff(cov[i], peer_cov4[i], n) : -1;
+                                           : peer_ok[2] ? count_diff(cov[i], peer_cov4[i], n) : -1;
                     free(ref);
                 } else if (r == 0) {
                     size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
-                    rows[c].t[i].diff_ref = bench_count_diff(cov[i], sc[i].coverage, n);
-                    rows[c].t[i].diff_peer = c == 0 ? 0 : bench_count_diff(cov[i], peer_cov[i], n);
+                    rows[c].t[i].diff_ref = count_diff(cov[i], sc[i].coverage, n);
+                    rows[c].t[i].diff_peer = c == 0 ? 0 : count_diff(cov[i], peer_cov[i], n);
                 }
             }
         }
@@ -1278,9 +1299,9 @@ int main(int argc, char **argv)
     ok = write_chart(o.out, sc, limit, title) && ok;
     if (ok)
         printf("wrote %s/bench.csv, bench.svg, bench.png and %s; %.0f s in all\n", o.out, md,
-               bench_now() - start);
+               now() - start);
     else
-        printf("not every output was written (see above); %.0f s in all\n", bench_now() - start);
+        printf("not every output was written (see above); %.0f s in all\n", now() - start);
 
     for (int i = 0; i < NSCENES; i++) {
         free(peer_cov[i]);
