@@ -175,6 +175,13 @@ static void draw_scene(const struct row *row, const struct scene *s,
     }
 }
 
+void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
+                const struct raster_params *p, struct target *fb)
+{
+    const struct row row = { .program = l->id, .variant = v->name, .lesson = l, .var = v };
+    draw_scene(&row, s, p, fb);
+}
+
 /* Lesson 08's exact answer at n samples: for every pixel, the samples the
  * scene's triangles cover (saturating at 255), each sample decided by the
  * reference (raster.h: reference_point_covered) over a generous box. Made
@@ -271,13 +278,6 @@ static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
     }
     row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
     row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
-}
-
-void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
-                const struct raster_params *p, struct target *fb)
-{
-    const struct row row = { .program = l->id, .variant = v->name, .lesson = l, .var = v };
-    draw_scene(&row, s, p, fb);
 }
 
 /* --- the memory limit ----------------------------------------------------- */
