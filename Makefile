@@ -13,7 +13,7 @@ EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
 MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.patch))
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
             $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))

@@ -12,6 +12,9 @@
  * pixels, or the exit status is 1). llvmpipe also draws at 4 samples (a
  * multisampled framebuffer resolved by a blit, beside lesson 08's rows),
  * checked against the exact rule at the samples where it says they are.
+ * Then three textured scenes (textured.c): the lessons that map image
+ * textures beside llvmpipe on one thread, trilinear, their colours held to
+ * llvmpipe's by agreement.
  *
  * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png, and
  * the same table as markdown (BUILD/bench.md, or --markdown FILE): `make
@@ -63,6 +66,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_BIG_FIRST_S 5.0  /* 2,000,000 triangles: first frame */
 #define TARGET_BIG_RSS_MIB 2048 /* ... within 2 GiB */
 #define TARGET_BIG_STEP_MS 100  /* ... every step interactive */
+#define TARGET_L09_LP_X 1.0     /* lesson 09 vs llvmpipe, 1 thread each, textured (trilinear) */
 #define BIG_TRIS 2000000
 #define BIG_TRIS_QUICK 20000
 #define MAX_BIG 16
@@ -118,6 +122,11 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double bench_now(void)
+{
+    return now();
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -135,14 +144,12 @@ void bench_timing_stats(struct bench_timing *bt)
     bt->hi = s[n - 1];
 }
 
-/* Pixels whose counts differ. */
+/* Pixels whose counts differ (agree.c). */
 static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
 {
-    int64_t d = 0;
-    for (size_t i = 0; i < n; i++)
-        d += a[i] != b[i];
-    return d;
+    return bench_count_diff(a, b, n);
 }
+
 
 /* --- the lessons ------------------------------------------------------------ */
 
@@ -163,8 +170,16 @@ static void draw_scene(const struct row *row, const struct scene *s,
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        row->var->rasterize(&t, p, fb, NULL);
+        const struct raster_params each = lesson_params_tri(p, s, i);   /* its image texture */
+        row->var->rasterize(&t, &each, fb, NULL);
     }
+}
+
+void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
+                const struct raster_params *p, struct target *fb)
+{
+    const struct row row = { .program = l->id, .variant = v->name, .lesson = l, .var = v };
+    draw_scene(&row, s, p, fb);
 }
 
 /* Lesson 08's exact answer at n samples: for every pixel, the samples the
@@ -509,12 +524,13 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
     const struct row *base = find_row("02-", NULL);
     fprintf(f, "# tristep bench, %s, %s\n", cpu, date);
     fprintf(f, "scene,width,height,triangles,pixels,program,variant,exhibit,runs,median_s,min_s,"
-               "max_s,mtri_s,mpix_s,ratio_l02,pct_memory_limit,diff_ref,diff_llvmpipe\n");
+               "max_s,mtri_s,mpix_s,ratio_l02,pct_memory_limit,diff_ref,diff_llvmpipe,"
+               "pct_within2_llvmpipe,pct_within8_llvmpipe\n");
     for (int i = 0; i < NSCENES; i++)
         for (int k = 0; k < nrows; k++) {
             const struct row *r = &rows[k];
             const struct bench_timing *t = &r->t[i];
-            fprintf(f, "%s,%d,%d,%d,%llu,%s,%s,%d,%d,%.6f,%.6f,%.6f,%.4f,%.2f,%.4f,%.2f,%lld,%lld\n",
+            fprintf(f, "%s,%d,%d,%d,%llu,%s,%s,%d,%d,%.6f,%.6f,%.6f,%.4f,%.2f,%.4f,%.2f,%lld,%lld,-1,-1\n",
                     sc[i].name, sc[i].s.w, sc[i].s.h, sc[i].s.ntris,
                     (unsigned long long)sc[i].pixels, r->program, r->variant, r->exhibit, t->runs,
                     t->median, t->lo, t->hi, mtri(&sc[i], t), mpix(&sc[i], t),
@@ -522,14 +538,15 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
                     limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, (long long)t->diff_ref,
                     (long long)t->diff_peer);
         }
+    bench_textured_csv(f);
     for (int i = 0; i < NSCENES; i++)
-        fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1\n",
+        fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1,-1,-1\n",
                 sc[i].name, sc[i].s.w, sc[i].s.h, (unsigned long long)sc[i].pixels, limit);
     /* not scenes: the explorer's frame and make figures, in seconds */
     if (frame_ms > 0)
-        fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
+        fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
-        fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+        fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1,-1,-1\n", figures_s);
     /* the large scene in the explorer: seconds, and peak-rss-mib in MiB */
     for (int i = 0; i < nbig; i++) {
         const struct big_result *b = &big[i];
@@ -544,19 +561,19 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
             { "peak-rss-mib", b->peak_rss_mib },
         };
         for (size_t k = 0; k < sizeof m / sizeof m[0]; k++)
-            fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1\n", b->ntris,
+            fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1,-1,-1\n", b->ntris,
                     b->program, m[k].what, m[k].v);
     }
     /* the 3-D front end: world triangles per second, no pixels */
     if (front.t.runs > 0)
-        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
+        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1,-1,-1\n",
                 front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
                 front.in / front.t.median * 1e-6);
     /* the targets: program target-met or target-missed, variant = its id,
      * median_s = the value measured, min_s = the goal */
     for (int k = 0; k < ntargets; k++)
         if (targets[k].measured)
-            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1\n",
+            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1,-1,-1\n",
                     targets[k].met ? "target-met" : "target-missed", targets[k].id,
                     targets[k].got, targets[k].goal);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
@@ -619,6 +636,8 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
                "(slowest - fastest) / median; on a shared machine, differences smaller than "
                "the spread are noise\n", o->runs, (unsigned long long)o->seed);
     fprintf(f, "- peer: %s\n", find_row("llvmpipe", NULL) ? peer_renderer : "llvmpipe not measured");
+    fprintf(f, "- llvmpipe's environment: its sampler's faster approximations off, %s (they "
+               "matter on the textured scenes)\n", PEER_EXACT_OPTIONS);
     if (find_row("llvmpipe", "1 thread 4 samples")) {
         fprintf(f, "- llvmpipe at 4 samples: a multisampled framebuffer resolved by a blit, both timed; "
                 "its samples (GL_SAMPLE_POSITION) in the scene, 1/256 pixel:");
@@ -647,6 +666,7 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
         }
     }
     write_journey(f, sc);
+    bench_textured_markdown(f);
     if (ntargets > 0) {
         fprintf(f, "\n## Targets\n\n| target | measured | goal | |\n| --- | ---: | ---: | --- |\n");
         for (int k = 0; k < ntargets; k++) {
@@ -835,6 +855,17 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
                  TARGET_BIG_RSS_MIB, " MiB", true);
     print_target("big-slowest-step-ms", "large scene: slowest step (jump, End, back)", step,
                  TARGET_BIG_STEP_MS, " ms", true);
+    printf("\ntexture mapping against llvmpipe, one thread each, trilinear:\n");
+    for (int i = 0; i < 3; i++) {
+        const char *lesson, *variant;
+        double x = bench_textured_speedup(i, &lesson, &variant);
+        snprintf(what, sizeof what, "lesson %.2s vs llvmpipe, 1 thread, textured (trilinear), on %s",
+                 lesson, bench_textured_scene(i));
+        snprintf(id, sizeof id, "l%.2s-vs-llvmpipe-1-thread-textured-%s", lesson, bench_textured_scene(i));
+        print_target(id, what, x, TARGET_L09_LP_X, "x", false);
+        if (x > 0)
+            printf("  %-60s %s %s\n", "  ... the lesson's fastest exact variant:", lesson, variant);
+    }
     /* the fastest exact variant of every lesson on each scene, for the record */
     for (int i = 0; i < NSCENES && lp1; i++) {
         const struct row *best = NULL;
@@ -889,7 +920,7 @@ static void measure_loaded(const struct bench_scene *sc, struct target *fb[NSCEN
             for (int i = 0; i < NSCENES; i++)
                 cov[i] = fb[i]->count;
             char why[256];
-            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, 1, scratch, cov, why, sizeof why))
+            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, 1, scratch, cov, NULL, why, sizeof why))
                 continue;
             for (int i = 0; i < NSCENES; i++) {
                 loaded[c ? LOADED_LP : LOADED_LP_1][i].t[r] = scratch[i].t[0];
@@ -914,7 +945,8 @@ static int usage(FILE *f, int status)
         "                     [--lesson NN [--variant NAME]]\n"
         "                     [--exhibits] [--no-llvmpipe] [--no-large-scene] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
-        "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
+        "Mesa's llvmpipe and the memory limit, and the texture-mapping lessons on\n"
+        "three textured scenes beside llvmpipe; checks coverage on every scene.\n"
         "  --quick        tiny scenes, 3 runs (what `make test` runs)\n"
         "  --runs N       timed runs after one warm-up (default 7, at least 5)\n"
         "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
@@ -1103,7 +1135,7 @@ int main(int argc, char **argv)
             uint8_t *cov[NSCENES];
             for (int i = 0; i < NSCENES; i++)       /* fb's count: scratch after the first */
                 cov[i] = r == 0 && c == 0 ? peer_cov[i] : r == 0 && c == 2 ? peer_cov4[i] : fb[i]->count;
-            if (!peer_run(sc, NSCENES, cfg[c].threads, cfg[c].samples, 1, 1, one, cov, why, sizeof why)) {
+            if (!peer_run(sc, NSCENES, cfg[c].threads, cfg[c].samples, 1, 1, one, cov, NULL, why, sizeof why)) {
                 printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
                 peer_ok[c] = false;
                 continue;
@@ -1159,6 +1191,13 @@ int main(int argc, char **argv)
     for (int i = 0; i < NSCENES; i++)
         for (int n = 0; n <= SAMPLES_MAX; n++)
             target_free(&fbs[i][n]);
+    const struct bench_tex_options to = { .runs = o.runs, .seed = o.seed, .quick = o.quick,
+                                          .peer = o.peer, .exhibits = o.exhibits, .only = o.only,
+                                          .only_variant = o.only_variant };
+    if (!bench_textured_run(&to)) {
+        fprintf(stderr, "tristep-bench: out of memory in the textured scenes\n");
+        return 1;
+    }
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
@@ -1167,6 +1206,7 @@ int main(int argc, char **argv)
     double cache_gbs = 0;
     double cache_limit = cache_resident_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
     print_table(sc, limit);
+    bench_textured_print();
     char l3[32] = "?";
     FILE *cf = fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r");
     if (cf && fgets(l3, sizeof l3, cf))
@@ -1235,8 +1275,9 @@ int main(int argc, char **argv)
         for (int i = 0; i < NSCENES; i++)
             if (!rows[k].exhibit)
                 bad += rows[k].t[i].diff_ref + (rows[k].t[i].diff_peer > 0 ? rows[k].t[i].diff_peer : 0);
-    printf("\ncoverage check: %s (%d programs x %d scenes against the reference%s)\n",
-           bad ? "DIFFERENCES FOUND" : "0 differing pixels", nrows, NSCENES,
+    bad += bench_textured_differences();
+    printf("\ncoverage check: %s (%d programs x %d scenes and the textured scenes against the "
+           "reference%s)\n", bad ? "DIFFERENCES FOUND" : "0 differing pixels", nrows, NSCENES,
            have_peer ? " and llvmpipe" : "; llvmpipe not available");
 
     char path[1024], title[320];
