@@ -23,8 +23,8 @@
  *
  * Builds on lesson 05 (block classification): the blocks are classified by
  * the corners of their SAMPLES' extent, not of their pixel centres, since a
- * pixel's samples reach out to 1/16 pixel from its border. Lesson 07 (tiles
- * and threads) would carry this over unchanged to every tile.
+ * pixel's samples reach out to 1/16 pixel from its border. The twin `tiles`
+ * (tiled.c) runs this very code on lesson 07's tiles, bins and threads.
  *
  * Two ways of shading what the mask covers:
  *   MSAA (multisampling, Akeley's RealityEngine): ONE colour per pixel,
