@@ -1,5 +1,5 @@
 /* multisampling.h - what lesson 08's algorithm (multisampling.c) shares with
- * its tiled twin (tiles.c, over lesson 07's bins and workers): one
+ * its tiled twin (tiled.c, over lesson 07's bins and workers): one
  * triangle's run, its set-up, its blocks and the resolve of one pixel. */
 #ifndef TRISTEP_MULTISAMPLING_H
 #define TRISTEP_MULTISAMPLING_H
@@ -100,7 +100,7 @@ void ms_blocks(const struct run *r, const int box[4], int q);
 /* A pixel's n samples resolved: the mean colour (rounded), the nearest depth. */
 void ms_resolve(int n, const uint32_t *color, const float *z, uint32_t *rgba, float *nearest);
 
-/* The tiled twin (tiles.c): one triangle, the whole scene, the explorer's order. */
+/* The tiled twin (tiled.c): one triangle, the whole scene, the explorer's order. */
 void rasterize_tiled(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
                      struct trace *tr);
 bool ms_tiled_scene(const struct scene *s, const struct raster_params *p, struct target *fb);

@@ -30,7 +30,7 @@
 /* A worker's tile: its samples (n per pixel, rows of TILE pixels), which
  * pixels were written, and the target they belong to. */
 struct ms_tile {
-    uint32_t color[TILE * TILE * SAMPLES_MAX];
+    _Alignas(CACHE_LINE) uint32_t color[TILE * TILE * SAMPLES_MAX];   /* (a size of whole lines) */
     float depth[TILE * TILE * SAMPLES_MAX];
     uint64_t touched[TILE];
     struct target *fb;
