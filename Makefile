@@ -100,11 +100,12 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 # The search for lesson 06's walk-order cracks (tests/search/cracks.c).
 $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
 
-# Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
-# does not run under TSan), run by tests/test_lesson07.c.
+# Lesson 07's workers under ThreadSanitizer (lesson 08's tiled twin on them
+# too): a program of its own (Criterion does not run under TSan), run by
+# tests/test_lesson07.c.
 NO_CAIRO := $(filter-out src/scene/png.c,$(wildcard src/scene/*.c)) tests/portable/png_none.c   # PNG textures need cairo
-TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
-$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h) | $(FIRST)
+TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c lessons/08-multisampling/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
+$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h lessons/08-multisampling/*.h) | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.

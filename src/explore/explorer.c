@@ -415,12 +415,20 @@ static bool project_scene(struct explorer *ex)
     return ex->projected_by(&ex->scene);
 }
 
+/* A variant that draws the whole scene at once (lesson 07's, lesson 08's
+ * tiles) steps through that run's own units; the others, triangles. */
+static lesson_units_fn units_of(const struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    return lesson_scene_fn(ex->lesson, v) ? ex->lesson->narration_units : NULL;
+}
+
 /* The lesson's own run, first counted (at least as far as `step`), keeping
  * pictures along the way for stepping back. */
 static bool begin_replay(struct explorer *ex, uint64_t step)
 {
     if (!replay_begin_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
-                            &ex->params, ex->lesson->narration_units))
+                            &ex->params, units_of(ex)))
         return false;
     replay_keep_pictures(&ex->replay);
     return count_to(ex, step);
@@ -432,6 +440,7 @@ static bool rerun(struct explorer *ex, uint64_t step)
     if (!project_scene(ex))
         return false;
     ex->replay.variant = &ex->lesson->variants[ex->variant];
+    ex->replay.units_fn = units_of(ex);
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
     if (!replay_restart(&ex->replay) || !count_to(ex, step) || !compare_recount(ex))

@@ -57,6 +57,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_L07_SCALE_SMALL_X 1.6    /* ... on small */
 #define TARGET_L07_LOADED_X 0.9 /* with one core kept busy: every core vs 1 thread, every scene */
 #define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
+#define TARGET_L08_MSAA_X 1.0   /* lesson 08's tiles vs llvmpipe, 4 samples, 1 thread and all cores */
 /* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
  * 2015: their best speed-up of block classification over the bounding box is
  * 9.72x on large triangles; on tiny ones blocks lose, 0.85x). */
@@ -91,6 +92,7 @@ struct row {
     const struct lesson *lesson;        /* NULL for a peer */
     const struct lesson_variant *var;
     int samples;                /* lesson 08's samples per pixel (0, 1: the centre) */
+    int threads;                /* the lesson's --threads (0: its default, one per core) */
 };
 
 static struct row rows[MAX_ROWS];
@@ -156,6 +158,16 @@ static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
 /* The whole scene: through the lesson's scene-level twin when it has one
  * (lesson 07 bins every triangle, then draws tile by tile on every core),
  * else tri_setup + rasterize triangle after triangle. */
+/* The params of a row: its samples, and its threads when it sets them. */
+static struct raster_params row_params(const struct row *row)
+{
+    struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    int k;
+    if (row->threads > 0 && lesson_param(row->lesson, "threads", &k))
+        *lesson_param_slot(row->lesson, k, &p) = row->threads;
+    return p;
+}
+
 static void draw_scene(const struct row *row, const struct scene *s,
                        const struct raster_params *p, struct target *fb)
 {
@@ -224,7 +236,7 @@ static uint8_t *sample_reference(const struct scene *s, int n, const int (*pos)[
  * the clock and does not count coverage. */
 static void time_once(struct row *row, int i, const struct scene *s, struct target *fb, int r)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    const struct raster_params p = row_params(row);
     target_clear(fb);
     struct target timed = *fb;
     timed.count = NULL;
@@ -266,7 +278,7 @@ static bool peer_samples_standard(void)
 static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
                            uint8_t *const peer_cov[], uint8_t *const peer_cov4[], struct target *fb)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    const struct raster_params p = row_params(row);
     target_clear(fb);
     draw_scene(row, &sc->s, &p, fb);
     size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
@@ -827,6 +839,19 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
         if (lp->runs && lp1->runs)
             printf("  %-60s %6.2fx\n", "  ... llvmpipe there, default threads vs 1", lp1->median / lp->median);
     }
+    /* lesson 08's tiles against llvmpipe, both at 4 samples (issue 25) */
+    const struct row *l08 = find_row("08-", "tiles 4 samples"), *l08_1 = find_row("08-", "tiles 1 thread 4 samples");
+    const struct row *lp4 = find_row("llvmpipe", "default 4 samples");
+    const struct row *lp4_1 = find_row("llvmpipe", "1 thread 4 samples");
+    for (int each = 0; each < 2 && (l08 || l08_1); each++)
+        for (int i = 0; i < NSCENES; i++) {
+            snprintf(what, sizeof what, "lesson 08 tiled 4x MSAA vs llvmpipe 4x MSAA, %s, on %s",
+                     each ? "all cores each" : "one thread each", scene_id[i]);
+            snprintf(id, sizeof id, "l08-tiles-vs-llvmpipe-msaa4-%s-%s", each ? "all" : "1-thread",
+                     scene_id[i]);
+            print_target(id, what, each ? speedup(l08, lp4, i) : speedup(l08_1, lp4_1, i),
+                         TARGET_L08_MSAA_X, "x", false);
+        }
     double rate = l07 ? mpix(&sc[SCENE_LARGE], &l07->t[SCENE_LARGE]) : 0;
     print_target("l07-large-vs-memory-limit", "lesson 07 on large, times the memory limit",
                  limit > 0 ? rate / limit : 0, TARGET_L07_MEMORY_X, "x", false);
@@ -1080,6 +1105,15 @@ int main(int argc, char **argv)
                 rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
                                             .lesson = *l, .var = var, .samples = n };
                 nrows++;
+                /* a whole-scene variant with threads (lesson 08's tiles): on one
+                 * thread too, beside llvmpipe's one thread at 4 samples */
+                if (n == PEER_SAMPLES && lesson_param(*l, "threads", NULL) && lesson_scene_fn(*l, var)
+                    && nrows < MAX_ROWS) {
+                    snprintf(names[nrows], sizeof names[nrows], "%s 1 thread %d samples", var->name, n);
+                    rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
+                                                .lesson = *l, .var = var, .samples = n, .threads = 1 };
+                    nrows++;
+                }
             }
         }
     }
