@@ -42,9 +42,10 @@ void bench_timing_stats(struct bench_timing *bt);
 double bench_memory_limit(size_t n, int threads, int runs, double *gbs);
 /* The same pass over one 64 x 64 tile again and again (cache-resident). */
 double bench_cache_limit(size_t n, int runs, double *gbs);
-/* A count of cycles on the calling thread, the core's own if the system
- * counts them, else the time-stamp counter's; what it counts, in words,
- * into buf (NULL: no counter, bench_cycles() stays 0). */
+/* A count of cycles on the calling thread while it runs: the core's own if
+ * the system counts them, else its processor time in time-stamp counter
+ * cycles; what it counts, in words, into buf (NULL: no counter,
+ * bench_cycles() stays 0). */
 const char *bench_cycles_source(char *buf, size_t n);
 uint64_t bench_cycles(void);
 

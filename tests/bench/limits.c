@@ -156,8 +156,9 @@ double bench_cache_limit(size_t n, int runs, double *gbs)
 
 /* The core's own cycles in user space, for the calling thread, where the
  * system lets a program count them (perf_event_open; a virtual machine
- * often does not), else the time-stamp counter, which runs at a fixed rate
- * whatever the core's clock. */
+ * often does not); else the thread's processor time (not the clock: time
+ * while other programs run is not counted) in cycles of the time-stamp
+ * counter, whose rate is the processor's nominal clock. */
 static int cycles_fd = -2;      /* -2: not tried yet, -1: no counter of the core's */
 static double tsc_hz;
 
@@ -199,8 +200,8 @@ const char *bench_cycles_source(char *buf, size_t n)
     if (cycles_fd >= 0)
         snprintf(buf, n, "the core's own cycles, perf_event_open");
     else if (HAVE_TSC)
-        snprintf(buf, n, "time-stamp counter cycles, %.2f GHz: the core's own cannot be "
-                 "counted here", tsc_hz * 1e-9);
+        snprintf(buf, n, "the thread's processor time in cycles of the %.2f GHz time-stamp "
+                 "counter: the core's own cannot be counted here", tsc_hz * 1e-9);
     else
         return NULL;
     return buf;
@@ -216,7 +217,9 @@ uint64_t bench_cycles(void)
         return v;
     }
 #if HAVE_TSC
-    v = __rdtsc();
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    v = (uint64_t)(((double)t.tv_sec + 1e-9 * (double)t.tv_nsec) * tsc_hz);
 #endif
     return v;
 }
