@@ -122,6 +122,14 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Processor time of all the program's threads (the lesson's workers too). */
+static double process_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -140,6 +148,9 @@ void bench_timing_stats(struct bench_timing *bt)
     memcpy(s, bt->cycles, (size_t)bt->runs * sizeof *s);
     qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
     bt->cycles_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    memcpy(s, bt->cpu, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    bt->cpu_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
 }
 
 /* Pixels whose counts differ. */
@@ -221,12 +232,13 @@ static void time_once(struct row *row, int i, const struct scene *s, struct targ
     struct target timed = *fb;
     timed.count = NULL;
     uint64_t c0 = bench_cycles();
-    double t0 = now();
+    double p0 = process_seconds(), t0 = now();
     draw_scene(row, s, &p, &timed);
-    double t1 = now();
+    double t1 = now(), p1 = process_seconds();
     uint64_t c1 = bench_cycles();
     if (r >= 0)
-        row->t[i].t[r] = t1 - t0, row->t[i].cycles[r] = (double)(c1 - c0);
+        row->t[i].t[r] = t1 - t0, row->t[i].cycles[r] = (double)(c1 - c0),
+        row->t[i].cpu[r] = p1 - p0;
 }
 
 /* A row's target on one scene, among that scene's targets by sample count. */
@@ -536,6 +548,20 @@ static bool limits_line(const struct bench_scene *sc, double limit, char *buf, s
                                cycles_what, mem_ms, 100 * mem_ms / (t->median * 1e3),
                                t->median * 1e3);
     }
+    const struct row *all = find_row("07-", "tiles");
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    for (int i = 0; one && all && i < NSCENES && at < n; i++) {
+        const struct bench_timing *a = &all->t[i], *b = &one->t[i];
+        if (a->cpu_median <= 0 || b->cpu_median <= 0)
+            continue;
+        at += (size_t)snprintf(buf + at, n - at, "%slesson 07 on %s, %ld threads against 1: "
+                               "%.2fx the processor time of all threads (%.2f ms against %.2f: "
+                               "the split's cost, waits spent spinning included), a speed-up "
+                               "of %.2fx by the clock (the rest of the gap to %ldx is waiting, "
+                               "for a core or another worker)\n", item, sc[i].name, cores, a->cpu_median / b->cpu_median,
+                               a->cpu_median * 1e3, b->cpu_median * 1e3, b->median / a->median,
+                               cores);
+    }
     return at > 0;
 }
 
@@ -637,7 +663,7 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
     fprintf(f, "\n## Limits and the explorer\n\n");
     fprintf(f, "- memory limit (one read-modify-write pass over colour + depth, one core): "
                "%.1f Mpix/s; the %% mem column is a share of it\n", limit);
-    char line[1200];
+    char line[2400];
     if (limits_line(sc, limit, line, sizeof line, true))
         fprintf(f, "%s", line);
     if (frame_ms > 0)
@@ -1161,7 +1187,7 @@ int main(int argc, char **argv)
            "(%.1f GB/s)\n  one 64 x 64 tile over and over (cache-resident): %.1f Mpix/s (%.1f GB/s)\n",
            sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram, dram_gbs,
            cache_limit, cache_gbs);
-    char line[1200];
+    char line[2400];
     if (limits_line(sc, limit, line, sizeof line, false))
         printf("%s", line);
 

@@ -31,6 +31,8 @@ struct bench_timing {
     double median, lo, hi;      /* over the timed runs (warm-up excluded) */
     double cycles[BENCH_MAX_RUNS];  /* bench_cycles() over each run, on the calling thread */
     double cycles_median;
+    double cpu[BENCH_MAX_RUNS];     /* processor time of all the program's threads, seconds */
+    double cpu_median;
     int64_t diff_ref;           /* pixels whose coverage count differs from the reference */
     int64_t diff_peer;          /* ... from llvmpipe's, or -1 when llvmpipe did not run */
 };
