@@ -172,8 +172,8 @@ Test(lesson08_tiles, the_explorers_units_drawn_in_order_make_the_same_picture)
             struct tri_setup t;
             tri_setup(&t, s.tris[u[i].tri].v, s.w, s.h);
             struct raster_params q = p;
-            q.tile = u[i].tile + 1, q.bin_size = u[i].bin_size, q.bin_entry = u[i].bin_entry;
-            q.thread = u[i].thread;
+            struct run_place at = { .scene = &s, .unit = &u[i], .units = u, .nunits = (int)n };
+            q.at = &at;
             struct trace tr = { 0 };
             trace_begin(&tr, u[i].tri, TRACE_UNLIMITED);
             v->rasterize(&t, &q, &fb, &tr);

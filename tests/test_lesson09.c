@@ -75,10 +75,9 @@ static void random_scene3(struct scene *s, struct rng *r, int n, bool clamp)
     cr_assert(front_scene(s));
 }
 
-static struct raster_params params_for(const struct scene *s, enum tex_filter f, int max_aniso)
+static struct raster_params params_for(enum tex_filter f, int max_aniso)
 {
     struct raster_params p = default_params();
-    p.scene = s;
     p.knob[P_FILTER] = f;
     p.knob[P_MAX_ANISO] = max_aniso;
     return p;
@@ -102,7 +101,7 @@ static const enum texref_filter as_texref[] = {
 static void expect_reference(const struct scene *s, const struct lesson_variant *v, enum tex_filter f,
                              int max_aniso, const char *what)
 {
-    struct raster_params p = params_for(s, f, max_aniso);
+    struct raster_params p = params_for(f, max_aniso);
     struct target fb;
     draw(&fb, s, v, &p);
     struct texref_target ref;
@@ -193,7 +192,7 @@ Test(lesson09, fast_twin_draws_the_narrated_bytes, .timeout = 60)
             random_scene(&s, &r, 64, 48, 12, c & 1);
         }
         for (int f = FILTER_NEAREST; f <= FILTER_ANISO; f++) {
-            struct raster_params p = params_for(&s, f, 16);
+            struct raster_params p = params_for(f, 16);
             p.checker = s.checker;
             struct target a, b;
             draw(&a, &s, &lesson_09.variants[0], &p);
@@ -219,7 +218,7 @@ Test(lesson09, helper_pixels_are_evaluated_never_written, .timeout = 60)
     char err[256];
     cr_assert(scene_builtin(&s, "texture-tiny", err, sizeof err), "%s", err);
     cr_assert(front_scene(&s));
-    struct raster_params p = params_for(&s, FILTER_TRILINEAR, 16);
+    struct raster_params p = params_for(FILTER_TRILINEAR, 16);
     long helpers = 0, covered = 0, writes = 0;
     size_t n = (size_t)s.w * s.h;
     uint8_t *ref = malloc(n);
@@ -318,7 +317,7 @@ Test(lesson09, swapped_stages_are_the_ones_drawn)
     cr_assert(scene_parse(&s, "t", text, strlen(text), err, sizeof err), "%s", err);
     struct tex_stages st = tex_stages_lesson;
     st.bilinear = grey_tap;
-    struct raster_params p = params_for(&s, FILTER_TRILINEAR, 16);
+    struct raster_params p = params_for(FILTER_TRILINEAR, 16);
     p.texture = scene_texture(&s, 1);
     struct target fb;
     cr_assert(target_init(&fb, 16, 16, 0));

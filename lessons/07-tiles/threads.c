@@ -419,15 +419,15 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
 
 /* One triangle through the same stages, on the calling thread: a scene of
  * one triangle, set up, binned, every tile of its bin drawn in the tile
- * buffer and stored. A step of the narrated replay (tiles.c) is one part
- * of the scene's run: the triangle's set-up and binning (p->tile == 0,
- * p->bin_entry < 0), or its entry in tile p->tile - 1's bin, drawn by
- * worker p->thread (the triangle set up and binned again, silently, into
- * a bin of its own). */
+ * buffer and stored. A step of the narrated replay (tiles.c) is one unit
+ * of the scene's run (p->at->unit): the triangle's set-up and binning
+ * (tile -1), or its entry in a tile's bin, drawn by the unit's worker (the
+ * triangle set up and binned again, silently, into a bin of its own). */
 bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
                        struct target *fb, struct trace *tr, struct tiles_options o)
 {
-    bool bin_step = p->tile == 0 && p->bin_entry < 0, tile_step = p->tile > 0;
+    const struct lesson_unit *u = p->at ? p->at->unit : NULL;
+    bool bin_step = u && u->tile < 0, tile_step = u && u->tile >= 0;
     pthread_mutex_lock(&frame_lock);
     bool ok = keep_room(1, 1, o.tile_buffers);
     struct run r;
@@ -441,13 +441,13 @@ bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p
         int worker = 0;
         if (tile_step) {
             r.tr = tr;
-            r.first_entry = p->bin_entry, r.bin_size = p->bin_size;
-            worker = p->thread;
+            r.first_entry = u->bin_entry, r.bin_size = u->bin_size;
+            worker = u->thread;
         }
         const struct tri *t = &out->records[0];
         for (int ty = t->miny / TILE; ty <= t->maxy / TILE; ty++)
             for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++)
-                if (!tile_step || ty * r.g.nx + tx == p->tile - 1)
+                if (!tile_step || ty * r.g.nx + tx == u->tile)
                     draw_tile(&r, ty * r.g.nx + tx, worker, kept.mem[0].buf);
     }
     pthread_mutex_unlock(&frame_lock);

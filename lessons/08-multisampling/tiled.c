@@ -178,8 +178,8 @@ static struct tiles_options tiled(struct raster_params *q, const struct raster_p
     return (struct tiles_options){ .threads = threads, .pass = &pass };
 }
 
-/* One triangle (the tests, the narrated replay: p->tile > 0, a unit of the
- * scene's run, tiles.c of lesson 07), its lesson 07 steps on the blocks'
+/* One triangle (the tests, the narrated replay: p->at->unit, a unit of the
+ * scene's run, threads.c of lesson 07), its lesson 07 steps on the blocks'
  * line. */
 void rasterize_tiled(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
                      struct trace *tr)

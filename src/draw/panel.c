@@ -186,7 +186,8 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "\n");
     }
     if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
-        struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
+        struct run_place place;
+        struct raster_params params = replay_params(&ex->replay, ex->cur, &place);  /* the unit's, lesson 07 */
         ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }

@@ -299,7 +299,7 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
                            const struct lesson_variant *v, struct target *fb, bool watch_faults)
 {
     struct raster_params p = C->p;
-    p.scene = s;
+    p.at = &(struct run_place){ .scene = s };
     for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);

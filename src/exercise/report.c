@@ -255,7 +255,7 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         if (!exercise_projected(&got, s))
             return 0;
         struct raster_params p = C->p;
-        p.scene = &got;
+        p.at = &(struct run_place){ .scene = &got };
         uint64_t total = replay_init(&r, &got, &exercise_variant, &p) ? r.total : 0;
         replay_free(&r);
         scene_free(&got);

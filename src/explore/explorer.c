@@ -155,7 +155,8 @@ static bool advance_exact(struct explorer *ex, int upto)
     for (; ex->exact_upto < upto; ex->exact_upto++) {
         struct tri_setup t;
         replay_setup(&ex->replay, ex->exact_upto, &t);
-        struct raster_params p = replay_params(&ex->replay, ex->exact_upto);
+        struct run_place at;
+        struct raster_params p = replay_params(&ex->replay, ex->exact_upto, &at);
         exact->rasterize(&t, &p, &ex->exact, NULL);
     }
     return true;
@@ -201,7 +202,7 @@ static bool exact_whole_scene(struct explorer *ex)
         return false;
     const struct lesson_variant *v0 = &ex->lesson->variants[0];
     struct raster_params p = ex->params;
-    p.scene = &s;
+    p.at = &(struct run_place){ .scene = &s };
     target_free(&ex->exact);
     bool ok = lesson_front(ex->lesson, v0)(&s) && render_scene(&s, v0, &p, &ex->exact);
     scene_free(&s);
@@ -234,7 +235,8 @@ static bool extra_so_far(struct explorer *ex)
         return false;
     reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
     struct target with = { 0 };     /* the exact picture with this triangle too */
-    struct raster_params p = replay_params(&ex->replay, ex->cur);
+    struct run_place at;
+    struct raster_params p = replay_params(&ex->replay, ex->cur, &at);
     bool shaded = target_copy(&with, &ex->exact);
     if (shaded)
         ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
@@ -406,7 +408,8 @@ static bool count_to(struct explorer *ex, uint64_t step)
 static bool project_scene(struct explorer *ex)
 {
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
-    ex->params.scene = &ex->scene;
+    ex->at = (struct run_place){ .scene = &ex->scene };
+    ex->params.at = &ex->at;
     front_fn f = lesson_front(ex->lesson, v);
     if (!ex->scene.world.camera_line || f == ex->projected_by)
         return true;

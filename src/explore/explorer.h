@@ -106,6 +106,7 @@ struct explorer {
     int variant;                    /* index into lesson->variants */
     front_fn projected_by;          /* what made a 3-D scene's screen triangles (NULL: not yet) */
     struct raster_params params;
+    struct run_place at;            /* params.at: the scene drawn */
     struct replay replay;
     uint64_t step;
     bool count_later;               /* explorer_count counts what is left, a part at a time */

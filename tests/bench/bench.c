@@ -102,6 +102,10 @@ static struct big_result big[MAX_BIG];
 static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
 static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
+/* The memory limits on two cores, each passing over its half (0: not
+ * measured): the same buffers as the scenes, and 8 times larger ones. */
+static double limit2, limit2_gbs, dram1, dram2;
+static char cycles_what[200];     /* what bench_cycles() counts, "" when nothing */
 /* The same machine with one core kept busy by a spinning child process:
  * lesson 07 on every core and on 1 thread, llvmpipe on its default threads
  * and on 1 thread (LOADED_*), interleaved; runs == 0: not measured. */
@@ -129,6 +133,14 @@ double bench_now(void)
     return now();
 }
 
+/* Processor time of all the program's threads (the lesson's workers too). */
+static double process_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -144,6 +156,12 @@ void bench_timing_stats(struct bench_timing *bt)
     bt->median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
     bt->lo = s[0];
     bt->hi = s[n - 1];
+    memcpy(s, bt->cycles, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    bt->cycles_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    memcpy(s, bt->cpu, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    bt->cpu_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
 }
 
 /* Pixels whose counts differ (agree.c). */
@@ -240,10 +258,14 @@ static void time_once(struct row *row, int i, const struct scene *s, struct targ
     target_clear(fb);
     struct target timed = *fb;
     timed.count = NULL;
-    double t0 = now();
+    uint64_t c0 = bench_cycles();
+    double p0 = process_seconds(), t0 = now();
     draw_scene(row, s, &p, &timed);
+    double t1 = now(), p1 = process_seconds();
+    uint64_t c1 = bench_cycles();
     if (r >= 0)
-        row->t[i].t[r] = now() - t0;
+        row->t[i].t[r] = t1 - t0, row->t[i].cycles[r] = (double)(c1 - c0),
+        row->t[i].cpu[r] = p1 - p0;
 }
 
 /* A row's target on one scene, among that scene's targets by sample count. */
@@ -290,75 +312,6 @@ static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
     }
     row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
     row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
-}
-
-/* --- the memory limit ----------------------------------------------------- */
-
-/* The least work a fill must do per pixel: read and write colour and depth.
- * One pass over buffers of n pixels, on one core; returns Mpix/s. */
-static double bandwidth_limit(size_t n, int runs, double *gbs)
-{
-    uint32_t *c = malloc(n * sizeof *c);
-    float *d = malloc(n * sizeof *d);
-    if (!c || !d) {
-        free(c);
-        free(d);
-        return 0;
-    }
-    for (size_t i = 0; i < n; i++) {
-        c[i] = (uint32_t)i;
-        d[i] = (float)(i & 1023);
-    }
-    struct bench_timing bt = { .runs = runs };
-    for (int r = -1; r < runs; r++) {
-        double t0 = now();
-        for (size_t i = 0; i < n; i++) {
-            c[i] ^= 0x00010101u;
-            d[i] += 1.0f;
-        }
-        if (r >= 0)
-            bt.t[r] = now() - t0;
-    }
-    bench_timing_stats(&bt);
-    /* keep the result alive so the passes are not optimised away */
-    volatile uint32_t sink = c[n / 2] + (uint32_t)d[n / 3];
-    (void)sink;
-    free(c);
-    free(d);
-    *gbs = 16.0 * (double)n / bt.median * 1e-9;
-    return (double)n / bt.median * 1e-6;
-}
-
-/* The same pass over one 64 x 64 tile's colour and depth (32 KB), again and
- * again until n pixels are done: the rate when every access hits the cache,
- * what a tiled rasterizer's overdraw costs at best. Returns Mpix/s. */
-static double cache_resident_limit(size_t n, int runs, double *gbs)
-{
-    enum { TILE_PIX = 64 * 64 };
-    static uint32_t c[TILE_PIX];
-    static float d[TILE_PIX];
-    for (size_t i = 0; i < TILE_PIX; i++) {
-        c[i] = (uint32_t)i;
-        d[i] = (float)(i & 1023);
-    }
-    size_t passes = n / TILE_PIX + 1;
-    struct bench_timing bt = { .runs = runs };
-    for (int r = -1; r < runs; r++) {
-        double t0 = now();
-        for (size_t p = 0; p < passes; p++) {
-            for (size_t i = 0; i < TILE_PIX; i++) {
-                c[i] ^= 0x00010101u;
-                d[i] += 1.0f;
-            }
-            __asm__ volatile("" ::: "memory");  /* each pass really reads and writes */
-        }
-        if (r >= 0)
-            bt.t[r] = now() - t0;
-    }
-    bench_timing_stats(&bt);
-    double pix = (double)(passes * TILE_PIX);
-    *gbs = 16.0 * pix / bt.median * 1e-9;
-    return pix / bt.median * 1e-6;
 }
 
 /* --- the explorer's frame ------------------------------------------------- */
@@ -594,6 +547,53 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
     return ok;
 }
 
+/* What bounds lesson 07 on one thread, in words (markdown: list items),
+ * into buf: the memory limit on two cores beside one's, and the cycles a
+ * covered pixel of the large scene costs against the memory traffic of
+ * its tiles. False when nothing of it was measured. */
+static bool limits_line(const struct bench_scene *sc, double limit, char *buf, size_t n, bool md)
+{
+    size_t at = 0;
+    buf[0] = '\0';
+    const char *item = md ? "- " : "  ";
+    if (limit2 > 0 && limit > 0)
+        at += (size_t)snprintf(buf + at, n - at, "%smemory limit on two cores, each passing over "
+                               "half of the buffers: %.1f Mpix/s (%.1f GB/s), %.2fx one core's; "
+                               "beyond the caches (8 times larger buffers) %.1f Mpix/s on two "
+                               "cores, %.2fx one core's %.1f\n", item, limit2, limit2_gbs,
+                               limit2 / limit, dram2, dram1 > 0 ? dram2 / dram1 : 0, dram1);
+    const struct row *one = find_row("07-", "1-thread");
+    const struct bench_timing *t = one ? &one->t[SCENE_LARGE] : NULL;
+    if (t && t->median > 0 && cycles_what[0] && t->cycles_median > 0 && at < n) {
+        double per_pixel = t->cycles_median / (double)sc[SCENE_LARGE].pixels;
+        double screen = (double)sc[SCENE_LARGE].s.w * (double)sc[SCENE_LARGE].s.h;
+        double mem_ms = limit > 0 ? screen / (limit * 1e6) * 1e3 : 0;
+        at += (size_t)snprintf(buf + at, n - at, "%slesson 07 on large, one thread (`1-thread`): "
+                               "%.2f cycles per covered pixel, %.1f per register of 8 (%s); its "
+                               "memory traffic, each tile loaded and stored once, is one pass "
+                               "over the screen: %.2f ms at the one-core memory limit, %.0f%% of "
+                               "its %.2f ms. The rest is pixel work in cache: it is bound by "
+                               "computing, not by memory\n", item, per_pixel, 8 * per_pixel,
+                               cycles_what, mem_ms, 100 * mem_ms / (t->median * 1e3),
+                               t->median * 1e3);
+    }
+    const struct row *all = find_row("07-", "tiles");
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    for (int i = 0; one && all && i < NSCENES && at < n; i++) {
+        const struct bench_timing *a = &all->t[i], *b = &one->t[i];
+        if (a->cpu_median <= 0 || b->cpu_median <= 0)
+            continue;
+        at += (size_t)snprintf(buf + at, n - at, "%slesson 07 on %s, %ld threads against 1: "
+                               "%.2fx the processor time of all threads (%.2f ms against %.2f: "
+                               "the split's cost, waits spent spinning included), a speed-up "
+                               "of %.2fx by the clock (the rest of the gap to %ldx is waiting, "
+                               "for a core or another worker)\n", item, sc[i].name, cores, a->cpu_median / b->cpu_median,
+                               a->cpu_median * 1e3, b->cpu_median * 1e3, b->median / a->median,
+                               cores);
+    }
+    return at > 0;
+}
+
 /* The table as markdown: machine, date, one table per scene (medians,
  * spread), the memory limit, the explorer's frame. Written to a temporary
  * file and renamed, so a failed run leaves the old one. */
@@ -695,6 +695,9 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
     fprintf(f, "\n## Limits and the explorer\n\n");
     fprintf(f, "- memory limit (one read-modify-write pass over colour + depth, one core): "
                "%.1f Mpix/s; the %% mem column is a share of it\n", limit);
+    char line[2400];
+    if (limits_line(sc, limit, line, sizeof line, true))
+        fprintf(f, "%s", line);
     if (frame_ms > 0)
         fprintf(f, "- explorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n",
                 frame_ms);
@@ -1235,10 +1238,15 @@ int main(int argc, char **argv)
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
-    double limit = bandwidth_limit(npix, o.runs < 5 ? 5 : o.runs, &gbs);
-    double dram = bandwidth_limit(o.quick ? npix : 8 * npix, 3, &dram_gbs);
+    double limit = bench_memory_limit(npix, 1, o.runs < 5 ? 5 : o.runs, &gbs);
+    double dram = bench_memory_limit(o.quick ? npix : 8 * npix, 1, 3, &dram_gbs), dram2_gbs = 0;
+    limit2 = bench_memory_limit(npix, 2, o.runs < 5 ? 5 : o.runs, &limit2_gbs);
+    dram2 = bench_memory_limit(o.quick ? npix : 8 * npix, 2, 3, &dram2_gbs);
+    dram1 = dram;
+    if (!bench_cycles_source(cycles_what, sizeof cycles_what))
+        cycles_what[0] = '\0';
     double cache_gbs = 0;
-    double cache_limit = cache_resident_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
+    double cache_limit = bench_cache_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
     print_table(sc, limit);
     bench_textured_print();
     char l3[32] = "?";
@@ -1253,6 +1261,9 @@ int main(int argc, char **argv)
            "(%.1f GB/s)\n  one 64 x 64 tile over and over (cache-resident): %.1f Mpix/s (%.1f GB/s)\n",
            sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram, dram_gbs,
            cache_limit, cache_gbs);
+    char line[2400];
+    if (limits_line(sc, limit, line, sizeof line, false))
+        printf("%s", line);
 
     frame_ms = explorer_frame(o.quick ? 5 : 60);
     if (frame_ms > 0)

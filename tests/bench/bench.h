@@ -34,6 +34,10 @@ struct bench_timing {
     double t[BENCH_MAX_RUNS];
     int runs;
     double median, lo, hi;      /* over the timed runs (warm-up excluded) */
+    double cycles[BENCH_MAX_RUNS];  /* bench_cycles() over each run, on the calling thread */
+    double cycles_median;
+    double cpu[BENCH_MAX_RUNS];     /* processor time of all the program's threads, seconds */
+    double cpu_median;
     int64_t diff_ref;           /* pixels whose coverage count differs from the reference */
     int64_t diff_peer;          /* ... from llvmpipe's, or -1 when llvmpipe did not run */
 };
@@ -61,6 +65,19 @@ struct bench_agree {
 };
 struct bench_agree bench_agreement(const uint32_t *a, const uint32_t *b, const uint8_t *covered,
                                    size_t n);
+
+/* The limits of this machine (limits.c). A read-modify-write pass over n
+ * pixels of colour and depth (8 bytes each) on `threads` cores, each
+ * taking an equal part: Mpix/s, and GB/s in *gbs (0: not measured). */
+double bench_memory_limit(size_t n, int threads, int runs, double *gbs);
+/* The same pass over one 64 x 64 tile again and again (cache-resident). */
+double bench_cache_limit(size_t n, int runs, double *gbs);
+/* A count of cycles on the calling thread while it runs: the core's own if
+ * the system counts them, else its processor time in time-stamp counter
+ * cycles; what it counts, in words, into buf (NULL: no counter,
+ * bench_cycles() stays 0). */
+const char *bench_cycles_source(char *buf, size_t n);
+uint64_t bench_cycles(void);
 
 /* Mesa's llvmpipe through OSMesa, drawing the same scenes with the same
  * state. threads = 0 is LP_NUM_THREADS=0 (single-threaded), -1 llvmpipe's
