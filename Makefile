@@ -13,7 +13,7 @@ EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
 MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.patch))
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
             $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
@@ -100,11 +100,12 @@ $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B
 # The search for lesson 06's walk-order cracks (tests/search/cracks.c).
 $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
 
-# Lesson 07's workers under ThreadSanitizer: a program of its own (Criterion
-# does not run under TSan), run by tests/test_lesson07.c.
+# Lesson 07's workers under ThreadSanitizer (lesson 08's tiled twin on them
+# too): a program of its own (Criterion does not run under TSan), run by
+# tests/test_lesson07.c.
 NO_CAIRO := $(filter-out src/scene/png.c,$(wildcard src/scene/*.c)) tests/portable/png_none.c   # PNG textures need cairo
-TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
-$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h) | $(FIRST)
+TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c lessons/08-multisampling/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
+$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h lessons/08-multisampling/*.h) | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.
@@ -141,7 +142,8 @@ port-run: $(if $(filter aarch64,$(PORT)),$(B)/include/simde) $(B)/exact ; $(RUN)
 
 # Exercises (lessons/NN-name/exercise.c): the student's FILE, compiled with
 # src/exercise/student.h in front, linked into build/exercise-NN; the tests
-# link every skeleton and answer under its own name (build/exercises.c).
+# link every skeleton and answer under its own name (build/exercises.c). A
+# FILE anywhere sees its lesson's headers (lesson 09's textures.h).
 STUDENT   = -DTRISTEP_NARRATE -include exercise/student.h
 EX_LESSON = $(filter lessons/$(LESSON)-%,$(wildcard lessons/[0-9][0-9]-*))
 FILE     ?= $(EX_LESSON)/exercise.c
@@ -178,7 +180,7 @@ $(B)/mutations/%.c: tests/mutations/%.patch $$(call mut_answer,$$*) | $(FIRST)
 	@mkdir -p $(@D) && patch --batch --quiet --no-backup-if-mismatch -r - -o $@ $(call mut_answer,$*) < $< >/dev/null \
 	  || { rm -f $@; echo "$<: does not apply to $(call mut_answer,$*)"; exit 1; }
 $(B)/mutations/%.o: $(B)/mutations/%.c | $(FIRST)
-	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
+	@$(CC_ALL) $(MUT_WARN) $(STUDENT) -I$(dir $(call mut_answer,$*)) -Dexercise_rasterize=$(call mut_fn,$*) -Dexercise_clip=$(call mut_fn,$*)_clip -c $< -o $@
 $(B)/mutations.c: Makefile $(MUTATIONS:%=tests/mutations/%.patch) $(MUTATIONS:%=$(B)/mutations/%.c) | $(FIRST)
 	@printf '#include "exercise/exercise.h"\nstruct poly;\nstruct plane;\n' > $@
 	@for m in $(MUTATIONS); do f=mutation_$$(echo $$m | tr - _); printf 'void %s(const struct tri_setup *, const struct raster_params *, struct target *, struct trace *);\n' $$f; \
@@ -193,7 +195,7 @@ $(B)/obj/mutations.o: $(B)/mutations.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
-	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -c $(FILE) -o $@
+	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
@@ -212,7 +214,7 @@ grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/lib
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
 	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
 	@mkdir -p $(dir $(CSV)) && GRADE_LESSON=$(LESSON) GRADE_DIR='$(DIR)' GRADE_OUT='$(OUT)' \
-	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT)' GRADE_LD='$(LD_ALL)' \
+	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT) -I$(EX_LESSON)' GRADE_LD='$(LD_ALL)' \
 	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
 	  GRADE_LIBS='$(LIBS)' sh src/exercise/grade.sh
 

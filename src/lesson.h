@@ -16,6 +16,8 @@
 /* How many parameters of its own a lesson may have (rows of its table). */
 #define LESSON_PARAMS_MAX 4
 
+struct run_place;
+
 /* Settings a run may change without changing the algorithm: what every
  * lesson's run reads, and the values of the lesson's own parameters. */
 struct raster_params {
@@ -25,29 +27,14 @@ struct raster_params {
     /* the lesson's own parameters, knob[i] the value of row i of its table
      * (struct lesson_param, PARAM_OWN rows); 0 = the lesson's default */
     int knob[LESSON_PARAMS_MAX];
-    /* The narrated replay of a scene-level lesson (lesson 07) runs one
-     * triangle inside one tile at a time: tile > 0 restricts `rasterize` to
-     * tile number tile - 1 (row-major, 64 x 64), and these say where that
-     * unit stands, for the narration. tile == 0: the whole target. */
-    int tile;
-    int bin_size, bin_entry, thread;
-    /* ... and the whole narrated order, for the explorer's drawings (NULL
-     * outside a replay of such a lesson) */
-    const struct lesson_unit *units;
-    int nunits;
-    /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
-     * of a world triangle from it before rasterizing its first screen triangle */
-    const struct scene *scene;
+    /* where the triangle stands in the run that draws it (struct
+     * run_place), which every driver hands over, or NULL: a triangle drawn
+     * alone. One pointer for every lesson, whatever a lesson reads of it */
+    const struct run_place *at;
     /* the image texture of the triangle being drawn (scene_texture of its
      * `texture` number), or NULL: set by the drivers per triangle; a lesson
      * without .texturing draws in the vertex colour and never reads it */
     const struct texture *texture;
-    /* For the explorer's drawings and watch only (NULL in every run): the
-     * last event the current unit told at each line of the pseudo-code up
-     * to the step shown, told[line] (.kind TRACE_KIND_COUNT: none yet), so
-     * that a step can be shown with the steps before it (lesson 09: a
-     * pixel's filter with its quad's derivatives). */
-    const struct trace_event *told;
 };
 
 /* One unit of a scene-level lesson's narrated run: triangle `tri` of the
@@ -57,6 +44,31 @@ struct lesson_unit {
     uint32_t tri;
     int32_t tile, bin_size, bin_entry, thread;
 };
+
+/* Where the triangle being drawn stands in its run, handed over by the
+ * driver (the replay, the programs, the checks) for a lesson that tells of
+ * more than its triangle: lesson 06 narrates a world triangle's front end
+ * from the scene (and its depth exhibits read the camera's planes), lesson
+ * 07 draws and narrates one unit of its narrated order. */
+struct run_place {
+    const struct scene *scene;          /* the scene being drawn, or NULL */
+    /* in the narrated replay of a scene-level lesson: the unit being drawn,
+     * and the whole order (for the explorer's drawings); NULL outside one */
+    const struct lesson_unit *unit, *units;
+    int nunits;
+    /* in the explorer's drawings and watch only (NULL in every run): the
+     * last event the unit told at each line of the pseudo-code up to the
+     * step shown, told[line] (.kind TRACE_KIND_COUNT: none yet), so that a
+     * step can be shown with the steps before it (lesson 09: a pixel's
+     * filter with its quad's derivatives) */
+    const struct trace_event *told;
+};
+
+/* The scene of the run p draws in, or NULL. */
+static inline const struct scene *drawn_scene(const struct raster_params *p)
+{
+    return p->at ? p->at->scene : NULL;
+}
 
 /* The units of variant v's narrated run in their order: writes at most
  * `cap` of them to out (NULL when cap is 0) and returns how many there are,
@@ -191,6 +203,19 @@ struct lesson_exercise {
      * checks, each scene projected by the lesson's front end for the exact
      * picture and by the front end around the student's clipper for theirs */
     bool clip;
+    /* the student writes parts of lesson 09's sampler, run inside the
+     * lesson's own rasterizer: the check adds textured scenes (texels
+     * magnified and minified, both wraps, a texture that is not square,
+     * grazing floors, tiny triangles), and the exact picture is the
+     * lesson's own (variants[0], held to the independent reference by its
+     * tests) rather than the shared rule's */
+    bool textures;
+    /* ... and the pseudo-code line whose TRACE_STEP narrates a quad's level
+     * of detail (0: none): aux[0..3] du/dx, dv/dx, du/dy, dv/dy in level-0
+     * texels per pixel, aux[4] rho, aux[5] the lambda the code chose, flags
+     * TRACE_INSIDE unless beyond the horizon. The check holds that lambda to
+     * log2(rho) of those derivatives, quad by quad */
+    int lod_line;
 };
 
 struct lesson {

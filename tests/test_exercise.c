@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L   /* open_memstream, mkdtemp */
 
 #include <criterion/criterion.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,6 +25,7 @@
 #include <unistd.h>
 
 #include "exercise/exercise.h"
+#include "exercise/scenes.h"
 #include "explore/explorer.h"
 #include "shade/shade.h"
 #include "front/front.h"   /* front_scene */
@@ -203,6 +205,13 @@ Test(exercise, any_lessons_check_accepts_a_whole_rasterizer)
              * rasterizer of one sample, at the first scene */
             cr_expect_not(run.ok, "%s accepts a one-sample rasterizer", l->id);
             cr_expect_str_eq(run.r.failed, "single triangle", "%s", run.report);
+        } else if (l->exercise.textures) {
+            /* lesson 09 draws image textures: a rasterizer that draws the
+             * vertex colour alone passes every untextured check and fails
+             * at the first textured one (the lesson's own algorithm, a
+             * whole rasterizer too, passes: above) */
+            cr_expect_not(run.ok, "%s accepts a rasterizer that draws no image texture", l->id);
+            cr_expect_str_eq(run.r.failed, "texels magnified", "%s", run.report);
         } else {
             cr_expect(run.ok, "%s rejects a correct rasterizer written for another lesson:\n%s", l->id,
                       run.report);
@@ -280,13 +289,17 @@ static const struct {
     /* lesson 08's check draws at 4 samples first: the quarter points are
      * not the standard pattern's samples */
     { "08", "grid", false, "single triangle" },
-    /* lesson 09's variants differ from its algorithm in textured pixels
-     * only: a check of untextured scenes passes them (a texture check,
-     * when the lesson's exercise has one, names their mistakes) */
-    { "09", "no-mipmaps", false, NULL },
-    { "09", "affine", false, NULL },
-    { "09", "fine-lod", false, NULL },
-    { "09", "analytic-lod", false, NULL },
+    /* lesson 09, against the lesson's own picture: level 0 alone blurs
+     * nothing where the minified scenes need a coarser level; (s, t) linear
+     * in the screen moves texels on the first triangle whose depths differ;
+     * each pixel's own derivatives choose other levels than its quad's
+     * where the level of detail changes fastest, on the grazing floors (the
+     * per-pixel level of detail a student might write), and the analytic
+     * ones on the first receding triangle minified */
+    { "09", "no-mipmaps", false, "texels minified" },
+    { "09", "affine", false, "texels magnified" },
+    { "09", "fine-lod", false, "grazing floors and walls" },
+    { "09", "analytic-lod", false, "a texture that is not square" },
 };
 
 Test(exercise, every_exhibit_fails_the_check_that_names_its_mistake)
@@ -466,6 +479,42 @@ Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
     cr_expect_gt(ex.missing, 0, "the diff marks the pixels the skeleton leaves out");
     explorer_free(&ex);
     scene_free(&s);
+}
+
+/* Lesson 09's textured scenes: every triangle under an image texture, and
+ * each scene written as a counterexample is written reads back to the same
+ * triangles under the same textures (builtin:NAME, the same wrap). */
+Test(exercise, the_textured_scenes_are_textured_and_read_back)
+{
+    static const scene_gen gens[] = { gen_tex_magnify, gen_tex_wrap, gen_tex_nonsquare,
+                                      gen_tex_minify, gen_tex_floor, gen_tex_tiny };
+    int n = 0;
+    for (size_t g = 0; g < sizeof gens / sizeof gens[0]; g++)
+        for (int i = 0;; i++, n++) {
+            struct scene s, back;
+            char what[256], err[256];
+            if (!gens[g](i, &s, what, sizeof what))
+                break;
+            cr_expect_gt(s.ntris, 0, "%s", what);
+            char *text = NULL;
+            size_t len = 0;
+            FILE *f = open_memstream(&text, &len);
+            cr_assert(f && scene_write(&s, f));
+            fclose(f);
+            cr_assert(scene_parse(&back, "back.scene", text, len, err, sizeof err), "%s: %s", what, err);
+            cr_assert_eq(back.ntris, s.ntris, "%s", what);
+            for (int k = 0; k < s.ntris; k++) {
+                const struct texture *a = scene_texture(&s, s.tris[k].texture),
+                                     *b = scene_texture(&back, back.tris[k].texture);
+                cr_assert(a && b, "%s: triangle %d has no image texture", what, k + 1);
+                cr_expect_str_eq(a->name, b->name, "%s", what);
+                cr_expect_eq(a->wrap, b->wrap, "%s", what);
+            }
+            free(text);
+            scene_free(&back);
+            scene_free(&s);
+        }
+    cr_expect_geq(n, 25);
 }
 
 /* --- the counterexample in the explorer --------------------------------------- */
@@ -765,6 +814,22 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     cr_expect(strstr(log, "--file NAME") && strstr(log, "--check ") && strstr(log, "--check-scene FILE")
               && strstr(log, "--out DIR") && strstr(log, "--scene FILE"), "%s", log);
 
+    /* lesson 09: the student's stages inside the lesson's own rasterizer,
+     * its textured counterexample opened where the check says */
+    snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09 FILE=lessons/09-textures/answer.c", dir);
+    st = shell(cmd, &log);
+    cr_expect_eq(st, 0, "make check on lesson 09's answer:\n%s", log);
+    cr_expect_not_null(strstr(log, "all 12 checks pass"), "%s", log);
+    snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09", dir);
+    st = shell(cmd, &log);
+    cr_expect_neq(st, 0, "make check passes lesson 09's untouched skeleton:\n%s", log);
+    open = strstr(log, "make exercise LESSON=09 SCENE=");
+    cr_assert_not_null(open, "%s", log);
+    cr_assert_eq(sscanf(open, "make exercise LESSON=09 SCENE=%255s STEP=%llu", scene, &step), 2, "%s", open);
+    snprintf(cmd, sizeof cmd, "cd %s/t && build/exercise-09 --scene %s --step %llu --figure f.png && test -s f.png",
+             dir, scene, step);
+    cr_expect_eq(shell(cmd, &log), 0, "%s", log);
+
     /* the mistakes the lesson texts name: tests/mutations/, in-process (every_mistake_...) */
 
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
@@ -971,6 +1036,52 @@ Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
     cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
                  "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
     cr_expect_gt(ex.wrong_colour, 0);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+}
+
+/* Lesson 09: a level of detail that is not log2(rho) is named at its quad,
+ * with the derivatives, rho and both lambdas, and the printed command opens
+ * the explorer on the step that narrates that quad's level of detail, the
+ * student's lambda on show; a texel read outside its level is named with
+ * its level and size, and opens on a pixel the diff marks. */
+Test(exercise, lesson09_names_the_quad_and_the_texel)
+{
+    const struct lesson *l = lesson_nn("09");
+    cr_assert(l && l->exercise.textures && l->exercise.lod_line > 0);
+    const struct exercise_mutation *m = mutation("09-log2-rho-squared");
+    struct run run;
+    check(&run, l, m->fn, NULL);
+    cr_assert_not(run.ok);
+    cr_expect_not_null(strstr(run.report, "and lambda = log2(rho) = "), "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "your level of detail gave lambda = "), "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "at the quad's level of detail (step"), "%s", run.report);
+    struct scene s;
+    struct explorer ex;
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_STEP);
+    cr_expect_eq(ex.last.line, l->exercise.lod_line);
+    cr_expect_eq(ex.last.x, run.r.x);
+    cr_expect_eq(ex.last.y, run.r.y);
+    /* the lambda narrated there is the code's own: log2 of rho squared */
+    cr_expect_float_eq(ex.last.aux[5], 2 * log2f(ex.last.aux[4]), 1e-3, "%g, rho %g", ex.last.aux[5],
+                       ex.last.aux[4]);
+    explorer_free(&ex);
+    scene_free(&s);
+    run_free(&run);
+
+    m = mutation("09-wrap-c-mod");
+    check(&run, l, m->fn, NULL);
+    cr_assert_not(run.ok);
+    cr_expect_not_null(strstr(run.report, "of level 0, outside its 2 x 2 texels"), "%s", run.report);
+    open_counterexample(&ex, &s, l, m->fn, NULL, &run, run.r.step);
+    cr_expect(ex.has_last);
+    cr_expect_eq(ex.last.kind, TRACE_PIXEL_WRITE);
+    cr_assert_not_null(ex.diff);
+    cr_expect_eq(ex.diff[(size_t)run.r.y * (size_t)s.w + (size_t)run.r.x], EXHIBIT_COLOUR,
+                 "pixel (%d, %d) not marked at step %llu", run.r.x, run.r.y, (unsigned long long)run.r.step);
     explorer_free(&ex);
     scene_free(&s);
     run_free(&run);

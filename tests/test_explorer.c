@@ -116,7 +116,8 @@ static uint64_t run_frozen_with(const struct lesson *l, int variant, const struc
     const struct scene *s = as_drawn(l, variant, given, &own);
     cr_assert(target_init(fb, s->w, s->h, scene_background(s)));
     struct raster_params p = *params;
-    p.scene = s;
+    struct run_place at = { .scene = s };
+    p.at = &at;
     uint64_t done = 0;
     struct kinds local = { 0 };
     if (!k)
@@ -125,12 +126,11 @@ static uint64_t run_frozen_with(const struct lesson *l, int variant, const struc
     int nunits = units_of(l, variant, s, &p, &units);
     for (int i = 0; i < nunits; i++) {
         struct tri_setup t;
+        struct run_place unit = at;
         struct raster_params up = p;
-        if (units) {    /* the triangle inside its tile, as lesson.h says */
-            up.tile = units[i].tile + 1;
-            up.bin_size = units[i].bin_size;
-            up.bin_entry = units[i].bin_entry;
-            up.thread = units[i].thread;
+        if (units) {    /* the unit in its run, as replay_params hands it over */
+            unit.unit = &units[i], unit.units = units, unit.nunits = nunits;
+            up.at = &unit;
         }
         int tri = units ? (int)units[i].tri : i;
         up.texture = lesson_params_tri(&p, s, tri).texture;     /* as the drivers set it */
@@ -684,7 +684,7 @@ Test(explorer, agrees_with_headless_for_every_parameter_value, .timeout = 120)
                     struct target fb;
                     struct scene own;
                     const struct scene *hs = as_drawn(l, v, &s, &own);
-                    p.scene = hs;
+                    p.at = &(struct run_place){ .scene = hs };
                     if (l->narration_units)
                         run_frozen_with(l, v, &s, &p, UINT64_MAX, &fb, NULL);
                     else

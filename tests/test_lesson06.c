@@ -57,7 +57,7 @@ static const struct lesson_variant *variant(const char *name)
 static struct target render(const struct scene *s, const struct lesson_variant *v)
 {
     struct raster_params p = default_params();
-    p.scene = s;
+    p.at = &(struct run_place){ .scene = s };
     struct target fb;
     cr_assert(render_scene(s, v, &p, &fb));
     return fb;
@@ -117,7 +117,7 @@ Test(lesson06, the_front_end_is_told_before_the_rasterizer)
         const struct lesson_variant *v = &lesson_06.variants[0];
         struct scene s = load(names[k], v);
         struct raster_params p = default_params();
-        p.scene = &s;
+        p.at = &(struct run_place){ .scene = &s };
         struct target fb;
         cr_assert(target_init(&fb, s.w, s.h, 0));
         struct told told = { .world = -1, .from = s.world.from, .order_ok = true,
@@ -379,7 +379,7 @@ Test(lesson06, the_numbers_of_the_text)
     /* the t of the new vertices of the frustum figure (room, first triangle) */
     s = load("room", &lesson_06.variants[0]);
     struct raster_params p = default_params();
-    p.scene = &s;
+    p.at = &(struct run_place){ .scene = &s };
     struct target fb;
     cr_assert(target_init(&fb, s.w, s.h, 0));
     struct ts ts = { 0 };

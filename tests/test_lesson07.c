@@ -407,14 +407,14 @@ Test(lesson07, threaded_path_is_clean_under_threadsanitizer)
               "%s/tsan-tiles failed (status 0x%x)", test_build_dir(), status);
 }
 
-/* Unit i of the n units u, as replay_params hands it to `rasterize`. */
+/* Unit i of the n units u, as replay_params hands it to `rasterize`
+ * (where it stands in *at). */
 static struct raster_params unit_params(const struct raster_params *p, const struct lesson_unit *u,
-                                        long i, long n)
+                                        long i, long n, struct run_place *at)
 {
     struct raster_params up = *p;
-    up.tile = u[i].tile + 1;
-    up.bin_size = u[i].bin_size, up.bin_entry = u[i].bin_entry, up.thread = u[i].thread;
-    up.units = u, up.nunits = (int)n;
+    *at = (struct run_place){ .unit = &u[i], .units = u, .nunits = (int)n };
+    up.at = at;
     return up;
 }
 
@@ -435,7 +435,8 @@ static void draw_units(const char *name, const struct scene *s, int threads, str
     for (long i = 0; i < n; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[u[i].tri].v, s->w, s->h);
-        struct raster_params up = unit_params(&p, u, i, n);
+        struct run_place at;
+        struct raster_params up = unit_params(&p, u, i, n, &at);
         v->rasterize(&t, &up, fb, NULL);
     }
     free(u);
@@ -657,7 +658,8 @@ Test(lesson07, narrated_steps_write_the_fast_builds_pixels_tile_by_tile)
         cr_assert(next_entry && worker && last_tri);
         int writes = 0;
         for (long i = 0; i < n; i++) {
-            struct raster_params up = unit_params(&p, u, i, n);
+            struct run_place at;
+            struct raster_params up = unit_params(&p, u, i, n, &at);
             struct writes w = { 0, 0, -1, -1, 0, 0, { false } };
             int tile = u[i].tile;
             if (tile >= 0) {
@@ -771,7 +773,8 @@ Test(lesson07, every_pseudocode_line_is_lit)
             struct target fb;
             cr_assert(target_init(&fb, s.w, s.h, scene_background(&s)));
             for (long i = 0; i < n; i++) {
-                struct raster_params up = unit_params(&p, u, i, n);
+                struct run_place at;
+                struct raster_params up = unit_params(&p, u, i, n, &at);
                 struct tri_setup t;
                 tri_setup(&t, s.tris[u[i].tri].v, s.w, s.h);
                 struct trace tr = { .sink = on_write, .ctx = &w };

@@ -1,7 +1,7 @@
 /* test_lesson09.c - lesson 09 (texture mapping) against the independent
  * reference sampler (tests/texref.c, written from CONVENTIONS alone):
- * coverage exact and colours within 2 levels on random textured 2-D
- * scenes and the built-in 3-D ones, every filter, both wraps; the fast
+ * coverage exact and colours within 2 levels on random textured 2-D and
+ * 3-D scenes and the built-in 3-D ones, every filter, both wraps; the fast
  * twin draws the narrated lesson's bytes; helper pixels are evaluated and
  * never written; wrap of negative coordinates; the stages an exercise
  * swaps are the ones drawn. */
@@ -50,10 +50,34 @@ static void random_scene(struct scene *s, struct rng *r, int w, int h, int n, bo
     cr_assert(scene_parse(s, "random", text, at, err, sizeof err), "%s\n%s", err, text);
 }
 
-static struct raster_params params_for(const struct scene *s, enum tex_filter f, int max_aniso)
+/* A random 3-D scene: a camera at the origin looking down -z and n
+ * textured world triangles in front of it (some reaching behind the near
+ * plane, so the front end clips them, s and t with them); its screen
+ * triangles made. */
+static void random_scene3(struct scene *s, struct rng *r, int n, bool clamp)
+{
+    static char text[16384];
+    size_t at = (size_t)snprintf(text, sizeof text,
+                                 "size 64 48\ncamera 0 0 0  0 0 -1  0 1 0  60 0.5 100\ntexture builtin:%s %s\n",
+                                 textures[rng_int(r, 0, 3)], clamp ? "clamp" : "repeat");
+    for (int i = 0; i < n; i++) {
+        at += (size_t)snprintf(text + at, sizeof text - at, "tri3");
+        for (int k = 0; k < 3; k++)
+            at += (size_t)snprintf(text + at, sizeof text - at, "  %.6f %.6f %.6f  %.3f %.3f %.3f %.6f %.6f",
+                                   rng_range(r, -8, 8), rng_range(r, -6, 6), rng_range(r, -40, 1),
+                                   rng_range(r, 0.3, 1), rng_range(r, 0.3, 1), rng_range(r, 0.3, 1),
+                                   rng_range(r, -4, 4), rng_range(r, -4, 4));
+        at += (size_t)snprintf(text + at, sizeof text - at, "\n");
+        cr_assert_lt(at, sizeof text - 256);
+    }
+    char err[256];
+    cr_assert(scene_parse(s, "random3", text, at, err, sizeof err), "%s\n%s", err, text);
+    cr_assert(front_scene(s));
+}
+
+static struct raster_params params_for(enum tex_filter f, int max_aniso)
 {
     struct raster_params p = default_params();
-    p.scene = s;
     p.knob[P_FILTER] = f;
     p.knob[P_MAX_ANISO] = max_aniso;
     return p;
@@ -77,7 +101,7 @@ static const enum texref_filter as_texref[] = {
 static void expect_reference(const struct scene *s, const struct lesson_variant *v, enum tex_filter f,
                              int max_aniso, const char *what)
 {
-    struct raster_params p = params_for(s, f, max_aniso);
+    struct raster_params p = params_for(f, max_aniso);
     struct target fb;
     draw(&fb, s, v, &p);
     struct texref_target ref;
@@ -96,7 +120,7 @@ static void expect_reference(const struct scene *s, const struct lesson_variant 
 Test(lesson09, random_2d_scenes_match_the_reference_every_filter_both_wraps, .timeout = 60)
 {
     struct rng r = rng_for(0x0909);
-    for (int c = 0; c < 8; c++) {
+    for (int c = 0; c < 12; c++) {
         struct scene s;
         random_scene(&s, &r, 48, 40, 10, c & 1);
         char what[64];
@@ -109,6 +133,26 @@ Test(lesson09, random_2d_scenes_match_the_reference_every_filter_both_wraps, .ti
         }
         scene_free(&s);
     }
+}
+
+Test(lesson09, random_3d_scenes_match_the_reference_every_filter_both_wraps, .timeout = 60)
+{
+    struct rng r = rng_for(0x0903);
+    int drawn = 0;
+    for (int c = 0; c < 8; c++) {
+        struct scene s;
+        random_scene3(&s, &r, 8, c & 1);
+        drawn += s.ntris;
+        char what[64];
+        snprintf(what, sizeof what, "random 3-D scene %d (seed %#llx, %s)", c,
+                 (unsigned long long)test_seed(), c & 1 ? "clamp" : "repeat");
+        for (int f = FILTER_NEAREST; f <= FILTER_ANISO; f++) {
+            expect_reference(&s, &lesson_09.variants[0], f, 16, what);
+            expect_reference(&s, &lesson_09_fast.variants[1], f, f == FILTER_ANISO ? 1 + c : 16, what);
+        }
+        scene_free(&s);
+    }
+    cr_expect_gt(drawn, 40, "%d screen triangles", drawn);
 }
 
 Test(lesson09, builtin_3d_scenes_match_the_reference_every_filter, .timeout = 60)
@@ -148,7 +192,7 @@ Test(lesson09, fast_twin_draws_the_narrated_bytes, .timeout = 60)
             random_scene(&s, &r, 64, 48, 12, c & 1);
         }
         for (int f = FILTER_NEAREST; f <= FILTER_ANISO; f++) {
-            struct raster_params p = params_for(&s, f, 16);
+            struct raster_params p = params_for(f, 16);
             p.checker = s.checker;
             struct target a, b;
             draw(&a, &s, &lesson_09.variants[0], &p);
@@ -174,7 +218,7 @@ Test(lesson09, helper_pixels_are_evaluated_never_written, .timeout = 60)
     char err[256];
     cr_assert(scene_builtin(&s, "texture-tiny", err, sizeof err), "%s", err);
     cr_assert(front_scene(&s));
-    struct raster_params p = params_for(&s, FILTER_TRILINEAR, 16);
+    struct raster_params p = params_for(FILTER_TRILINEAR, 16);
     long helpers = 0, covered = 0, writes = 0;
     size_t n = (size_t)s.w * s.h;
     uint8_t *ref = malloc(n);
@@ -273,7 +317,7 @@ Test(lesson09, swapped_stages_are_the_ones_drawn)
     cr_assert(scene_parse(&s, "t", text, strlen(text), err, sizeof err), "%s", err);
     struct tex_stages st = tex_stages_lesson;
     st.bilinear = grey_tap;
-    struct raster_params p = params_for(&s, FILTER_TRILINEAR, 16);
+    struct raster_params p = params_for(FILTER_TRILINEAR, 16);
     p.texture = scene_texture(&s, 1);
     struct target fb;
     cr_assert(target_init(&fb, 16, 16, 0));

@@ -199,8 +199,9 @@ static void check_taps(const struct scene *s, enum tex_filter f, int per_tri, st
             if (!(ex.last.kind == TRACE_STEP && ex.last.line == L_FILTER))
                 continue;
             k++;
-            struct raster_params p = replay_params(&ex.replay, ex.cur);
-            p.told = ex.told;
+            struct run_place at;
+            struct raster_params p = replay_params(&ex.replay, ex.cur, &at);
+            at.told = ex.told;
             int x, y;
             double rgb[3];
             cr_assert(textures_explorer_taps(&p, &x, &y, rgb), "step %llu: no taps", (unsigned long long)step);

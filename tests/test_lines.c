@@ -44,7 +44,7 @@ static void step_through(const struct lesson *l, const struct lesson_variant *v,
                          struct lit *lit)
 {
     struct raster_params p = default_params();
-    p.scene = s;
+    p.at = &(struct run_place){ .scene = s };
     if (lesson_param(l, "samples", NULL))
         p.samples = lesson_param(l, "samples", NULL)->def;
     struct replay r;
@@ -56,7 +56,8 @@ static void step_through(const struct lesson *l, const struct lesson_variant *v,
     for (int i = 0; i < r.ntris; i++) {
         struct tri_setup t;
         replay_setup(&r, i, &t);
-        struct raster_params pi = replay_params(&r, i);
+        struct run_place at;
+        struct raster_params pi = replay_params(&r, i, &at);
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         v->rasterize(&t, &pi, &fb, &tr);
     }

@@ -450,7 +450,7 @@ static double explorer_wrong_colour(const struct lesson *l, struct scene *s, con
                                     const struct lesson_variant *v)
 {
     struct raster_params prm = default_params();
-    prm.scene = s;
+    prm.at = &(struct run_place){ .scene = s };
     struct explorer ex;
     char err[256];
     struct explorer_desc d = { .lesson = l, .scene = s, .scene_name = name, .variant = v,
@@ -500,7 +500,7 @@ static double l06_room_not_once(const char *variant, bool missing_only)
     const struct lesson_variant *v;
     struct scene s = load06("room", variant, &v);
     struct raster_params p = default_params();
-    p.scene = &s;
+    p.at = &(struct run_place){ .scene = &s };
     struct target fb;
     cr_assert(render_scene(&s, v, &p, &fb));
     long n = 0;

@@ -123,7 +123,7 @@ static void rasterize_05(const struct tri_setup *t, const struct raster_params *
 static void rasterize(const struct tri_setup *t, const struct raster_params *p,
                       struct target *fb, struct trace *tr)
 {
-    const struct scene *s = p->scene;
+    const struct scene *s = drawn_scene(p);
     bool told = NARRATING && tr && s && s->world.camera_line && s->world.from
                 && tr->tri < (uint32_t)s->ntris;
     int i = told ? (int)tr->tri : 0, w = told ? s->world.from[i] : 0;
@@ -211,8 +211,9 @@ static void rasterize_storing(const struct tri_setup *t, const struct raster_par
     if (t->empty)
         return;
     double n = 1, f = 2;        /* a 2-D scene has no camera: any n < f will do */
-    if (p->scene && p->scene->world.camera_line)
-        n = p->scene->world.cam.near, f = p->scene->world.cam.far;
+    const struct scene *s = drawn_scene(p);
+    if (s && s->world.camera_line)
+        n = s->world.cam.near, f = s->world.cam.far;
     for (int y = t->miny; y <= t->maxy; y++)
         for (int x = t->minx; x <= t->maxx; x++) {
             int64_t e[3];

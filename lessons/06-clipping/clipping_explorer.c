@@ -95,7 +95,7 @@ static void collect(void *ctx, const struct trace_event *ev)
  * collect(). */
 static bool stage(const struct raster_params *p, int w, struct staged *st)
 {
-    const struct scene *s = p->scene;
+    const struct scene *s = drawn_scene(p);
     if (!s || !s->world.camera_line || w < 0 || w >= s->world.ntris)
         return false;
     memset(st, 0, sizeof *st);
@@ -396,20 +396,21 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     const struct raster_params *p, const struct trace_event *last)
 {
     bool top = strcmp(c->view, "frustum") == 0, screen = strcmp(c->view, "screen") == 0;
-    if ((!top && !screen) || !last || !p->scene)
+    const struct scene *s = drawn_scene(p);
+    if ((!top && !screen) || !last || !s)
         return;
     /* the world triangle told (a front-end step), or the focus's */
-    const struct world *wd = &p->scene->world;
+    const struct world *wd = &s->world;
     int w = last->kind == TRACE_FRONT ? last->part
-            : wd->from && last->tri < (uint32_t)p->scene->ntris ? wd->from[last->tri] : -1;
+            : wd->from && last->tri < (uint32_t)s->ntris ? wd->from[last->tri] : -1;
     struct staged st;
     if (!stage(p, w, &st))
         return;
     (void)t;
     if (top)
-        draw_frustum(c, &st, p->scene->w, p->scene->h, last);
+        draw_frustum(c, &st, s->w, s->h, last);
     else
-        draw_screen(c, &st, p->scene->w, p->scene->h);
+        draw_screen(c, &st, s->w, s->h);
 }
 
 /* --- views ---------------------------------------------------------------------- */
@@ -495,7 +496,8 @@ static void watch(const struct tri_setup *t, const struct raster_params *p,
     const float *a = ev->aux;
     switch ((enum front_step)ev->klass) {
     case FRONT_WORLD:
-        snprintf(buf, n, "world triangle %d of %d\n", ev->part + 1, p->scene ? p->scene->world.ntris : 0);
+        snprintf(buf, n, "world triangle %d of %d\n", ev->part + 1,
+                 drawn_scene(p) ? drawn_scene(p)->world.ntris : 0);
         break;
     case FRONT_VIEW:
         snprintf(buf, n, "vertex %c in view space:\nx_v %.5g, y_v %.5g, d %.5g%s\n", 'A' + ev->x,
@@ -535,7 +537,7 @@ static void watch(const struct tri_setup *t, const struct raster_params *p,
 static void constants(const struct tri_setup *t, const struct raster_params *p, char *buf, size_t n)
 {
     (void)t;
-    const struct scene *s = p->scene;
+    const struct scene *s = drawn_scene(p);
     if (!s || !s->world.camera_line) {
         snprintf(buf, n, "a 2-D scene: no front end");
         return;

@@ -133,7 +133,7 @@ static const struct share_out *bin_share(struct run *r, int c, int worker)
         if ((i - out->lo) % SHARE_PROGRESS == SHARE_PROGRESS - 1)
             atomic_fetch_add_explicit(&r->shares[c].progress, 1, memory_order_relaxed);
         struct tri *rec = &out->records[i - out->lo];
-        if (tri_set_up(rec, t, r->p->checker, r->tr)
+        if ((r->o.pass ? r->o.pass->set_up(rec, t, r->p, r->tr) : tri_set_up(rec, t, r->p->checker, r->tr))
             && !bin_triangle(rec, (uint32_t)(i - out->lo), &r->g, out->bins, a, r->o.corners, r->tr))
             goto failed;
     }
@@ -179,6 +179,19 @@ static int share_at(const struct run *r, int k, int worker)
     return r->o.unordered ? (k + worker * SHARES_PER_THREAD) % r->nshares : k;
 }
 
+/* Triangle i of the scene (or the one triangle) drawn by another lesson's
+ * pass: set up again from the scene, as that lesson sets it up. */
+static void draw_pass(const struct run *r, int i, void *buf, struct rect rc, struct trace *tr)
+{
+    struct tri_setup own;
+    const struct tri_setup *t = r->one;
+    if (r->s) {
+        tri_setup_bits(&own, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
+        t = &own;
+    }
+    r->o.pass->draw(buf, t, rc, r->p, tr);
+}
+
 /* Draw one tile: load it into the tile buffer, every share's bin in
  * order, store it once. */
 static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
@@ -214,8 +227,14 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1, .klass = BLOCK_CLASS_COUNT,
                 .aux = { TILE, 0, (float)whole, 0, (float)worker });
     bool pixels = !(NARRATING && r->o.order_only);
+    const struct tile_pass *pass = r->o.pass;
     struct dst d = { 0 };
-    if (pixels)
+    void *pass_buf = NULL;
+    if (pixels && pass && !(pass_buf = pass->load(worker, r->fb, rc, part))) {
+        atomic_store(&r->failed, true);
+        return;
+    }
+    if (pixels && !pass)
         d = r->o.tile_buffers ? tile_load(buf, r->fb, rc, part) : target_dst(r->fb, rc);
     int entry = first;
     for (int k = 0; k < r->nshares && !frozen(tr); k++) {
@@ -229,14 +248,16 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                     __builtin_prefetch(ahead + CACHE_LINE);
                     __builtin_prefetch(ahead + sizeof *t - 1);
                 }
-                bool full = b->entry[e] & 1;
+                bool full = (b->entry[e] & 1) && !pass;
                 if (NARRATING && tr && r->s)
                     tr->tri = (uint32_t)out->lo + (b->entry[e] >> 1);
                 NARRATE(tr, .kind = TRACE_BLOCK, .line = full ? L_FULL_TILE : L_BIN_LOOP,
                         .x = rc.x0, .y = rc.y0, .x1 = rc.x0 + rc.w - 1, .y1 = rc.y0 + rc.h - 1,
                         .klass = full ? BLOCK_FULL : BLOCK_CLASS_COUNT,
                         .aux = { TILE, 0, (float)whole, (float)entry, (float)worker });
-                if (pixels)
+                if (pixels && pass)
+                    draw_pass(r, out->lo + (int)(b->entry[e] >> 1), pass_buf, rc, tr);
+                else if (pixels)
                     r->draw(t, rc, full, &d, tr, r->o.corners == CORNERS_FOUR);
             }
     }
@@ -246,7 +267,9 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 .aux = { TILE, 0, (float)whole, (float)(whole - 1), (float)worker });
     /* stored even when the narration stops inside the tile: the explorer
      * shows the tile buffer as it stands */
-    if (r->o.tile_buffers && pixels)
+    if (pixels && pass)
+        pass->store(pass_buf, r->fb, rc, part);
+    else if (r->o.tile_buffers && pixels)
         tile_store(buf, r->fb, rc, part);
 }
 
@@ -396,15 +419,15 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
 
 /* One triangle through the same stages, on the calling thread: a scene of
  * one triangle, set up, binned, every tile of its bin drawn in the tile
- * buffer and stored. A step of the narrated replay (tiles.c) is one part
- * of the scene's run: the triangle's set-up and binning (p->tile == 0,
- * p->bin_entry < 0), or its entry in tile p->tile - 1's bin, drawn by
- * worker p->thread (the triangle set up and binned again, silently, into
- * a bin of its own). */
+ * buffer and stored. A step of the narrated replay (tiles.c) is one unit
+ * of the scene's run (p->at->unit): the triangle's set-up and binning
+ * (tile -1), or its entry in a tile's bin, drawn by the unit's worker (the
+ * triangle set up and binned again, silently, into a bin of its own). */
 bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
                        struct target *fb, struct trace *tr, struct tiles_options o)
 {
-    bool bin_step = p->tile == 0 && p->bin_entry < 0, tile_step = p->tile > 0;
+    const struct lesson_unit *u = p->at ? p->at->unit : NULL;
+    bool bin_step = u && u->tile < 0, tile_step = u && u->tile >= 0;
     pthread_mutex_lock(&frame_lock);
     bool ok = keep_room(1, 1, o.tile_buffers);
     struct run r;
@@ -412,17 +435,19 @@ bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p
     r.one = ts;
     const struct share_out *out = ok ? bin_share(&r, 0, 0) : NULL;
     ok = ok && out;
-    if (ok && !ts->empty && !bin_step) {
+    /* (a pass decides from its own record: samples may be covered where no
+     * pixel centre is) */
+    if (ok && (o.pass || !ts->empty) && !bin_step) {
         int worker = 0;
         if (tile_step) {
             r.tr = tr;
-            r.first_entry = p->bin_entry, r.bin_size = p->bin_size;
-            worker = p->thread;
+            r.first_entry = u->bin_entry, r.bin_size = u->bin_size;
+            worker = u->thread;
         }
         const struct tri *t = &out->records[0];
         for (int ty = t->miny / TILE; ty <= t->maxy / TILE; ty++)
             for (int tx = t->minx / TILE; tx <= t->maxx / TILE; tx++)
-                if (!tile_step || ty * r.g.nx + tx == p->tile - 1)
+                if (!tile_step || ty * r.g.nx + tx == u->tile)
                     draw_tile(&r, ty * r.g.nx + tx, worker, kept.mem[0].buf);
     }
     pthread_mutex_unlock(&frame_lock);

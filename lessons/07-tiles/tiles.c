@@ -175,22 +175,28 @@ static void record(void *ctx, const struct trace_event *ev)
     rec->n++;
 }
 
-static long units_of(const struct scene *s, const struct lesson_variant *v,
-                     const struct raster_params *p, struct lesson_unit *out, long cap, bool pixels)
+long tiles_units(const struct scene *s, const struct raster_params *p, struct tiles_options o,
+                 struct lesson_unit *out, long cap)
 {
-    if (v < variants || v >= variants + V_COUNT)
-        return -1;
     struct target fb;
     if (!target_init(&fb, s->w, s->h, scene_background(s)))
         return -1;
     struct recorder rec = { out, cap, 0, grid_of(s->w, s->h).nx };
     struct trace tr = { .sink = record, .ctx = &rec };
     trace_begin(&tr, 0, TRACE_UNLIMITED);
-    struct tiles_options o = options[v - variants];
-    o.order_only = !pixels;
     bool ok = draw_scene(s, p, &fb, o, &tr);
     target_free(&fb);
     return ok ? rec.n : -1;
+}
+
+static long units_of(const struct scene *s, const struct lesson_variant *v,
+                     const struct raster_params *p, struct lesson_unit *out, long cap, bool pixels)
+{
+    if (v < variants || v >= variants + V_COUNT)
+        return -1;
+    struct tiles_options o = options[v - variants];
+    o.order_only = !pixels;
+    return tiles_units(s, p, o, out, cap);
 }
 
 /* The run records its order without drawing its pixels: the order does

@@ -51,6 +51,7 @@
 #define rasterize_one_tri rasterize_one_tri_fast
 #define default_threads default_threads_fast
 #define tiles_drawn_units tiles_drawn_units_fast
+#define tiles_units tiles_units_fast
 #endif
 
 /* Lines of the pseudo-code (tiles.c), which the narration lights. */
@@ -266,6 +267,21 @@ draw_fn pick_twin(enum twin w);
 
 /* --- the whole scene (threads.c) ----------------------------------------- */
 
+/* Another lesson's pixels on these bins, shares and workers: lesson 08's
+ * tiled twin sets up and draws its samples in tile buffers of its own. */
+struct tile_pass {
+    /* the record that bins triangle t: its box and edges reach every pixel a
+     * sample of which may be covered (never FULL); false: nothing covered */
+    bool (*set_up)(struct tri *r, const struct tri_setup *t, const struct raster_params *p,
+                   struct trace *tr);
+    /* worker `worker`'s tile buffer, holding the part `part` of tile r (NULL:
+     * out of memory), triangle t drawn in it, the part stored */
+    void *(*load)(int worker, struct target *fb, struct rect r, struct rect part);
+    void (*draw)(void *buf, const struct tri_setup *t, struct rect r, const struct raster_params *p,
+                 struct trace *tr);
+    void (*store)(void *buf, struct target *fb, struct rect r, struct rect part);
+};
+
 struct tiles_options {
     enum twin twin;
     int threads;                /* 0: --threads, else one per core */
@@ -277,6 +293,7 @@ struct tiles_options {
      * tiles, each entry of a bin narrated where it would be drawn, but no
      * pixel drawn (the order of the explorer's steps, tiles.c) */
     bool order_only;
+    const struct tile_pass *pass;   /* NULL: this lesson's pixels */
 };
 
 /* The scene is cut into a few shares per worker (more shares than workers:
@@ -293,8 +310,12 @@ bool draw_scene(const struct scene *s, const struct raster_params *p, struct tar
                 struct tiles_options o, struct trace *tr);
 bool rasterize_one_tri(const struct tri_setup *ts, const struct raster_params *p,
                        struct target *fb, struct trace *tr, struct tiles_options o);
-/* tiles.c: lesson_07.narration_units as a run that draws every pixel
+/* tiles.c: the units of a narrated run with options o (lesson_unit: each
+ * triangle's set-up, then each entry of a bin drawn), or -1 when out of
+ * memory; lesson_07.narration_units as a run that draws every pixel
  * records them (the tests hold the lesson's list to it) */
+long tiles_units(const struct scene *s, const struct raster_params *p, struct tiles_options o,
+                 struct lesson_unit *out, long cap);
 long tiles_drawn_units(const struct scene *s, const struct lesson_variant *v,
                        const struct raster_params *p, struct lesson_unit *out, long cap);
 

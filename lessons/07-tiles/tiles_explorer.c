@@ -50,17 +50,18 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
     if (last && last->kind == TRACE_BLOCK && last->klass < BLOCK_CLASS_COUNT && t->area2 > 0
         && (tiles || !strcmp(c->view, "blocks") || !strcmp(c->view, "coverage")))
         corners(c, t, last->x, last->y, last->x1, last->y1);
-    if (!tiles || !p->units || t->target_w <= 0)
+    const struct run_place *at = p->at;
+    if (!tiles || !at || !at->units || t->target_w <= 0)
         return;
 
     /* bin sizes and workers per tile, from the run's steps: each tile's
      * first entry drawn says both */
     int nx = (t->target_w + TILE - 1) / TILE, ny = (t->target_h + TILE - 1) / TILE;
     int most = 1;
-    for (int u = 0; u < p->nunits; u++)
-        most = p->units[u].bin_size > most ? p->units[u].bin_size : most;
-    for (int u = 0; u < p->nunits; u++) {
-        const struct lesson_unit *un = &p->units[u];
+    for (int u = 0; u < at->nunits; u++)
+        most = at->units[u].bin_size > most ? at->units[u].bin_size : most;
+    for (int u = 0; u < at->nunits; u++) {
+        const struct lesson_unit *un = &at->units[u];
         if (un->tile < 0 || un->bin_entry != 0)
             continue;
         double x0 = (un->tile % nx) * TILE, y0 = (double)(un->tile / nx) * TILE;
@@ -79,20 +80,20 @@ static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
 
     /* the current tile and its bin, triangles numbered as the scene
      * numbers them from 1 */
-    if (p->tile <= 0)
+    if (!at->unit || at->unit->tile < 0)
         return;
-    int tile = p->tile - 1;
+    int tile = at->unit->tile;
     double x0 = (tile % nx) * TILE, y0 = (double)(tile / nx) * TILE;
     double x1 = x0 + TILE < t->target_w ? x0 + TILE : t->target_w;
     double y1 = y0 + TILE < t->target_h ? y0 + TILE : t->target_h;
     rect(c, x0, y0, x1, y1, (struct pen){ .stroke = INK_MARK, .width = 2.5, .dashed = true });
     char list[256];
-    int at = snprintf(list, sizeof list, "tile %d's bin, triangles:", tile);
-    for (int u = 0; u < p->nunits && at < (int)sizeof list - 16; u++)
-        if (p->units[u].tile == tile)
-            at += snprintf(list + at, sizeof list - (size_t)at,
-                           p->units[u].bin_entry == p->bin_entry ? " [%u]" : " %u",
-                           p->units[u].tri + 1);
+    int end = snprintf(list, sizeof list, "tile %d's bin, triangles:", tile);
+    for (int u = 0; u < at->nunits && end < (int)sizeof list - 16; u++)
+        if (at->units[u].tile == tile)
+            end += snprintf(list + end, sizeof list - (size_t)end,
+                            at->units[u].bin_entry == at->unit->bin_entry ? " [%u]" : " %u",
+                            at->units[u].tri + 1);
     c->label(c, x0 + 1, y1 - 14 * c->unit * 1.4, list, 12, INK_TEXT);
 }
 
@@ -120,16 +121,17 @@ static void watch(const struct tri_setup *t, const struct raster_params *p,
                   const struct trace_event *ev, char *buf, size_t n)
 {
     (void)t, (void)ev;
-    if (!p->units) {
+    const struct lesson_unit *u = p->at ? p->at->unit : NULL;
+    if (!u) {
         buf[0] = '\0';
         return;
     }
-    if (p->tile <= 0) {
+    if (u->tile < 0) {
         snprintf(buf, n, "set-up and binning");
         return;
     }
-    snprintf(buf, n, "tile = %d\nbin entry = %d of %d\ndrawn by worker %d", p->tile - 1,
-             p->bin_entry + 1, p->bin_size, p->thread);
+    snprintf(buf, n, "tile = %d\nbin entry = %d of %d\ndrawn by worker %d", u->tile,
+             u->bin_entry + 1, u->bin_size, u->thread);
 }
 
 const struct lesson_explorer lesson_07_explorer = {

@@ -23,8 +23,8 @@
  *
  * Builds on lesson 05 (block classification): the blocks are classified by
  * the corners of their SAMPLES' extent, not of their pixel centres, since a
- * pixel's samples reach out to 1/16 pixel from its border. Lesson 07 (tiles
- * and threads) would carry this over unchanged to every tile.
+ * pixel's samples reach out to 1/16 pixel from its border. The twin `tiles`
+ * (tiled.c) runs this very code on lesson 07's tiles, bins and threads.
  *
  * Two ways of shading what the mask covers:
  *   MSAA (multisampling, Akeley's RealityEngine): ONE colour per pixel,
@@ -41,8 +41,7 @@
  */
 #include <stdlib.h>           /* abs */
 
-#include "lesson.h"
-#include "shade/quad.h"      /* struct planes: lesson 04's planes of 1/z and a/z */
+#include "multisampling.h"
 
 /* Lines 6-8 (as the explorer numbers them) are the whole algorithm, as the
  * exercise's skeleton writes it; lines 3-5, in [ ], lesson 05's shortcut that
@@ -60,13 +59,12 @@ static const char *const pseudocode[] = {
 };
 
 enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
+_Static_assert(L_LOOP == MS_LINE_BLOCKS, "the tiled twin's steps show at the blocks' line");
 
 /* trace_event.aux[]: samples per pixel, how many the test found covered, the
  * mask (bit s = sample s; also mask[0]), 1 on the exhibit's regular grid;
  * unnamed: the explorer's watch shows them in one notation, its own. */
 
-#define Q_DEFAULT 8
-enum { P_BLOCK, P_SAMPLES };    /* the lesson's parameter rows: p->knob[P_BLOCK] is --block-size */
 
 /* Named costs of this lesson (trace/trace.h):
  *   SAMPLE_EDGE_COST   a sample's edge value: the pixel's plus its offset
@@ -88,14 +86,6 @@ enum { P_BLOCK, P_SAMPLES };    /* the lesson's parameter rows: p->knob[P_BLOCK]
 
 /* --- the samples ------------------------------------------------------------ */
 
-/* A sample pattern as the loops use it: each sample's offset from the pixel
- * CENTRE, in 1/256 pixel (the standard positions are given from the pixel's
- * corner), and the extent of the pattern. */
-struct pattern {
-    int n;
-    int dx[SAMPLES_MAX], dy[SAMPLES_MAX];
-    int lo_x, hi_x, lo_y, hi_y;     /* smallest and largest dx, dy */
-};
 
 static void pattern_setup(struct pattern *pt, const struct sample_pattern *sp)
 {
@@ -114,16 +104,6 @@ static void pattern_setup(struct pattern *pt, const struct sample_pattern *sp)
 
 /* --- the edges at the samples ---------------------------------------------- */
 
-/* Seed 001's edge functions with the fill rule folded into the constant, as
- * in lesson 05: a sample is covered when F0k + bias_k + O_sk >= 0 for all
- * three edges, a plain sign test. O_sk = I0k dx_s + J0k dy_s is sample s's
- * offset on edge k: the same in every pixel, computed once per triangle. */
-struct edges {
-    struct biased_edges b;          /* F0k + bias_k at the pixel centres (lesson 05's) */
-    int64_t off[SAMPLES_MAX][3];    /* O_sk */
-    int64_t ext0[3];                /* the extent's top-left corner from the centre */
-    int64_t ext_w[3], ext_h[3];     /* the extent's width and height, on edge k */
-};
 
 static void edges_setup(struct edges *e, const struct tri_setup *t, const struct pattern *pt,
                         bool fill_rule)
@@ -137,32 +117,6 @@ static void edges_setup(struct edges *e, const struct tri_setup *t, const struct
         e->ext_h[k] = t->J[k] * (pt->hi_y - pt->lo_y);
     }
 }
-
-/* --- one triangle's run ------------------------------------------------------- */
-
-/* The tent filter's n taps: neighbour (di, dj), sample s, weight w (tent_setup). */
-struct tent {
-    int n, di[9 * SAMPLES_MAX], dj[9 * SAMPLES_MAX], s[9 * SAMPLES_MAX];
-    int64_t w[9 * SAMPLES_MAX];
-};
-
-struct run {
-    const struct tri_setup *t;
-    const struct raster_params *p;
-    struct target *fb;
-    struct trace *tr;
-    struct pattern pt;
-    struct edges e;
-    struct planes pl;
-    struct tent taps;                   /* the tent's (when tent) */
-    int nplanes;                        /* 1/z, r, g, b (and s, t with a checker) */
-    double plane_off[SAMPLES_MAX][PL_COUNT];    /* a plane's offset at sample s */
-    bool per_sample;                    /* SSAA: shade every covered sample */
-    bool tent;                          /* resolve with the tent over neighbours' samples */
-    float grid;                         /* 1: the exhibit's grid (narrated, for the explorer) */
-    uint32_t *scolor;                   /* the samples: n per pixel, or the pixels */
-    float *sdepth;                      /*   themselves when n = 1 */
-};
 
 /* --- the box ------------------------------------------------------------------ */
 
@@ -304,10 +258,30 @@ struct outcome {
     bool passed;            /* a sample passed the depth test */
 };
 
+/* Where pixel (x, y)'s samples are: n in a row. */
+static size_t samples_at(const struct run *r, int x, int y)
+{
+    return ((size_t)(y - r->sy) * r->srow + (size_t)(x - r->sx)) * (size_t)r->pt.n;
+}
+
+void ms_resolve(int n, const uint32_t *color, const float *z, uint32_t *rgba, float *nearest)
+{
+    unsigned sum[3] = { 0, 0, 0 };
+    *nearest = z[0];
+    for (int s = 0; s < n; s++) {
+        for (int c = 0; c < 3; c++)
+            sum[c] += color[s] >> (16 - 8 * c) & 0xff;
+        *nearest = z[s] < *nearest ? z[s] : *nearest;
+    }
+    *rgba = 0xff000000u;
+    for (int c = 0; c < 3; c++)
+        *rgba |= (sum[c] + (unsigned)n / 2) / (unsigned)n << (16 - 8 * c);
+}
+
 static void resolve(const struct run *r, int x, int y, const struct fragment *f, struct outcome *o)
 {
     int n = r->pt.n;
-    size_t base = ((size_t)y * (size_t)r->fb->w + (size_t)x) * (size_t)n;
+    size_t base = samples_at(r, x, y);
     o->passed = false;
     for (int s = 0; s < n; s++) {
         o->color[s] = r->scolor[base + (size_t)s];
@@ -320,18 +294,10 @@ static void resolve(const struct run *r, int x, int y, const struct fragment *f,
     }
     o->rgba = o->color[0];
     o->nearest = o->z[0];
-    if (n == 1)
-        return;                 /* one sample: it is the pixel */
-    unsigned sum[3] = { 0, 0, 0 };
-    for (int s = 0; s < n; s++) {
-        for (int c = 0; c < 3; c++)
-            sum[c] += o->color[s] >> (16 - 8 * c) & 0xff;
-        o->nearest = o->z[s] < o->nearest ? o->z[s] : o->nearest;
-    }
+    if (n == 1 || (r->touched && !r->tr))
+        return;     /* one sample: it is the pixel; tiled: resolved at the store (narrated: shown now) */
+    ms_resolve(n, o->color, o->z, &o->rgba, &o->nearest);
     COUNT(r->tr, n, RESOLVE_COST);
-    o->rgba = 0xff000000u;
-    for (int c = 0; c < 3; c++)
-        o->rgba |= (sum[c] + (unsigned)n / 2) / (unsigned)n << (16 - 8 * c);
 }
 
 /* Write the outcome: the samples, the resolved pixel, and the count of
@@ -339,12 +305,14 @@ static void resolve(const struct run *r, int x, int y, const struct fragment *f,
 static void store(const struct run *r, int x, int y, unsigned mask, const struct outcome *o)
 {
     int n = r->pt.n;
-    size_t i = (size_t)y * (size_t)r->fb->w + (size_t)x, base = i * (size_t)n;
+    size_t i = (size_t)y * (size_t)r->fb->w + (size_t)x, base = samples_at(r, x, y);
     for (int s = 0; s < n; s++) {
         r->scolor[base + (size_t)s] = o->color[s];
         r->sdepth[base + (size_t)s] = o->z[s];
     }
-    if (n > 1) {
+    if (r->touched)
+        r->touched[y - r->sy] |= (uint64_t)1 << (x - r->sx);
+    else if (n > 1) {
         r->fb->color[i] = o->rgba;
         r->fb->depth[i] = o->nearest;
     }
@@ -456,22 +424,14 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
 
 /* --- the rasterizer ------------------------------------------------------------- */
 
-struct ms_options {
-    bool per_sample;        /* SSAA: shade every sample */
-    bool tent;              /* resolve with the tent filter, not the box */
-    bool grid;              /* exhibit: a regular grid instead of the standard pattern */
-    bool fill_rule;         /* false: exhibit, a sample on an edge is covered by both sides */
-};
 
-static void rasterize_ms(const struct tri_setup *t, const struct raster_params *p,
-                         struct target *fb, struct trace *tr, struct ms_options o)
+const struct sample_pattern *ms_target(struct target *fb, const struct raster_params *p, bool grid)
 {
-    struct run r;       /* set field by field: an initializer would clear all of it, per triangle */
     int n = p->samples > 1 ? p->samples : 1;
     const struct sample_pattern *sp = sample_pattern(n);
     if (!sp)
         sp = sample_pattern(n = 1);
-    if (o.grid)
+    if (grid)
         sp = sample_grid(n);    /* the exhibit's regular grid instead */
     /* The target's per-sample storage: made by the driver (render_scene,
      * replay), or here for a target that has none; without memory for it,
@@ -479,41 +439,63 @@ static void rasterize_ms(const struct tri_setup *t, const struct raster_params *
     if (n == 1)
         target_multisample(fb, 1);
     else if ((!fb->samples || fb->samples->n != n) && !target_multisample(fb, n))
-        sp = sample_pattern(n = 1);
-    pattern_setup(&r.pt, sp);
-    r.scolor = n > 1 ? fb->samples->color : fb->color;
-    r.sdepth = n > 1 ? fb->samples->depth : fb->depth;
+        sp = sample_pattern(1);
+    return sp;
+}
 
-    int box[4];
-    bool any = sample_box(t, &r.pt, box);
-    if (any)                    /* F0k and each sample's offsets O_sk: the setup's line */
-        edges_setup(&r.e, t, &r.pt, o.fill_rule);
+bool ms_box(const struct tri_setup *t, const struct sample_pattern *sp, struct pattern *pt,
+            int box[4], struct trace *tr, bool grid)
+{
+    pattern_setup(pt, sp);
+    bool any = sample_box(t, pt, box);
     NARRATE(tr, .kind = TRACE_SETUP, .line = L_BOX, .span = any ? L_BOX - L_SETUP : 0, .x = box[0],
             .y = box[1], .x1 = box[2], .y1 = box[3], .e = { t->area2, 0, 0 },
-            .aux = { (float)n, 0, 0, o.grid && n > 1 });
-    if (!any)
-        return;
-    r.t = t, r.p = p, r.fb = fb, r.tr = tr;
-    r.per_sample = o.per_sample;
-    r.tent = o.tent && n > 1;       /* one sample: the tent weighs only the pixel's own */
-    if (r.tent)
-        tent_setup(&r.taps, &r.pt);
-    r.grid = o.grid && n > 1;
-    planes_setup(&r.pl, t, p);
-    r.nplanes = p->checker > 0 ? PL_COUNT : PL_S;
+            .aux = { (float)pt->n, 0, 0, grid && pt->n > 1 });
+    return any;
+}
+
+void ms_setup(struct run *r, const struct tri_setup *t, const struct raster_params *p,
+              struct target *fb, struct trace *tr, struct ms_options o)
+{
+    int n = r->pt.n;
+    edges_setup(&r->e, t, &r->pt, o.fill_rule);     /* F0k and each sample's offsets O_sk */
+    r->t = t, r->p = p, r->fb = fb, r->tr = tr;
+    r->scolor = n > 1 ? fb->samples->color : fb->color;
+    r->sdepth = n > 1 ? fb->samples->depth : fb->depth;
+    r->sx = r->sy = 0, r->srow = (size_t)fb->w, r->touched = NULL;
+    r->per_sample = o.per_sample;
+    r->tent = o.tent && n > 1;       /* one sample: the tent weighs only the pixel's own */
+    if (r->tent)
+        tent_setup(&r->taps, &r->pt);
+    r->grid = o.grid && n > 1;
+    planes_setup(&r->pl, t, p);
+    r->nplanes = p->checker > 0 ? PL_COUNT : PL_S;
     for (int s = 0; s < n; s++)
         for (int q = 0; q < PL_COUNT; q++)
-            r.plane_off[s][q] = (r.pl.px[q] * r.pt.dx[s] + r.pl.py[q] * r.pt.dy[s]) / SUBPIXEL_ONE;
+            r->plane_off[s][q] = (r->pl.px[q] * r->pt.dx[s] + r->pl.py[q] * r->pt.dy[s]) / SUBPIXEL_ONE;
+}
 
-    /* lesson 05's grid of q x q blocks, aligned on the screen, clipped to the box */
-    int q = p->knob[P_BLOCK] > 0 ? p->knob[P_BLOCK] : Q_DEFAULT;
+void ms_blocks(const struct run *r, const int box[4], int q)
+{
     for (int by = box[1] - box[1] % q; by <= box[3]; by += q) {
         int ya = by < box[1] ? box[1] : by, yb = by + q - 1 > box[3] ? box[3] : by + q - 1;
         for (int bx = box[0] - box[0] % q; bx <= box[2]; bx += q) {
             int xa = bx < box[0] ? box[0] : bx, xb = bx + q - 1 > box[2] ? box[2] : bx + q - 1;
-            block(&r, xa, ya, xb, yb);
+            block(r, xa, ya, xb, yb);
         }
     }
+}
+
+static void rasterize_ms(const struct tri_setup *t, const struct raster_params *p,
+                         struct target *fb, struct trace *tr, struct ms_options o)
+{
+    struct run r;       /* set field by field: an initializer would clear all of it, per triangle */
+    int box[4];
+    if (!ms_box(t, ms_target(fb, p, o.grid), &r.pt, box, tr, o.grid))
+        return;
+    ms_setup(&r, t, p, fb, tr, o);
+    /* lesson 05's grid of q x q blocks, aligned on the screen, clipped to the box */
+    ms_blocks(&r, box, p->knob[MS_P_BLOCK] > 0 ? p->knob[MS_P_BLOCK] : Q_DEFAULT);
     if (r.tent && !trace_frozen(tr))
         tent_resolve(&r, box);
 }
@@ -553,6 +535,9 @@ static void rasterize_no_fill_rule(const struct tri_setup *t, const struct raste
 static const struct lesson_variant variants[] = {
     { .name = "msaa", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_msaa,
       .what = "multisampling: coverage and depth per sample, colour once per pixel" },
+    { .name = "tiles", .kind = VARIANT_TWIN, .rasterize = rasterize_tiled,
+      .what = "msaa on lesson 07's 64 x 64 tiles, bins and workers: a tile's samples in cache, "
+      "resolved once, at the tile's store" },
     { .name = "ssaa", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_ssaa,
       .what = "supersampling: colour shaded at every covered sample" },
     { .name = "tent", .kind = VARIANT_ALTERNATIVE, .rasterize = rasterize_tent,
@@ -573,13 +558,18 @@ const struct lesson lesson_08 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .params = (const struct lesson_param[]){
-        [P_BLOCK] = { .option = "block-size", .arg = "Q", .name = "block", .key = 'b', .min = 4,
+        [MS_P_BLOCK] = { .option = "block-size", .arg = "Q", .name = "block", .key = 'b', .min = 4,
                       .max = 16, .values = (const int[]){ 4, 8, 16, -1 }, .def = Q_DEFAULT,
                       .help = "block size for block lessons (4, 8 or 16)" },
-        [P_SAMPLES] = { .option = "samples", .arg = "N", .name = "samples", .key = 'm', .def = 4,
+        [MS_P_SAMPLES] = { .option = "samples", .arg = "N", .name = "samples", .key = 'm', .def = 4,
                         .min = 1, .max = 8, .values = (const int[]){ 1, 4, 8, -1 }, .slot = PARAM_SAMPLES,
                         .help = "samples per pixel, 1, 4 or 8 (lesson 08; default 4)" },
+        [MS_P_THREADS] = { .option = "threads", .arg = "N", .name = "threads",
+                           .help = "worker threads of a tiled lesson, 1..64 (default: one per core)",
+                           .min = 1, .max = 64 },
         { 0 } },
+    .rasterize_scene = (const rasterize_scene_fn[]){ NULL, ms_tiled_scene, NULL, NULL, NULL, NULL },
+    .narration_units = ms_units,
     /* at one sample (what the recount runs): the edges at the sample, the step
      * to the next pixel; covered: four planes at the centre, colour, depth */
     .cost_tested = (const struct cost_term[]){

@@ -17,6 +17,7 @@
  * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
  */
 #include <math.h>
+#include <string.h>
 
 #include "shade/shade.h"
 #include "simd.h"
@@ -109,6 +110,15 @@ static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
     return true;
 }
 
+/* log2 of a power of two: the exponent of its float, exact */
+static inline int log2_size(int n)
+{
+    float f = (float)n;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    return (int)(bits >> 23) - 127;
+}
+
 /* s and t of the quad's pixels (a helper's: anything, even NaN; `lanes`
  * says which are wanted). */
 static inline void level_taps(const struct texture_level *l, enum texture_wrap wrap, const double s[4],
@@ -122,9 +132,7 @@ static inline void level_taps(const struct texture_level *l, enum texture_wrap w
     if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
         /* the mathematical mod of a power of two: the low bits, negatives too */
         const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
-        int log2w = 0;
-        while (1 << log2w < l->w)
-            log2w++;
+        int log2w = log2_size(l->w);
         __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
         __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
         __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));

@@ -31,17 +31,17 @@
 #include "textures.h"
 
 static const char *const pseudocode[] = {
-    "setup: F0k, box; 1/z, s/z, t/z, colour/z at A, B, C",                 /* 0 */
-    "loop over the 8 x 8 blocks of the box, classified by corners:",       /* 1 */
-    "  empty: skip",                                                        /* 2 */
-    "  else loop over its 2 x 2 quads, top-left (x & ~1, y & ~1):",        /* 3 */
-    "    covered = F01 >= 0 && F02 >= 0 && F03 >= 0 at each pixel",        /* 4 */
-    "    no pixel covered: skip the quad",                                  /* 5 */
-    "    (s, t) = (s/z, t/z) / (1/z) at all four centres (helpers too)",   /* 6 */
-    "    du/dx, dv/dx, du/dy, dv/dy = differences at the top-left pixel",   /* 7 */
-    "    rho = longer of (du/dx, dv/dx), (du/dy, dv/dy); lambda = log2 rho", /* 8 */
-    "    covered pixels: texel = filter(s, t, lambda)  (levels, taps, mix)", /* 9 */
-    "      colour = texel x vertex colour, rounded once; depth test, write", /* 10 */
+    "setup: F0k, box; 1/z, s/z, t/z, colour/z at A, B, C",  /* 0 */
+    "loop over the box's 8 x 8 blocks, by their corners:",   /* 1 */
+    "  empty: skip",                                          /* 2 */
+    "  else loop over its 2 x 2 quads (x & ~1, y & ~1):",    /* 3 */
+    "    covered = F01, F02, F03 >= 0 at each pixel",        /* 4 */
+    "    no pixel covered: skip the quad",                    /* 5 */
+    "    (s, t) = (s/z, t/z) / (1/z) at all 4, helpers too", /* 6 */
+    "    du/dx, dv/dx, du/dy, dv/dy: top-left differences",  /* 7 */
+    "    rho = longer derivative; lambda = log2 rho",        /* 8 */
+    "    covered: texel = filter(s, t, lambda): levels, taps", /* 9 */
+    "      colour = texel x vertex colour, rounded; write",  /* 10 */
     NULL,
 };
 
@@ -155,7 +155,8 @@ static struct tex_deriv analytic(const struct run *r, const struct at_pixel *a)
 #define QY(qy, i) ((qy) + ((i) >> 1))
 
 /* Narrate a set of derivatives (the quad's at its top-left pixel, or one
- * pixel's) with rho and lambda in level-0 texels. */
+ * pixel's) with rho in level-0 texels and the lambda the level-of-detail
+ * stage makes of them (an exercise's: make check holds it to log2(rho)). */
 static void narrate_deriv(const struct run *r, int x, int y, unsigned covered, const struct tex_deriv *d)
 {
     double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0, dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
@@ -163,7 +164,7 @@ static void narrate_deriv(const struct run *r, int x, int y, unsigned covered, c
     NARRATE(r->tr, .kind = TRACE_STEP, .line = L_LOD, .span = L_LOD - L_DERIV, .x = x, .y = y,
             .mask = { (uint16_t)covered }, .flags = d->beyond ? 0 : TRACE_INSIDE,
             .aux = { (float)dudx, (float)dvdx, (float)dudy, (float)dvdy, (float)rho,
-                     d->beyond ? (float)(r->tex->nlevels - 1) : (float)log2(rho) });
+                     d->beyond ? (float)(r->tex->nlevels - 1) : (float)r->st->lod(d) });
 }
 
 /* The derivatives pixel i uses: the quad's (coarse), its own row's and
@@ -371,5 +372,5 @@ const struct lesson lesson_09 = {
     .compare = compare,
     .texturing = "by its image: 2 x 2 quads with helper pixels, coarse derivatives, the level of "
                  "detail and --filter (trilinear by default), times the vertex colour",
-    .exercise = { .write_line = L_WRITE },
+    .exercise = { .write_line = L_WRITE, .textures = true, .lod_line = L_LOD },
 };

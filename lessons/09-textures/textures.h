@@ -205,7 +205,10 @@ enum { L_SETUP, L_BLOCKS, L_EMPTY, L_QUADS, L_COVER, L_SKIP, L_EVAL, L_DERIV, L_
 /* The events of one quad, in order, and their aux[] (the lesson's
  * aux_names is NULL: the values' meaning depends on the line):
  *
- *   TRACE_BLOCK     L_EMPTY / L_QUADS  a block classified (lesson 05); aux[0] = q
+ *   TRACE_BLOCK     L_EMPTY / L_QUADS  an 8 x 8 block by its corners (lesson 05): klass
+ *                             BLOCK_EMPTY, or BLOCK_PARTIAL for any other (its quads test
+ *                             every pixel: a FULL event would mean written in one step);
+ *                             aux[0] = 8
  *   TRACE_PIXEL_TEST L_COVER  each of the quad's 4 pixels: e, flags TRACE_INSIDE when covered
  *   TRACE_STEP      L_SKIP    (x, y) = the quad: no pixel covered, skipped
  *   TRACE_STEP      L_EVAL    each of the 4 pixels, helpers too: flags TRACE_INSIDE
@@ -223,7 +226,8 @@ enum { L_SETUP, L_BLOCKS, L_EMPTY, L_QUADS, L_COVER, L_SKIP, L_EVAL, L_DERIV, L_
  *
  * A variant with fine or analytic derivatives narrates L_DERIV..L_LOD once
  * per covered pixel, (x, y) that pixel. Untextured triangles (and the
- * checker) skip L_DERIV..L_FILTER: shaded as every lesson shades. */
+ * checker) skip L_DERIV..L_FILTER: shaded as every lesson shades. The
+ * fast twin narrates its set-up and its writes only. */
 enum { AUX_U, AUX_V, AUX_Q };
 enum { AUX_DUDX, AUX_DVDX, AUX_DUDY, AUX_DVDY, AUX_RHO, AUX_LAMBDA };
 enum { AUX_USED_LAMBDA = 2, AUX_LEVEL0, AUX_LEVEL1, AUX_MIX };

@@ -10,7 +10,7 @@
  *   quads   covered and helper pixels (evaluated, never written), the quad grid.
  * The watch: each step of a quad, and at a pixel's filter and write u, v,
  * the derivatives, rho, lambda, the levels and their weights. All of it
- * from the events told so far (raster_params.told), so it follows the step
+ * from the events told so far (run_place.told), so it follows the step
  * both ways; the taps follow from the told (u, v), levels and mix by the
  * rules of CONVENTIONS.md "Textures". */
 #include <math.h>
@@ -57,7 +57,8 @@ struct look {
 
 static const struct trace_event *told(const struct raster_params *p, int line)
 {
-    return p->told && p->told[line].kind != TRACE_KIND_COUNT ? &p->told[line] : NULL;
+    const struct trace_event *t = p->at ? p->at->told : NULL;
+    return t && t[line].kind != TRACE_KIND_COUNT ? &t[line] : NULL;
 }
 
 static int level_of(const struct texture *tex, float v)
@@ -447,8 +448,9 @@ static const double level_rgb[TEXTURE_LEVELS_MAX][3] = {
 static int scene_levels(const struct raster_params *p)
 {
     int most = 0;
-    for (int k = 1; p->scene && k <= scene_texture_count(p->scene); k++) {
-        const struct texture *t = scene_texture(p->scene, k);
+    const struct scene *s = drawn_scene(p);
+    for (int k = 1; s && k <= scene_texture_count(s); k++) {
+        const struct texture *t = scene_texture(s, k);
         most = t && t->nlevels > most ? t->nlevels : most;
     }
     return most;
@@ -542,8 +544,8 @@ static const struct lesson_view views[] = {
 static void overlay(const struct lesson_canvas *c, const struct tri_setup *t,
                     const struct raster_params *p, const struct trace_event *last)
 {
-    if (strcmp(c->view, "texels") == 0 && p->scene)
-        draw_texels(c, p, p->scene->w, p->scene->h);
+    if (strcmp(c->view, "texels") == 0 && drawn_scene(p))
+        draw_texels(c, p, drawn_scene(p)->w, drawn_scene(p)->h);
     else if (strcmp(c->view, "quads") == 0)
         draw_quads(c, t, last);
 }

@@ -397,7 +397,7 @@ int lesson_main(const struct lesson *l, int argc, char **argv)
         fprintf(stderr, "%s\n", err);
         return EXIT_USAGE;
     }
-    o.params.scene = &s;
+    o.params.at = &(struct run_place){ .scene = &s };
     if (!lesson_front(l, o.variant)(&s)) {    /* a 3-D scene: its screen triangles */
         fprintf(stderr, "out of memory projecting %d triangles\n", s.world.ntris);
         scene_free(&s);

@@ -183,8 +183,9 @@ void paint_overlay(struct painter *p)
     cairo_translate(p->cr, L->ox, L->oy);
     cairo_scale(p->cr, L->zoom, L->zoom);
     cairo_new_path(p->cr);
-    struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
-    params.told = ex->told;
+    struct run_place at;
+    struct raster_params params = replay_params(&ex->replay, ex->cur, &at);  /* the unit's, lesson 07 */
+    at.told = ex->told;
     ex->side->overlay(&c, &ex->tri, &params, ex->has_last ? &ex->last : NULL);
     cairo_restore(p->cr);
 }

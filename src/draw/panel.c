@@ -58,7 +58,8 @@ static double legend(struct painter *p, double x, double y, double w)
         const struct lesson_view *lv = &ex->side->views[ex->view - VIEW_BUILTIN_COUNT];
         y += draw_text(p, x, y, w, lv->legend, 11.5, p->pal->text, false);
         struct lesson_swatch own[VIEW_LEGEND_MAX];
-        struct raster_params params = replay_params(&ex->replay, ex->cur);
+        struct run_place at;
+        struct raster_params params = replay_params(&ex->replay, ex->cur, &at);
         int n = ex->side->swatches ? ex->side->swatches(lv->name, &params, own, VIEW_LEGEND_MAX) : 0;
         for (int i = 0; i < n && i < VIEW_LEGEND_MAX; i++)
             y += swatch(p, x, y, w, from_rgb(own[i].rgb[0], own[i].rgb[1], own[i].rgb[2]),
@@ -193,8 +194,9 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
             at = cat(buf, n, at, "\n");
     }
     if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
-        struct raster_params params = replay_params(&ex->replay, ex->cur);  /* the unit's, lesson 07 */
-        params.told = ex->told;
+        struct run_place place;
+        struct raster_params params = replay_params(&ex->replay, ex->cur, &place);  /* the unit's, lesson 07 */
+        place.told = ex->told;
         ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
@@ -401,7 +403,8 @@ void paint_panel(struct painter *p)
     y += watch(p, x, y, w) + 8 * s;
     if (ex->side && ex->side->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
         buf[0] = '\0';
-        struct raster_params params = replay_params(&ex->replay, ex->cur >= 0 ? ex->cur : 0);  /* its texture */
+        struct run_place at;
+        struct raster_params params = replay_params(&ex->replay, ex->cur >= 0 ? ex->cur : 0, &at);  /* its texture */
         ex->side->constants(&ex->tri, &params, buf, sizeof buf);
         for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
             buf[e - 1] = '\0';

@@ -14,12 +14,15 @@
  *   property   what the lesson is about: no multiplication between two
  *              pixels of a row (lesson 03); every tile and block narrated
  *              with exactly the class its four corner pixel centres give
- *              it, EMPTY, FULL or PARTIAL (lessons 05, 07).
+ *              it, EMPTY, FULL or PARTIAL (lessons 05, 07); every quad's
+ *              lambda log2(rho) of its derivatives (lesson 09).
  *
  * Lesson 07 adds a check of its own scenes, over many tiles (gen_tiles),
- * that compares all three at once.
+ * that compares all three at once; lesson 09 textured scenes (scenes9.c),
+ * held to the lesson's own picture, whose sampler the student writes.
  *
- * A write outside the target fails any check. */
+ * A write outside the target fails any check, and so does a texel read
+ * outside its level (lesson 09). */
 #define _DEFAULT_SOURCE           /* fork, MAP_ANONYMOUS, strsignal */
 
 #include "checker.h"
@@ -136,7 +139,7 @@ static bool report_failure(struct checker *C, const char *name, struct scene *s,
     else
         fprintf(out, "\n  open it in the explorer at the %s (step %llu):\n      %s%s SCENE=%s STEP=%llu\n",
                 v.what == WRONG_CLIP ? "end of the run" : v.world ? "end, where the diff view marks the wrong pixels"
-                                                                     : "first wrong pixel",
+                : v.what == WRONG_LOD ? "quad's level of detail" : "first wrong pixel",
                 (unsigned long long)r->step, o->open_cmd, samples, r->counterexample, (unsigned long long)r->step);
     return true;
 }
@@ -257,6 +260,15 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
     if (l->exercise.full_blocks)
         c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false };
+    if (l->exercise.textures) {     /* textured scenes, simplest first: colour and the sampler's faults */
+        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false };
+        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false };
+        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false };
+        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false };
+        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false };
+        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false };
+        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false };
+    }
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
         c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };
         c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false };

@@ -33,7 +33,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL,
 };
 
 struct verdict {
@@ -53,6 +53,10 @@ struct verdict {
     bool world;
     int want_tris, got_tris;
     struct clip_fault clip;         /* WRONG_CLIP: what the clipper did */
+    /* WRONG_LOD: the quad (x, y), its derivatives (du/dx, dv/dx, du/dy,
+     * dv/dy in level-0 texels), lambda = log2(rho) and the code's */
+    double deriv[4], want_lambda, got_lambda;
+    struct texel_fault texel;       /* WRONG_TEXEL: the texel read outside its level */
 };
 
 /* Everything one check run needs. */
@@ -79,6 +83,9 @@ struct checker {
     uint64_t triangles;
 };
 
+/* The picture the code is held to (evaluate.c). */
+const struct lesson_variant *check_exact(const struct lesson *l);
+
 /* Draw scene s both ways, triangle by triangle; false (and v) at the first
  * triangle after which they differ in what C->kind compares. */
 bool evaluate(struct checker *C, const struct scene *s, struct verdict *v);
@@ -97,6 +104,7 @@ void shrink(struct checker *C, struct scene *s);
 struct trail {
     int x, y;
     bool by_rect;               /* the block or tile that is exactly rect, not the one holding (x, y) */
+    int lod_line;               /* > 0: the quad's level of detail narrated at (x, y) on this line */
     int rect[4];
     bool written, tested, held;
     struct trace_event write, test, hold;

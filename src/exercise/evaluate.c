@@ -80,6 +80,27 @@ static enum block_class corner_class(const struct tri_setup *t, int x0, int y0, 
     return full ? BLOCK_FULL : BLOCK_PARTIAL;
 }
 
+/* A quad's level of detail as narrated on lesson_exercise.lod_line,
+ * against lambda = log2(rho) of the derivatives narrated with it: rho the
+ * longer of (du/dx, dv/dx) and (du/dy, dv/dy), in level-0 texels. The code
+ * may compute it in float: 1/1000 of a level is far beyond its rounding,
+ * and far below any mistake (log2 of rho squared doubles lambda, texture
+ * coordinates for texels move it by log2 of the size). */
+#define LOD_TOLERANCE 1e-3
+static void watch_lod(struct checker *C, const struct trace_event *ev, struct verdict *v)
+{
+    if (!(ev->flags & TRACE_INSIDE))
+        return;     /* beyond the horizon: the last level, no derivatives */
+    double d[4] = { ev->aux[0], ev->aux[1], ev->aux[2], ev->aux[3] };
+    double rho2 = fmax(d[0] * d[0] + d[1] * d[1], d[2] * d[2] + d[3] * d[3]);
+    double want = 0.5 * log2(rho2), got = ev->aux[5];
+    if (got == want || fabs(got - want) <= LOD_TOLERANCE)
+        return;
+    *v = (struct verdict){ .what = WRONG_LOD, .x = ev->x, .y = ev->y, .deriv = { d[0], d[1], d[2], d[3] },
+                           .want_lambda = want, .got_lambda = got };
+    (void)C;
+}
+
 /* The narration, watched for the lesson's property. */
 static void watch(void *ctx, const struct trace_event *ev)
 {
@@ -87,6 +108,10 @@ static void watch(void *ctx, const struct trace_event *ev)
     struct verdict *v = C->prop;
     if (v->what != WRONG_NONE)
         return;
+    if (C->l->exercise.lod_line > 0 && ev->kind == TRACE_STEP && ev->line == C->l->exercise.lod_line) {
+        watch_lod(C, ev, v);
+        return;
+    }
     switch (ev->kind) {
     case TRACE_ROW:
     case TRACE_SETUP:
@@ -139,6 +164,27 @@ static void watch(void *ctx, const struct trace_event *ev)
     }
 }
 
+/* A texel read outside its level: the pixel that shows it, the first
+ * whose colour differs (the black read there), else the first the exact
+ * picture covers. */
+static void texel_pixel(const struct checker *C, struct verdict *v)
+{
+    const struct target *W = &C->want, *G = &C->got;
+    size_t n = (size_t)W->w * (size_t)W->h, first = n;
+    for (size_t i = 0; i < n; i++) {
+        if (W->count[i] && first == n)
+            first = i;
+        if (W->count[i] && W->color[i] != G->color[i]) {
+            first = i;
+            break;
+        }
+    }
+    if (first < n) {
+        v->x = (int)(first % (size_t)W->w), v->y = (int)(first / (size_t)W->w);
+        v->want_c = W->color[first], v->got_c = G->color[first];
+    }
+}
+
 /* The first pixel, in reading order, where the pictures differ. */
 static bool compare(const struct checker *C, int tri, struct verdict *v)
 {
@@ -173,6 +219,14 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
     return true;
 }
 
+/* The picture the code is held to: the shared exact rule, or for a lesson
+ * whose student writes a part of its shading (lesson 09's sampler) the
+ * lesson's own. */
+const struct lesson_variant *check_exact(const struct lesson *l)
+{
+    return l->exercise.textures ? &l->variants[0] : exercise_exact(l->perspective);
+}
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
@@ -184,11 +238,12 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         return true;
     C->mask = mask;
     C->evaluations++;
-    const struct lesson_variant *exact = exercise_exact(C->l->perspective);
+    const struct lesson_variant *exact = check_exact(C->l);
     bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
+        C->p = lesson_params_tri(&C->p, s, i);
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
@@ -209,6 +264,12 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         if (f->any) {
             *v = (struct verdict){ .what = WRONG_OUTSIDE, .tri = i, .x = f->x, .y = f->y,
                                    .samples = samples };
+            return false;
+        }
+        if (exercise_texel_fault()->any) {
+            *v = (struct verdict){ .what = WRONG_TEXEL, .tri = i, .texel = *exercise_texel_fault(),
+                                   .samples = samples };
+            texel_pixel(C, v);
             return false;
         }
         if (prop.what != WRONG_NONE) {
@@ -238,10 +299,11 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
                            const struct lesson_variant *v, struct target *fb, bool watch_faults)
 {
     struct raster_params p = C->p;
-    p.scene = s;
+    p.at = &(struct run_place){ .scene = s };
     for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);
+        p = lesson_params_tri(&p, s, *i);
         struct trace tr = { .sink = NULL };
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)
@@ -267,7 +329,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
     C->evaluations += ok;
-    const struct lesson_variant *exact = exercise_exact(true);
+    const struct lesson_variant *exact = C->l->exercise.textures ? check_exact(C->l) : exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();
     int a = 0, b = 0;
     for (int w = 0; ok && w < s->world.ntris; w++) {
@@ -287,6 +349,11 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         if (f->any) {
             *v = base;
             v->what = WRONG_OUTSIDE, v->x = f->x, v->y = f->y;
+            ok = false;
+        } else if (exercise_texel_fault()->any) {
+            *v = base;
+            v->what = WRONG_TEXEL, v->texel = *exercise_texel_fault();
+            texel_pixel(C, v);
             ok = false;
         } else if (!compare(C, w, v)) {
             v->world = true;

@@ -15,6 +15,7 @@ static rasterize_fn current_fn;
 static const struct lesson *current_lesson;
 static struct trace *current_tr;
 static struct exercise_fault fault;
+static struct texel_fault texel_fault;
 
 void exercise_use(const struct lesson *l, rasterize_fn fn)
 {
@@ -32,6 +33,24 @@ const struct exercise_fault *exercise_fault(void)
 void exercise_fault_clear(void)
 {
     memset(&fault, 0, sizeof fault);
+    memset(&texel_fault, 0, sizeof texel_fault);
+}
+
+const struct texel_fault *exercise_texel_fault(void)
+{
+    return &texel_fault;
+}
+
+uint32_t exercise_texel(const struct texture *tex, int k, int64_t i, int64_t j)
+{
+    bool level = k >= 0 && k < tex->nlevels;
+    const struct texture_level *l = level ? &tex->level[k] : NULL;
+    if (l && i >= 0 && j >= 0 && i < l->w && j < l->h)
+        return l->texel[(size_t)j * (size_t)l->w + (size_t)i];
+    if (!texel_fault.any)
+        texel_fault = (struct texel_fault){ true, k, tex->nlevels, (long long)i, (long long)j,
+                                            l ? l->w : 0, l ? l->h : 0 };
+    return 0xff000000u;
 }
 
 static void run_exercise(const struct tri_setup *t, const struct raster_params *p,
@@ -251,7 +270,9 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
     static char what[300];
     snprintf(what, sizeof what, "%s, against the exact rule", file);
     *out = *l;
-    variants[0] = *exercise_exact(l->perspective);
+    /* the exact picture: the shared rule's, or the lesson's own where the
+     * student writes a part of its shading (lesson 09's sampler) */
+    variants[0] = l->exercise.textures ? l->variants[0] : *exercise_exact(l->perspective);
     variants[1] = exercise_variant;
     variants[1].what = what;
     out->variants = variants;

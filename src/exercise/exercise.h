@@ -15,7 +15,8 @@
  *     written (the Makefile lists both for the tests, build/exercises.c);
  *   - `.exercise` in the lesson's descriptor (struct lesson_exercise,
  *     lesson.h): the pseudo-code line of a bare write, and the lesson's own
- *     property among those the check knows (no_pixel_mul, full_blocks);
+ *     property among those the check knows (no_pixel_mul, full_blocks,
+ *     clip, textures with lod_line);
  *   - the lesson's exhibits each name the check they fail in
  *     tests/test_exercise.c (the test fails on an exhibit it does not know);
  *   - the "Write it yourself" section that ends the lesson's README. */
@@ -99,6 +100,17 @@ struct exercise_fault {
 };
 const struct exercise_fault *exercise_fault(void);
 void exercise_fault_clear(void);
+
+/* A texel read outside its level since the last exercise_fault_clear()
+ * (lesson 09: exercise_texel, student.h): the first one, read as opaque
+ * black. level >= nlevels, or < 0: a level the texture does not have. */
+struct texel_fault {
+    bool any;
+    int level, nlevels;
+    long long i, j;
+    int w, h;                       /* the level's size (0 x 0: no such level) */
+};
+const struct texel_fault *exercise_texel_fault(void);
 
 /* --- make check ---------------------------------------------------------------- */
 

@@ -7,6 +7,7 @@
 #include "checker.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -181,6 +182,29 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
     case WRONG_CLIP:
         say_clip(out, &v->clip);
         break;
+    case WRONG_LOD: {
+        const double *d = v->deriv;
+        fprintf(out, "      quad (%d, %d)-(%d, %d): its derivatives in level-0 texels per pixel are\n"
+                "      du/dx = %.6g, dv/dx = %.6g, du/dy = %.6g, dv/dy = %.6g, so\n"
+                "      rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) = %.6g and lambda = log2(rho) = %.6g;\n"
+                "      your level of detail gave lambda = %.6g\n", v->x, v->y, v->x + 1, v->y + 1, d[0], d[1],
+                d[2], d[3], exp2(v->want_lambda), v->want_lambda, v->got_lambda);
+        break;
+    }
+    case WRONG_TEXEL: {
+        const struct texel_fault *t = &v->texel;
+        if (t->w == 0)
+            fprintf(out, "      your sampler read level %d of a texture of %d levels (0 to %d):\n"
+                    "      a level it does not have (lambda clamped to [0, last level]?)\n", t->level,
+                    t->nlevels, t->nlevels - 1);
+        else
+            fprintf(out, "      your sampler read texel (%lld, %lld) of level %d, outside its %d x %d texels:\n"
+                    "      i and j wrapped first (repeat: the mathematical mod, never negative; clamp: to 0 .. size - 1)\n",
+                    t->i, t->j, t->level, t->w, t->h);
+        fprintf(out, "      (read as black; pixel (%d, %d): expected #%06x, got #%06x)\n", v->x, v->y,
+                v->want_c & 0xffffffu, v->got_c & 0xffffffu);
+        break;
+    }
     case WRONG_NONE:
         break;
     }
@@ -195,6 +219,11 @@ static void follow(void *ctx, const struct trace_event *ev)
 {
     struct trail *f = ctx;
     bool here = ev->x == f->x && ev->y == f->y;
+    if (f->lod_line > 0) {  /* the quad's level of detail, the first time it is narrated */
+        if (ev->kind == TRACE_STEP && ev->line == f->lod_line && here && !f->held)
+            f->held = true, f->hold = *ev;
+        return;
+    }
     if (f->by_rect) {       /* the misclassified block itself, the first time it is narrated */
         if (ev->kind == TRACE_BLOCK && !f->held && ev->x == f->rect[0] && ev->y == f->rect[1]
             && ev->x1 == f->rect[2] && ev->y1 == f->rect[3])
@@ -216,7 +245,8 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
                         struct trail *f)
 {
     *f = (struct trail){ .x = v->x, .y = v->y, .by_rect = v->what == WRONG_BLOCK_CLASS,
-                         .rect = { v->bx, v->by, v->bx1, v->by1 } };
+                         .rect = { v->bx, v->by, v->bx1, v->by1 },
+                         .lod_line = v->what == WRONG_LOD ? C->l->exercise.lod_line : 0 };
     struct replay r;
     if (v->world) {
         /* other triangles than the exact picture's: the explorer compares
@@ -225,7 +255,7 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         if (!exercise_projected(&got, s))
             return 0;
         struct raster_params p = C->p;
-        p.scene = &got;
+        p.at = &(struct run_place){ .scene = &got };
         uint64_t total = replay_init(&r, &got, &exercise_variant, &p) ? r.total : 0;
         replay_free(&r);
         scene_free(&got);
@@ -240,7 +270,8 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         replay_setup(&r, v->tri, &t);
         struct trace tr = { .sink = follow, .ctx = f };
         trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
-        exercise_variant.rasterize(&t, &C->p, &fb, &tr);
+        struct raster_params p = lesson_params_tri(&C->p, s, v->tri);
+        exercise_variant.rasterize(&t, &p, &fb, &tr);
         bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
         if (!missing && f->written)
             step = r.start[v->tri] + f->write.index + 1;
@@ -281,8 +312,8 @@ void explain(const struct checker *C, FILE *out, const struct verdict *v,
         }
     }
     const struct lesson *l = C->l;
-    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_CLASS
-        || v->what == WRONG_OUTSIDE)
+    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_CLASS || v->what == WRONG_OUTSIDE
+        || v->what == WRONG_LOD || v->what == WRONG_TEXEL)
         return;     /* the verdict said it all */
     if (f->held) {
         static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };

@@ -29,4 +29,13 @@ bool gen_box_inside(int i, struct scene *s, char *what, size_t n);      /* a clo
 bool gen_floor(int i, struct scene *s, char *what, size_t n);           /* past the guard band */
 bool gen_random_cameras(int i, struct scene *s, char *what, size_t n);  /* anything */
 
+/* textured 2-D scenes for lesson 09's sampler, simplest first (scenes9.c) */
+bool gen_tex_magnify(int i, struct scene *s, char *what, size_t n);     /* texels magnified */
+bool gen_tex_wrap(int i, struct scene *s, char *what, size_t n);        /* repeat, clamp, s and t < 0 */
+bool gen_tex_nonsquare(int i, struct scene *s, char *what, size_t n);   /* a 32 x 8 texture */
+bool gen_tex_minify(int i, struct scene *s, char *what, size_t n);      /* levels of detail chosen */
+bool gen_tex_floor(int i, struct scene *s, char *what, size_t n);       /* grazing floors and walls */
+bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n);        /* helper pixels */
+bool gen_tex_world(int i, struct scene *s, char *what, size_t n);       /* 3-D: OBJ vt, clipped s and t */
+
 #endif

@@ -64,16 +64,20 @@ double *scene_coord(struct scene *s, int k)
     return k % 2 ? &v->y : &v->x;
 }
 
-/* Smallest coordinates: halve the scene while it fails, move it to the
- * origin by whole pixels, make the target no larger than it needs, then
- * round each coordinate to the coarsest grid (whole pixels, centres,
- * halves, ...) that still fails. */
+/* Smallest coordinates: halve the scene while it fails (not under an image
+ * texture), move it to the origin by whole pixels, make the target no
+ * larger than it needs, then round each coordinate to the coarsest grid
+ * (whole pixels, centres, halves, ...) that still fails. */
 static void round_coordinates(struct shrinker *S, struct scene *s)
 {
+    /* under an image texture the size is what the scene is about (texels
+     * magnified or minified): never halved, and moved by whole quads (2 x 2
+     * pixels), so that every pixel keeps its place in its quad */
+    bool textured = scene_texture_count(s) > 0;
     for (int pass = 0; pass < 3; pass++) {
         bool progress = false;
         /* half the size about the origin, on the 1/256 grid, while it fails */
-        for (int k = 0; k < 8; k++) {
+        for (int k = 0; k < 8 && !textured; k++) {
             struct scene c;
             if (!scene_copy(&c, s))
                 return;
@@ -93,6 +97,8 @@ static void round_coordinates(struct shrinker *S, struct scene *s)
                 minx = fmin(minx, v), maxx = fmax(maxx, v);
         }
         double dx = floor(minx) > 0 ? floor(minx) : 0, dy = floor(miny) > 0 ? floor(miny) : 0;
+        if (textured)
+            dx = 2 * floor(dx / 2), dy = 2 * floor(dy / 2);
         for (int axis = 0; axis < 2; axis++) {
             double d = axis ? dy : dx;
             if (d <= 0)

@@ -11,7 +11,9 @@
  *     every pixel it writes;
  *   - edge_value() and pixel_centre(), the direct evaluations of raster.h,
  *     count their multiplications in the counters (lesson 03's check: no
- *     multiplication between two pixels of a row).
+ *     multiplication between two pixels of a row);
+ *   - a texel read through exercise_texel() outside its level is reported,
+ *     not read (lesson 09).
  *
  * The macros are defined after lesson.h, so raster.h's own inline functions
  * keep the real ones. */
@@ -30,6 +32,12 @@ void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p
 struct poly;
 struct plane;
 void exercise_clip(struct poly *out, const struct poly *in, const struct plane *pl);
+
+/* Lesson 09's exercise: texel (i, j) of level k of tex, read as it is
+ * (no wrap: that is the student's): one outside the level, or a level the
+ * texture does not have, is reported by make check and read as opaque
+ * black, never out of bounds. */
+uint32_t exercise_texel(const struct texture *tex, int k, int64_t i, int64_t j);
 
 void exercise_write(struct target *fb, int x, int y, float z, uint32_t rgba);
 void exercise_plot(struct target *fb, struct trace *tr, int line, int x, int y, float z,

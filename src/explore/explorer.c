@@ -163,7 +163,8 @@ static bool advance_exact(struct explorer *ex, int upto)
     for (; ex->exact_upto < upto; ex->exact_upto++) {
         struct tri_setup t;
         replay_setup(&ex->replay, ex->exact_upto, &t);
-        struct raster_params p = replay_params(&ex->replay, ex->exact_upto);
+        struct run_place at;
+        struct raster_params p = replay_params(&ex->replay, ex->exact_upto, &at);
         exact->rasterize(&t, &p, &ex->exact, NULL);
     }
     return true;
@@ -209,7 +210,7 @@ static bool exact_whole_scene(struct explorer *ex)
         return false;
     const struct lesson_variant *v0 = &ex->lesson->variants[0];
     struct raster_params p = ex->params;
-    p.scene = &s;
+    p.at = &(struct run_place){ .scene = &s };
     target_free(&ex->exact);
     bool ok = lesson_front(ex->lesson, v0)(&s) && render_scene(&s, v0, &p, &ex->exact);
     scene_free(&s);
@@ -242,7 +243,8 @@ static bool extra_so_far(struct explorer *ex)
         return false;
     reference_coverage(&ex->tri, mark_exact, &(struct exact_mask){ exact, ex->scene.w });
     struct target with = { 0 };     /* the exact picture with this triangle too */
-    struct raster_params p = replay_params(&ex->replay, ex->cur);
+    struct run_place at;
+    struct raster_params p = replay_params(&ex->replay, ex->cur, &at);
     bool shaded = target_copy(&with, &ex->exact);
     if (shaded)
         ex->lesson->variants[0].rasterize(&ex->tri, &p, &with, NULL);
@@ -416,7 +418,8 @@ static bool count_to(struct explorer *ex, uint64_t step)
 static bool project_scene(struct explorer *ex)
 {
     const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
-    ex->params.scene = &ex->scene;
+    ex->at = (struct run_place){ .scene = &ex->scene };
+    ex->params.at = &ex->at;
     front_fn f = lesson_front(ex->lesson, v);
     if (!ex->scene.world.camera_line || f == ex->projected_by)
         return true;
@@ -425,12 +428,20 @@ static bool project_scene(struct explorer *ex)
     return ex->projected_by(&ex->scene);
 }
 
+/* A variant that draws the whole scene at once (lesson 07's, lesson 08's
+ * tiles) steps through that run's own units; the others, triangles. */
+static lesson_units_fn units_of(const struct explorer *ex)
+{
+    const struct lesson_variant *v = &ex->lesson->variants[ex->variant];
+    return lesson_scene_fn(ex->lesson, v) ? ex->lesson->narration_units : NULL;
+}
+
 /* The lesson's own run, first counted (at least as far as `step`), keeping
  * pictures along the way for stepping back. */
 static bool begin_replay(struct explorer *ex, uint64_t step)
 {
     if (!replay_begin_units(&ex->replay, &ex->scene, &ex->lesson->variants[ex->variant],
-                            &ex->params, ex->lesson->narration_units))
+                            &ex->params, units_of(ex)))
         return false;
     replay_keep_pictures(&ex->replay);
     return count_to(ex, step);
@@ -442,6 +453,7 @@ static bool rerun(struct explorer *ex, uint64_t step)
     if (!project_scene(ex))
         return false;
     ex->replay.variant = &ex->lesson->variants[ex->variant];
+    ex->replay.units_fn = units_of(ex);
     ex->replay.params = ex->params;
     ex->replay.scene = &ex->scene;
     if (!replay_restart(&ex->replay) || !count_to(ex, step) || !compare_recount(ex))

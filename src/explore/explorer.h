@@ -108,6 +108,7 @@ struct explorer {
     int variant;                    /* index into lesson->variants */
     front_fn projected_by;          /* what made a 3-D scene's screen triangles (NULL: not yet) */
     struct raster_params params;
+    struct run_place at;            /* params.at: the scene drawn */
     struct replay replay;
     uint64_t step;
     bool count_later;               /* explorer_count counts what is left, a part at a time */
@@ -119,7 +120,7 @@ struct explorer {
     struct trace_counters tri_c;    /* the current triangle's counters so far */
     struct trace_event last;        /* the last event that happened */
     bool has_last;
-    struct trace_event told[256];   /* the current unit's last event at each line (raster_params.told) */
+    struct trace_event told[256];   /* the current unit's last event at each line (run_place.told) */
     int focus;                      /* triangle whose vectors are drawn (cur, or 0) */
     struct tri_setup tri;           /* its setup */
     struct cell *cells;             /* cells of the current triangle's region */

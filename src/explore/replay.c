@@ -17,20 +17,15 @@ bool replay_setup(const struct replay *r, int i, struct tri_setup *t)
                           bits);
 }
 
-struct raster_params replay_params(const struct replay *r, int i)
+struct raster_params replay_params(const struct replay *r, int i, struct run_place *at)
 {
     struct raster_params p = r->params;
     if (i >= 0 && i < r->ntris)
         p = lesson_params_tri(&r->params, r->scene, replay_unit_tri(r, i));
-    if (r->units && i >= 0 && i < r->ntris) {
-        const struct lesson_unit *u = &r->units[i];
-        p.tile = u->tile + 1;
-        p.bin_size = u->bin_size;
-        p.bin_entry = u->bin_entry;
-        p.thread = u->thread;
-        p.units = r->units;
-        p.nunits = r->ntris;
-    }
+    *at = (struct run_place){ .scene = p.at ? p.at->scene : NULL };
+    if (r->units && i >= 0 && i < r->ntris)
+        at->unit = &r->units[i], at->units = r->units, at->nunits = r->ntris;
+    p.at = at;
     return p;
 }
 
@@ -228,7 +223,8 @@ bool replay_count(struct replay *r, int n)
         struct tri_setup t;
         replay_setup(r, i, &t);
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-        struct raster_params p = replay_params(r, i);
+        struct run_place at;
+        struct raster_params p = replay_params(r, i, &at);
         r->variant->rasterize(&t, &p, &r->counting, &tr);
         r->total += tr.count;
         r->start[i + 1] = r->total;
@@ -491,7 +487,8 @@ static bool advance_base(struct replay *r, int upto)
         replay_setup(r, r->base_upto, &t);
         if (upto - r->base_upto <= REPLAY_UNDO_TRIANGLES)
             undo_save(r, &t);
-        struct raster_params p = replay_params(r, r->base_upto);
+        struct run_place at;
+        struct raster_params p = replay_params(r, r->base_upto, &at);
         r->variant->rasterize(&t, &p, &r->base, NULL);
     }
     return true;
@@ -513,7 +510,8 @@ int replay_to(struct replay *r, uint64_t step, struct target *fb,
     replay_setup(r, cur, &t);
     struct trace tr = { .sink = sink, .ctx = ctx };
     trace_begin(&tr, (uint32_t)cur, local + 1);
-    struct raster_params p = replay_params(r, cur);
+    struct run_place at;
+    struct raster_params p = replay_params(r, cur, &at);
     r->variant->rasterize(&t, &p, fb, &tr);
     if (c)
         *c = tr.c;

@@ -10,8 +10,8 @@
  * A scene-level lesson (lesson 07) narrates in an order of its own: units,
  * each one triangle inside one tile, tile after tile (lesson.h,
  * lesson_units_fn). Then "triangle i" of the replay is unit i: replay_setup
- * sets up its triangle and replay_params gives the run's params restricted
- * to its tile.
+ * sets up its triangle and replay_params hands the unit to the lesson
+ * (raster_params.at).
  */
 #ifndef TRISTEP_REPLAY_H
 #define TRISTEP_REPLAY_H
@@ -130,8 +130,10 @@ bool replay_restart(struct replay *r);
 bool replay_setup(const struct replay *r, int i, struct tri_setup *t);
 /* The scene's triangle of unit i. */
 int replay_unit_tri(const struct replay *r, int i);
-/* The params to run unit i with: the run's, restricted to its tile. */
-struct raster_params replay_params(const struct replay *r, int i);
+/* The params to run unit i with: the run's, with where unit i stands in
+ * the run (its scene, and its unit of a scene-level lesson's order) in *at,
+ * which must outlive the params' use. */
+struct raster_params replay_params(const struct replay *r, int i, struct run_place *at);
 
 /* The triangle that global event number `event` belongs to: the last i
  * with start[i] <= event (0 for a scene without triangles). */

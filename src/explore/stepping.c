@@ -36,7 +36,8 @@ static void find_marks(struct explorer *ex, int i)
     replay_setup(&ex->replay, i, &t);
     struct trace tr = { .sink = collect_mark, .ctx = ex };
     trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-    struct raster_params p = replay_params(&ex->replay, i);
+    struct run_place at;
+    struct raster_params p = replay_params(&ex->replay, i, &at);
     ex->lesson->variants[ex->variant].rasterize(&t, &p, &ex->scratch, &tr);
     ex->marks_tri = i;
 }

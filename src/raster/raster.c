@@ -105,6 +105,14 @@ bool tri_setup(struct tri_setup *t, const struct vertex v[3], int w, int h)
 
 /* --- render target ------------------------------------------------------------ */
 
+/* A buffer of the target on whole cache lines (64 bytes): the rows of a
+ * target whose width is a multiple of 16 pixels then start on a line, so
+ * that threads drawing neighbouring tiles (lesson 07) never share a line. */
+static void *on_lines(size_t bytes)
+{
+    return aligned_alloc(64, (bytes + 63) / 64 * 64);
+}
+
 bool target_init(struct target *fb, int w, int h, uint32_t background)
 {
     memset(fb, 0, sizeof *fb);
@@ -114,9 +122,9 @@ bool target_init(struct target *fb, int w, int h, uint32_t background)
     fb->w = w;
     fb->h = h;
     fb->background = background;
-    fb->color = malloc(n * sizeof *fb->color);
-    fb->depth = malloc(n * sizeof *fb->depth);
-    fb->count = malloc(n);
+    fb->color = on_lines(n * sizeof *fb->color);
+    fb->depth = on_lines(n * sizeof *fb->depth);
+    fb->count = on_lines(n);
     if (!fb->color || !fb->depth || !fb->count) {
         target_free(fb);
         return false;

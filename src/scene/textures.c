@@ -15,6 +15,7 @@ const struct builtin_texture builtin_textures[] = {
     { "bricks", "256 x 256: rows of bricks in mortar, every other row shifted by half a brick" },
     { "grid", "256 x 256: a red-green gradient under a grid of lines every 8, 32 and 128 texels" },
     { "rgby", "2 x 2: red, green / blue, yellow (the smallest texture to reason about)" },
+    { "plaid", "32 x 8: stripes one texel wide under bands eight across and four down (not square)" },
     { NULL, NULL },
 };
 
@@ -100,10 +101,22 @@ static void rgby(uint32_t *im, int w, int h)
     im[2] = rgb(0, 0, 255), im[3] = rgb(255, 255, 0);
 }
 
+/* Red stripes one texel wide across, green ones down, under bands of eight
+ * texels across and four down: every level of its pyramid differs from the
+ * next, and its width is not its height. */
+static void plaid(uint32_t *im, int w, int h)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            im[(size_t)y * (size_t)w + (size_t)x] = rgb(110 * (unsigned)(x & 1) + 145 * (unsigned)(x >> 3 & 1),
+                                                        90 * (unsigned)(y & 1) + 165 * (unsigned)(y >> 2 & 1),
+                                                        (unsigned)(8 * x));
+}
+
 static const struct {
     int w, h;
     void (*make)(uint32_t *im, int w, int h);
-} makers[] = { { 256, 256, checker_numbers }, { 256, 256, bricks }, { 256, 256, grid }, { 2, 2, rgby } };
+} makers[] = { { 256, 256, checker_numbers }, { 256, 256, bricks }, { 256, 256, grid }, { 2, 2, rgby }, { 32, 8, plaid } };
 
 bool texture_builtin(const char *name, int *w, int *h, uint32_t **image, char *why, size_t n)
 {

@@ -12,6 +12,9 @@
  * pixels, or the exit status is 1). llvmpipe also draws at 4 samples (a
  * multisampled framebuffer resolved by a blit, beside lesson 08's rows),
  * checked against the exact rule at the samples where it says they are.
+ * Then three textured scenes (textured.c): the lessons that map image
+ * textures beside llvmpipe on one thread, trilinear, their colours held to
+ * llvmpipe's by agreement.
  *
  * Output: a table on stdout, BUILD/bench.csv, BUILD/bench.svg and .png, and
  * the same table as markdown (BUILD/bench.md, or --markdown FILE): `make
@@ -54,6 +57,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_L07_SCALE_SMALL_X 1.6    /* ... on small */
 #define TARGET_L07_LOADED_X 0.9 /* with one core kept busy: every core vs 1 thread, every scene */
 #define TARGET_L07_MEMORY_X 1.0 /* lesson 07 on large, times the memory limit */
+#define TARGET_L08_MSAA_X 1.0   /* lesson 08's tiles vs llvmpipe, 4 samples, 1 thread and all cores */
 /* Lesson 05 against lesson 02, the paper's figures (Mileff, Nehez and Dudra
  * 2015: their best speed-up of block classification over the bounding box is
  * 9.72x on large triangles; on tiny ones blocks lose, 0.85x). */
@@ -63,6 +67,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define TARGET_BIG_FIRST_S 5.0  /* 2,000,000 triangles: first frame */
 #define TARGET_BIG_RSS_MIB 2048 /* ... within 2 GiB */
 #define TARGET_BIG_STEP_MS 100  /* ... every step interactive */
+#define TARGET_L09_LP_X 1.0     /* lesson 09 vs llvmpipe, 1 thread each, textured (trilinear) */
 #define BIG_TRIS 2000000
 #define BIG_TRIS_QUICK 20000
 #define MAX_BIG 16
@@ -87,6 +92,7 @@ struct row {
     const struct lesson *lesson;        /* NULL for a peer */
     const struct lesson_variant *var;
     int samples;                /* lesson 08's samples per pixel (0, 1: the centre) */
+    int threads;                /* the lesson's --threads (0: its default, one per core) */
 };
 
 static struct row rows[MAX_ROWS];
@@ -96,6 +102,10 @@ static struct big_result big[MAX_BIG];
 static int nbig;
 static double figures_s = -1;    /* make figures, < 0 not measured */
 static struct bench_front front;  /* the 3-D front end; front.t.runs == 0: not measured */
+/* The memory limits on two cores, each passing over its half (0: not
+ * measured): the same buffers as the scenes, and 8 times larger ones. */
+static double limit2, limit2_gbs, dram1, dram2;
+static char cycles_what[200];     /* what bench_cycles() counts, "" when nothing */
 /* The same machine with one core kept busy by a spinning child process:
  * lesson 07 on every core and on 1 thread, llvmpipe on its default threads
  * and on 1 thread (LOADED_*), interleaved; runs == 0: not measured. */
@@ -118,6 +128,19 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double bench_now(void)
+{
+    return now();
+}
+
+/* Processor time of all the program's threads (the lesson's workers too). */
+static double process_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -133,22 +156,36 @@ void bench_timing_stats(struct bench_timing *bt)
     bt->median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
     bt->lo = s[0];
     bt->hi = s[n - 1];
+    memcpy(s, bt->cycles, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    bt->cycles_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    memcpy(s, bt->cpu, (size_t)bt->runs * sizeof *s);
+    qsort(s, (size_t)bt->runs, sizeof *s, cmp_double);
+    bt->cpu_median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
 }
 
-/* Pixels whose counts differ. */
+/* Pixels whose counts differ (agree.c). */
 static int64_t count_diff(const uint8_t *a, const uint8_t *b, size_t n)
 {
-    int64_t d = 0;
-    for (size_t i = 0; i < n; i++)
-        d += a[i] != b[i];
-    return d;
+    return bench_count_diff(a, b, n);
 }
+
 
 /* --- the lessons ------------------------------------------------------------ */
 
 /* The whole scene: through the lesson's scene-level twin when it has one
  * (lesson 07 bins every triangle, then draws tile by tile on every core),
  * else tri_setup + rasterize triangle after triangle. */
+/* The params of a row: its samples, and its threads when it sets them. */
+static struct raster_params row_params(const struct row *row)
+{
+    struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    int k;
+    if (row->threads > 0 && lesson_param(row->lesson, "threads", &k))
+        *lesson_param_slot(row->lesson, k, &p) = row->threads;
+    return p;
+}
+
 static void draw_scene(const struct row *row, const struct scene *s,
                        const struct raster_params *p, struct target *fb)
 {
@@ -163,8 +200,16 @@ static void draw_scene(const struct row *row, const struct scene *s,
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup(&t, s->tris[i].v, s->w, s->h);
-        row->var->rasterize(&t, p, fb, NULL);
+        const struct raster_params each = lesson_params_tri(p, s, i);   /* its image texture */
+        row->var->rasterize(&t, &each, fb, NULL);
     }
+}
+
+void bench_draw(const struct lesson *l, const struct lesson_variant *v, const struct scene *s,
+                const struct raster_params *p, struct target *fb)
+{
+    const struct row row = { .program = l->id, .variant = v->name, .lesson = l, .var = v };
+    draw_scene(&row, s, p, fb);
 }
 
 /* Lesson 08's exact answer at n samples: for every pixel, the samples the
@@ -209,14 +254,18 @@ static uint8_t *sample_reference(const struct scene *s, int n, const int (*pos)[
  * the clock and does not count coverage. */
 static void time_once(struct row *row, int i, const struct scene *s, struct target *fb, int r)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    const struct raster_params p = row_params(row);
     target_clear(fb);
     struct target timed = *fb;
     timed.count = NULL;
-    double t0 = now();
+    uint64_t c0 = bench_cycles();
+    double p0 = process_seconds(), t0 = now();
     draw_scene(row, s, &p, &timed);
+    double t1 = now(), p1 = process_seconds();
+    uint64_t c1 = bench_cycles();
     if (r >= 0)
-        row->t[i].t[r] = now() - t0;
+        row->t[i].t[r] = t1 - t0, row->t[i].cycles[r] = (double)(c1 - c0),
+        row->t[i].cpu[r] = p1 - p0;
 }
 
 /* A row's target on one scene, among that scene's targets by sample count. */
@@ -251,7 +300,7 @@ static bool peer_samples_standard(void)
 static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
                            uint8_t *const peer_cov[], uint8_t *const peer_cov4[], struct target *fb)
 {
-    const struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS, .samples = row->samples };
+    const struct raster_params p = row_params(row);
     target_clear(fb);
     draw_scene(row, &sc->s, &p, fb);
     size_t n = (size_t)sc->s.w * (size_t)sc->s.h;
@@ -263,75 +312,6 @@ static void check_coverage(struct row *row, int i, const struct bench_scene *sc,
     }
     row->t[i].diff_ref = count_diff(fb->count, sc->coverage, n);
     row->t[i].diff_peer = peer_cov ? count_diff(fb->count, peer_cov[i], n) : -1;
-}
-
-/* --- the memory limit ----------------------------------------------------- */
-
-/* The least work a fill must do per pixel: read and write colour and depth.
- * One pass over buffers of n pixels, on one core; returns Mpix/s. */
-static double bandwidth_limit(size_t n, int runs, double *gbs)
-{
-    uint32_t *c = malloc(n * sizeof *c);
-    float *d = malloc(n * sizeof *d);
-    if (!c || !d) {
-        free(c);
-        free(d);
-        return 0;
-    }
-    for (size_t i = 0; i < n; i++) {
-        c[i] = (uint32_t)i;
-        d[i] = (float)(i & 1023);
-    }
-    struct bench_timing bt = { .runs = runs };
-    for (int r = -1; r < runs; r++) {
-        double t0 = now();
-        for (size_t i = 0; i < n; i++) {
-            c[i] ^= 0x00010101u;
-            d[i] += 1.0f;
-        }
-        if (r >= 0)
-            bt.t[r] = now() - t0;
-    }
-    bench_timing_stats(&bt);
-    /* keep the result alive so the passes are not optimised away */
-    volatile uint32_t sink = c[n / 2] + (uint32_t)d[n / 3];
-    (void)sink;
-    free(c);
-    free(d);
-    *gbs = 16.0 * (double)n / bt.median * 1e-9;
-    return (double)n / bt.median * 1e-6;
-}
-
-/* The same pass over one 64 x 64 tile's colour and depth (32 KB), again and
- * again until n pixels are done: the rate when every access hits the cache,
- * what a tiled rasterizer's overdraw costs at best. Returns Mpix/s. */
-static double cache_resident_limit(size_t n, int runs, double *gbs)
-{
-    enum { TILE_PIX = 64 * 64 };
-    static uint32_t c[TILE_PIX];
-    static float d[TILE_PIX];
-    for (size_t i = 0; i < TILE_PIX; i++) {
-        c[i] = (uint32_t)i;
-        d[i] = (float)(i & 1023);
-    }
-    size_t passes = n / TILE_PIX + 1;
-    struct bench_timing bt = { .runs = runs };
-    for (int r = -1; r < runs; r++) {
-        double t0 = now();
-        for (size_t p = 0; p < passes; p++) {
-            for (size_t i = 0; i < TILE_PIX; i++) {
-                c[i] ^= 0x00010101u;
-                d[i] += 1.0f;
-            }
-            __asm__ volatile("" ::: "memory");  /* each pass really reads and writes */
-        }
-        if (r >= 0)
-            bt.t[r] = now() - t0;
-    }
-    bench_timing_stats(&bt);
-    double pix = (double)(passes * TILE_PIX);
-    *gbs = 16.0 * pix / bt.median * 1e-9;
-    return pix / bt.median * 1e-6;
 }
 
 /* --- the explorer's frame ------------------------------------------------- */
@@ -509,12 +489,13 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
     const struct row *base = find_row("02-", NULL);
     fprintf(f, "# tristep bench, %s, %s\n", cpu, date);
     fprintf(f, "scene,width,height,triangles,pixels,program,variant,exhibit,runs,median_s,min_s,"
-               "max_s,mtri_s,mpix_s,ratio_l02,pct_memory_limit,diff_ref,diff_llvmpipe\n");
+               "max_s,mtri_s,mpix_s,ratio_l02,pct_memory_limit,diff_ref,diff_llvmpipe,"
+               "pct_within2_llvmpipe,pct_within8_llvmpipe\n");
     for (int i = 0; i < NSCENES; i++)
         for (int k = 0; k < nrows; k++) {
             const struct row *r = &rows[k];
             const struct bench_timing *t = &r->t[i];
-            fprintf(f, "%s,%d,%d,%d,%llu,%s,%s,%d,%d,%.6f,%.6f,%.6f,%.4f,%.2f,%.4f,%.2f,%lld,%lld\n",
+            fprintf(f, "%s,%d,%d,%d,%llu,%s,%s,%d,%d,%.6f,%.6f,%.6f,%.4f,%.2f,%.4f,%.2f,%lld,%lld,-1,-1\n",
                     sc[i].name, sc[i].s.w, sc[i].s.h, sc[i].s.ntris,
                     (unsigned long long)sc[i].pixels, r->program, r->variant, r->exhibit, t->runs,
                     t->median, t->lo, t->hi, mtri(&sc[i], t), mpix(&sc[i], t),
@@ -522,14 +503,15 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
                     limit > 0 ? 100 * mpix(&sc[i], t) / limit : 0.0, (long long)t->diff_ref,
                     (long long)t->diff_peer);
         }
+    bench_textured_csv(f);
     for (int i = 0; i < NSCENES; i++)
-        fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1\n",
+        fprintf(f, "%s,%d,%d,0,%llu,memory-limit,read-modify-write,0,0,0,0,0,0,%.2f,0,100,-1,-1,-1,-1\n",
                 sc[i].name, sc[i].s.w, sc[i].s.h, (unsigned long long)sc[i].pixels, limit);
     /* not scenes: the explorer's frame and make figures, in seconds */
     if (frame_ms > 0)
-        fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1\n", frame_ms / 1e3);
+        fprintf(f, "none,1280,800,0,0,explorer,frame,0,0,%.6f,0,0,0,0,0,0,-1,-1,-1,-1\n", frame_ms / 1e3);
     if (figures_s > 0)
-        fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1\n", figures_s);
+        fprintf(f, "none,0,0,0,0,make-figures,all,0,1,%.3f,0,0,0,0,0,0,-1,-1,-1,-1\n", figures_s);
     /* the large scene in the explorer: seconds, and peak-rss-mib in MiB */
     for (int i = 0; i < nbig; i++) {
         const struct big_result *b = &big[i];
@@ -544,25 +526,72 @@ static bool write_csv(const char *path, const struct bench_scene *sc, double lim
             { "peak-rss-mib", b->peak_rss_mib },
         };
         for (size_t k = 0; k < sizeof m / sizeof m[0]; k++)
-            fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1\n", b->ntris,
+            fprintf(f, "big,1920,1080,%d,0,%s,%s,0,1,%.6f,0,0,0,0,0,0,-1,-1,-1,-1\n", b->ntris,
                     b->program, m[k].what, m[k].v);
     }
     /* the 3-D front end: world triangles per second, no pixels */
     if (front.t.runs > 0)
-        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1\n",
+        fprintf(f, "torus-3d,1920,1080,%d,0,front-end,clip+project,0,%d,%.6f,%.6f,%.6f,%.4f,0,0,0,-1,-1,-1,-1\n",
                 front.in, front.t.runs, front.t.median, front.t.lo, front.t.hi,
                 front.in / front.t.median * 1e-6);
     /* the targets: program target-met or target-missed, variant = its id,
      * median_s = the value measured, min_s = the goal */
     for (int k = 0; k < ntargets; k++)
         if (targets[k].measured)
-            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1\n",
+            fprintf(f, "none,0,0,0,0,%s,%s,0,0,%.4f,%.4f,0,0,0,0,0,-1,-1,-1,-1\n",
                     targets[k].met ? "target-met" : "target-missed", targets[k].id,
                     targets[k].got, targets[k].goal);
     bool ok = fclose(f) == 0 && rename(tmp, path) == 0;
     if (!ok)
         remove(tmp);
     return ok;
+}
+
+/* What bounds lesson 07 on one thread, in words (markdown: list items),
+ * into buf: the memory limit on two cores beside one's, and the cycles a
+ * covered pixel of the large scene costs against the memory traffic of
+ * its tiles. False when nothing of it was measured. */
+static bool limits_line(const struct bench_scene *sc, double limit, char *buf, size_t n, bool md)
+{
+    size_t at = 0;
+    buf[0] = '\0';
+    const char *item = md ? "- " : "  ";
+    if (limit2 > 0 && limit > 0)
+        at += (size_t)snprintf(buf + at, n - at, "%smemory limit on two cores, each passing over "
+                               "half of the buffers: %.1f Mpix/s (%.1f GB/s), %.2fx one core's; "
+                               "beyond the caches (8 times larger buffers) %.1f Mpix/s on two "
+                               "cores, %.2fx one core's %.1f\n", item, limit2, limit2_gbs,
+                               limit2 / limit, dram2, dram1 > 0 ? dram2 / dram1 : 0, dram1);
+    const struct row *one = find_row("07-", "1-thread");
+    const struct bench_timing *t = one ? &one->t[SCENE_LARGE] : NULL;
+    if (t && t->median > 0 && cycles_what[0] && t->cycles_median > 0 && at < n) {
+        double per_pixel = t->cycles_median / (double)sc[SCENE_LARGE].pixels;
+        double screen = (double)sc[SCENE_LARGE].s.w * (double)sc[SCENE_LARGE].s.h;
+        double mem_ms = limit > 0 ? screen / (limit * 1e6) * 1e3 : 0;
+        at += (size_t)snprintf(buf + at, n - at, "%slesson 07 on large, one thread (`1-thread`): "
+                               "%.2f cycles per covered pixel, %.1f per register of 8 (%s); its "
+                               "memory traffic, each tile loaded and stored once, is one pass "
+                               "over the screen: %.2f ms at the one-core memory limit, %.0f%% of "
+                               "its %.2f ms. The rest is pixel work in cache: it is bound by "
+                               "computing, not by memory\n", item, per_pixel, 8 * per_pixel,
+                               cycles_what, mem_ms, 100 * mem_ms / (t->median * 1e3),
+                               t->median * 1e3);
+    }
+    const struct row *all = find_row("07-", "tiles");
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    for (int i = 0; one && all && i < NSCENES && at < n; i++) {
+        const struct bench_timing *a = &all->t[i], *b = &one->t[i];
+        if (a->cpu_median <= 0 || b->cpu_median <= 0)
+            continue;
+        at += (size_t)snprintf(buf + at, n - at, "%slesson 07 on %s, %ld threads against 1: "
+                               "%.2fx the processor time of all threads (%.2f ms against %.2f: "
+                               "the split's cost, waits spent spinning included), a speed-up "
+                               "of %.2fx by the clock (the rest of the gap to %ldx is waiting, "
+                               "for a core or another worker)\n", item, sc[i].name, cores, a->cpu_median / b->cpu_median,
+                               a->cpu_median * 1e3, b->cpu_median * 1e3, b->median / a->median,
+                               cores);
+    }
+    return at > 0;
 }
 
 /* The table as markdown: machine, date, one table per scene (medians,
@@ -619,6 +648,8 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
                "(slowest - fastest) / median; on a shared machine, differences smaller than "
                "the spread are noise\n", o->runs, (unsigned long long)o->seed);
     fprintf(f, "- peer: %s\n", find_row("llvmpipe", NULL) ? peer_renderer : "llvmpipe not measured");
+    fprintf(f, "- llvmpipe's environment: its sampler's faster approximations off, %s (they "
+               "matter on the textured scenes)\n", PEER_EXACT_OPTIONS);
     if (find_row("llvmpipe", "1 thread 4 samples")) {
         fprintf(f, "- llvmpipe at 4 samples: a multisampled framebuffer resolved by a blit, both timed; "
                 "its samples (GL_SAMPLE_POSITION) in the scene, 1/256 pixel:");
@@ -647,6 +678,7 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
         }
     }
     write_journey(f, sc);
+    bench_textured_markdown(f);
     if (ntargets > 0) {
         fprintf(f, "\n## Targets\n\n| target | measured | goal | |\n| --- | ---: | ---: | --- |\n");
         for (int k = 0; k < ntargets; k++) {
@@ -663,6 +695,9 @@ static bool write_markdown(const char *path, const struct bench_scene *sc, doubl
     fprintf(f, "\n## Limits and the explorer\n\n");
     fprintf(f, "- memory limit (one read-modify-write pass over colour + depth, one core): "
                "%.1f Mpix/s; the %% mem column is a share of it\n", limit);
+    char line[2400];
+    if (limits_line(sc, limit, line, sizeof line, true))
+        fprintf(f, "%s", line);
     if (frame_ms > 0)
         fprintf(f, "- explorer frame (1280 x 800, 64 x 48 grid, numbers shown): %.2f ms\n",
                 frame_ms);
@@ -807,6 +842,19 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
         if (lp->runs && lp1->runs)
             printf("  %-60s %6.2fx\n", "  ... llvmpipe there, default threads vs 1", lp1->median / lp->median);
     }
+    /* lesson 08's tiles against llvmpipe, both at 4 samples (issue 25) */
+    const struct row *l08 = find_row("08-", "tiles 4 samples"), *l08_1 = find_row("08-", "tiles 1 thread 4 samples");
+    const struct row *lp4 = find_row("llvmpipe", "default 4 samples");
+    const struct row *lp4_1 = find_row("llvmpipe", "1 thread 4 samples");
+    for (int each = 0; each < 2 && (l08 || l08_1); each++)
+        for (int i = 0; i < NSCENES; i++) {
+            snprintf(what, sizeof what, "lesson 08 tiled 4x MSAA vs llvmpipe 4x MSAA, %s, on %s",
+                     each ? "all cores each" : "one thread each", scene_id[i]);
+            snprintf(id, sizeof id, "l08-tiles-vs-llvmpipe-msaa4-%s-%s", each ? "all" : "1-thread",
+                     scene_id[i]);
+            print_target(id, what, each ? speedup(l08, lp4, i) : speedup(l08_1, lp4_1, i),
+                         TARGET_L08_MSAA_X, "x", false);
+        }
     double rate = l07 ? mpix(&sc[SCENE_LARGE], &l07->t[SCENE_LARGE]) : 0;
     print_target("l07-large-vs-memory-limit", "lesson 07 on large, times the memory limit",
                  limit > 0 ? rate / limit : 0, TARGET_L07_MEMORY_X, "x", false);
@@ -835,6 +883,17 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
                  TARGET_BIG_RSS_MIB, " MiB", true);
     print_target("big-slowest-step-ms", "large scene: slowest step (jump, End, back)", step,
                  TARGET_BIG_STEP_MS, " ms", true);
+    printf("\ntexture mapping against llvmpipe, one thread each, trilinear:\n");
+    for (int i = 0; i < 3; i++) {
+        const char *lesson, *variant;
+        double x = bench_textured_speedup(i, &lesson, &variant);
+        snprintf(what, sizeof what, "lesson %.2s vs llvmpipe, 1 thread, textured (trilinear), on %s",
+                 lesson, bench_textured_scene(i));
+        snprintf(id, sizeof id, "l%.2s-vs-llvmpipe-1-thread-textured-%s", lesson, bench_textured_scene(i));
+        print_target(id, what, x, TARGET_L09_LP_X, "x", false);
+        if (x > 0)
+            printf("  %-60s %s %s\n", "  ... the lesson's fastest exact variant:", lesson, variant);
+    }
     /* the fastest exact variant of every lesson on each scene, for the record */
     for (int i = 0; i < NSCENES && lp1; i++) {
         const struct row *best = NULL;
@@ -889,7 +948,7 @@ static void measure_loaded(const struct bench_scene *sc, struct target *fb[NSCEN
             for (int i = 0; i < NSCENES; i++)
                 cov[i] = fb[i]->count;
             char why[256];
-            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, 1, scratch, cov, why, sizeof why))
+            if (!peer_run(sc, NSCENES, c ? lp_all : lp_one, 1, 1, 1, scratch, cov, NULL, why, sizeof why))
                 continue;
             for (int i = 0; i < NSCENES; i++) {
                 loaded[c ? LOADED_LP : LOADED_LP_1][i].t[r] = scratch[i].t[0];
@@ -914,7 +973,8 @@ static int usage(FILE *f, int status)
         "                     [--lesson NN [--variant NAME]]\n"
         "                     [--exhibits] [--no-llvmpipe] [--no-large-scene] [--figures-cmd CMD]\n"
         "Times every lesson's fast build on three seeded 1920x1080 scenes beside\n"
-        "Mesa's llvmpipe and the memory limit; checks coverage on every scene.\n"
+        "Mesa's llvmpipe and the memory limit, and the texture-mapping lessons on\n"
+        "three textured scenes beside llvmpipe; checks coverage on every scene.\n"
         "  --quick        tiny scenes, 3 runs (what `make test` runs)\n"
         "  --runs N       timed runs after one warm-up (default 7, at least 5)\n"
         "  --out DIR      write DIR/bench.csv, bench.svg, bench.png (default build)\n"
@@ -1048,6 +1108,15 @@ int main(int argc, char **argv)
                 rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
                                             .lesson = *l, .var = var, .samples = n };
                 nrows++;
+                /* a whole-scene variant with threads (lesson 08's tiles): on one
+                 * thread too, beside llvmpipe's one thread at 4 samples */
+                if (n == PEER_SAMPLES && lesson_param(*l, "threads", NULL) && lesson_scene_fn(*l, var)
+                    && nrows < MAX_ROWS) {
+                    snprintf(names[nrows], sizeof names[nrows], "%s 1 thread %d samples", var->name, n);
+                    rows[nrows] = (struct row){ .program = (*l)->id, .variant = names[nrows],
+                                                .lesson = *l, .var = var, .samples = n, .threads = 1 };
+                    nrows++;
+                }
             }
         }
     }
@@ -1103,7 +1172,7 @@ int main(int argc, char **argv)
             uint8_t *cov[NSCENES];
             for (int i = 0; i < NSCENES; i++)       /* fb's count: scratch after the first */
                 cov[i] = r == 0 && c == 0 ? peer_cov[i] : r == 0 && c == 2 ? peer_cov4[i] : fb[i]->count;
-            if (!peer_run(sc, NSCENES, cfg[c].threads, cfg[c].samples, 1, 1, one, cov, why, sizeof why)) {
+            if (!peer_run(sc, NSCENES, cfg[c].threads, cfg[c].samples, 1, 1, one, cov, NULL, why, sizeof why)) {
                 printf("llvmpipe (%s): not measured: %s\n", cfg[c].name, why);
                 peer_ok[c] = false;
                 continue;
@@ -1159,14 +1228,27 @@ int main(int argc, char **argv)
     for (int i = 0; i < NSCENES; i++)
         for (int n = 0; n <= SAMPLES_MAX; n++)
             target_free(&fbs[i][n]);
+    const struct bench_tex_options to = { .runs = o.runs, .seed = o.seed, .quick = o.quick,
+                                          .peer = o.peer, .exhibits = o.exhibits, .only = o.only,
+                                          .only_variant = o.only_variant };
+    if (!bench_textured_run(&to)) {
+        fprintf(stderr, "tristep-bench: out of memory in the textured scenes\n");
+        return 1;
+    }
 
     double gbs = 0, dram_gbs = 0;
     size_t npix = (size_t)sc[0].s.w * (size_t)sc[0].s.h;
-    double limit = bandwidth_limit(npix, o.runs < 5 ? 5 : o.runs, &gbs);
-    double dram = bandwidth_limit(o.quick ? npix : 8 * npix, 3, &dram_gbs);
+    double limit = bench_memory_limit(npix, 1, o.runs < 5 ? 5 : o.runs, &gbs);
+    double dram = bench_memory_limit(o.quick ? npix : 8 * npix, 1, 3, &dram_gbs), dram2_gbs = 0;
+    limit2 = bench_memory_limit(npix, 2, o.runs < 5 ? 5 : o.runs, &limit2_gbs);
+    dram2 = bench_memory_limit(o.quick ? npix : 8 * npix, 2, 3, &dram2_gbs);
+    dram1 = dram;
+    if (!bench_cycles_source(cycles_what, sizeof cycles_what))
+        cycles_what[0] = '\0';
     double cache_gbs = 0;
-    double cache_limit = cache_resident_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
+    double cache_limit = bench_cache_limit(npix, o.runs < 5 ? 5 : o.runs, &cache_gbs);
     print_table(sc, limit);
+    bench_textured_print();
     char l3[32] = "?";
     FILE *cf = fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r");
     if (cf && fgets(l3, sizeof l3, cf))
@@ -1179,6 +1261,9 @@ int main(int argc, char **argv)
            "(%.1f GB/s)\n  one 64 x 64 tile over and over (cache-resident): %.1f Mpix/s (%.1f GB/s)\n",
            sc[0].s.w, sc[0].s.h, 8e-6 * (double)npix, l3, limit, gbs, dram, dram_gbs,
            cache_limit, cache_gbs);
+    char line[2400];
+    if (limits_line(sc, limit, line, sizeof line, false))
+        printf("%s", line);
 
     frame_ms = explorer_frame(o.quick ? 5 : 60);
     if (frame_ms > 0)
@@ -1235,8 +1320,9 @@ int main(int argc, char **argv)
         for (int i = 0; i < NSCENES; i++)
             if (!rows[k].exhibit)
                 bad += rows[k].t[i].diff_ref + (rows[k].t[i].diff_peer > 0 ? rows[k].t[i].diff_peer : 0);
-    printf("\ncoverage check: %s (%d programs x %d scenes against the reference%s)\n",
-           bad ? "DIFFERENCES FOUND" : "0 differing pixels", nrows, NSCENES,
+    bad += bench_textured_differences();
+    printf("\ncoverage check: %s (%d programs x %d scenes and the textured scenes against the "
+           "reference%s)\n", bad ? "DIFFERENCES FOUND" : "0 differing pixels", nrows, NSCENES,
            have_peer ? " and llvmpipe" : "; llvmpipe not available");
 
     char path[1024], title[320];

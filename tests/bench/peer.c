@@ -40,6 +40,26 @@
  * is that sample's count (up to 63); the per-pixel sum over the samples is
  * what lesson 08's --dump-coverage counts.
  *
+ * A scene with image textures (the bench's textured scenes) is drawn as
+ * CONVENTIONS.md "Textures" says, in GL's words: each texture's level 0 as
+ * its image rows come (row 0, t = 0, first: GL's t runs along the rows as
+ * they are given, so no flip), its levels made by glGenerateMipmap,
+ * GL_LINEAR_MIPMAP_LINEAR and GL_LINEAR, GL_REPEAT or GL_CLAMP_TO_EDGE as
+ * the scene says; a shader multiplies the texel by the vertex colour
+ * (modulate). Vertices still go in divided (w = 1, the exact positions
+ * above), so the shader makes perspective correct itself: it receives
+ * (r, g, b, s, t) / z and 1 / z, interpolated linearly in the screen, and
+ * divides per pixel, as the lessons do; the texture's derivatives are
+ * those of the divided (s, t), by differences on llvmpipe's 2 x 2 quads.
+ * Depth is 1/z mapped to [-1, 1] (linear in the screen, as the lessons'
+ * 1/z), depth clamping on. The sampler's faster approximations are off
+ * (PEER_EXACT_OPTIONS, set before OSMesa makes its screen): GALLIVM_PERF
+ * without `brilinear` (a bilinear tap instead of trilinear near integer
+ * levels) and `rho_approx` (the level of detail from an approximate
+ * length), with `no_quad_lod` (the level of detail computed for each pixel,
+ * not once a quad) and `no_aos_sampling` (filtering in floats, not in 8-bit
+ * fixed point); LP_PERF (switches that turn features off) unset.
+ *
  * llvmpipe reads LP_NUM_THREADS once, when OSMesa makes its screen, so each
  * thread setting runs in a child process; results come back through shared
  * memory.
@@ -63,10 +83,11 @@ int peer_sample_pos[SAMPLES_MAX][2];
 #ifndef TRISTEP_OSMESA
 
 bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int samples, int warmup,
-              int runs, struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+              int runs, struct bench_timing *out, uint8_t *const coverage[], uint32_t *const colour[],
+              char *why, size_t whylen)
 {
     (void)sc, (void)nscenes, (void)threads, (void)samples, (void)warmup, (void)runs, (void)out;
-    (void)coverage;
+    (void)coverage, (void)colour;
     snprintf(why, whylen, "OSMesa was not found when the bench was built "
              "(Debian: apt-get install libosmesa6-dev, then make bench)");
     return false;
@@ -85,6 +106,7 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
 #define VIEW_CENTRE (VIEW_ORIGIN + VIEW_HALF)
 #define Z_NEAR 1.5              /* the scenes' depth range, mapped to [-1, 1] */
 #define Z_FAR  99.5
+#define TEX_MAX 8               /* image textures in a scene llvmpipe draws */
 
 struct gl_vertex {
     float pos[4];
@@ -208,8 +230,137 @@ static void sample_counts(int n, GLuint fbo, int w, int h, GLsizei nv, uint8_t *
     glEnableClientState(GL_COLOR_ARRAY);
 }
 
+/* --- textured scenes ------------------------------------------------------- */
+
+struct tex_vertex {
+    float pos[4];
+    float rgbw[4];      /* r/z, g/z, b/z, 1/z */
+    float st[2];        /* s/z, t/z */
+};
+
+static const char vertex_src[] =
+    "#version 130\n"
+    "in vec4 pos;\n in vec4 rgbw;\n in vec2 st;\n"
+    "out vec4 c;\n out vec2 q;\n"
+    "void main() { gl_Position = pos; c = rgbw; q = st; }\n";
+/* perspective-correct (s, t) and colour, then modulate */
+static const char fragment_src[] =
+    "#version 130\n"
+    "uniform sampler2D tex;\n"
+    "in vec4 c;\n in vec2 q;\n out vec4 frag;\n"
+    "void main() { float z = 1.0 / c.w;\n"
+    "  frag = texture(tex, q * z) * vec4(c.rgb * z, 1.0); }\n";
+
+static GLuint shader(GLenum kind, const char *src, struct shared *sh)
+{
+    GLuint id = glCreateShader(kind);
+    glShaderSource(id, 1, &src, NULL);
+    glCompileShader(id);
+    GLint ok = 0;
+    glGetShaderiv(id, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[200] = "";
+        glGetShaderInfoLog(id, sizeof log, NULL, log);
+        snprintf(sh->why, sizeof sh->why, "%s: shader: %s", sh->renderer, log);
+        return 0;
+    }
+    return id;
+}
+
+/* The program of the textured scenes, bound, its attributes 0, 1, 2. */
+static GLuint tex_program(struct shared *sh)
+{
+    GLuint vs = shader(GL_VERTEX_SHADER, vertex_src, sh), fs = vs ? shader(GL_FRAGMENT_SHADER, fragment_src, sh) : 0;
+    if (!fs)
+        return 0;
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, vs);
+    glAttachShader(prog, fs);
+    glBindAttribLocation(prog, 0, "pos");
+    glBindAttribLocation(prog, 1, "rgbw");
+    glBindAttribLocation(prog, 2, "st");
+    glLinkProgram(prog);
+    GLint ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        snprintf(sh->why, sizeof sh->why, "%s: the textured program does not link", sh->renderer);
+        return 0;
+    }
+    glUseProgram(prog);
+    glUniform1i(glGetUniformLocation(prog, "tex"), 0);
+    return prog;
+}
+
+/* GL textures for the scene's image textures 1..n, and tex[0] a white
+ * texel for triangles under none (modulate by white: the vertex colour). */
+static void tex_upload(const struct scene *s, GLuint *tex, int n)
+{
+    static const uint32_t white = 0xffffffffu;
+    glGenTextures(n + 1, tex);
+    for (int k = 0; k <= n; k++) {
+        const struct texture *t = k ? scene_texture(s, k) : NULL;
+        glBindTexture(GL_TEXTURE_2D, tex[k]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, t ? t->level[0].w : 1, t ? t->level[0].h : 1, 0,
+                     GL_BGRA, GL_UNSIGNED_INT_8_8_8_8_REV, t ? t->level[0].texel : &white);
+        glGenerateMipmap(GL_TEXTURE_2D);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        GLint wrap = t && t->wrap == TEXTURE_CLAMP ? GL_CLAMP_TO_EDGE : GL_REPEAT;
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+    }
+}
+
+/* The scene's triangles as the shader takes them, into a bound buffer:
+ * false when out of memory. */
+static bool tex_vertices(const struct scene *s)
+{
+    double zmin = INFINITY, zmax = 0;
+    for (int t = 0; t < s->ntris; t++)
+        for (int k = 0; k < 3; k++) {
+            zmin = fmin(zmin, s->tris[t].v[k].z);
+            zmax = fmax(zmax, s->tris[t].v[k].z);
+        }
+    size_t nv = (size_t)s->ntris * 3;
+    struct tex_vertex *gv = malloc(nv * sizeof *gv);
+    if (!gv)
+        return false;
+    for (size_t i = 0; i < nv; i++) {
+        const struct vertex *v = &s->tris[i / 3].v[i % 3];
+        struct gl_vertex g;
+        to_gl(&g, v, s->h);
+        double w = 1 / v->z;
+        /* 1/z: the nearest -0.999, the farthest 0.999 (zmin < zmax, or one depth) */
+        double d = zmax > zmin ? (1 / zmin - w) / (1 / zmin - 1 / zmax) : 0.5;
+        gv[i] = (struct tex_vertex){
+            { g.pos[0], g.pos[1], (float)(1.998 * d - 0.999), 1.0f },
+            { (float)(v->r * w), (float)(v->g * w), (float)(v->b * w), (float)w },
+            { (float)(v->s * w), (float)(v->t * w) },
+        };
+    }
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * sizeof *gv), gv, GL_STATIC_DRAW);
+    free(gv);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof *gv, (const void *)offsetof(struct tex_vertex, pos));
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof *gv, (const void *)offsetof(struct tex_vertex, rgbw));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof *gv, (const void *)offsetof(struct tex_vertex, st));
+    return true;
+}
+
+/* Every triangle in the scene's order, a draw call for each run of them
+ * under the same texture. */
+static void tex_draw(const struct scene *s, const GLuint *tex)
+{
+    for (int first = 0, t = 1; t <= s->ntris; t++)
+        if (t == s->ntris || s->tris[t].texture != s->tris[first].texture) {
+            int k = s->tris[first].texture;
+            glBindTexture(GL_TEXTURE_2D, tex[k >= 0 && k <= scene_texture_count(s) ? k : 0]);
+            glDrawArrays(GL_TRIANGLES, 3 * first, 3 * (t - first));
+            first = t;
+        }
+}
+
 static bool child(const struct bench_scene *sc, int nscenes, int samples, int warmup, int runs,
-                  struct shared *sh, uint8_t *cov)
+                  struct shared *sh, uint8_t *cov, uint32_t *colour)
 {
     const int attribs[] = {
         OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
@@ -260,21 +411,41 @@ static bool child(const struct bench_scene *sc, int nscenes, int samples, int wa
             return false;
         glViewport(VIEW_ORIGIN, VIEW_ORIGIN, VIEW_SIZE, VIEW_SIZE);
         size_t nv = (size_t)s->ntris * 3;
-        struct gl_vertex *gv = malloc(nv * sizeof *gv);
-        if (!gv) {
-            snprintf(sh->why, sizeof sh->why, "out of memory");
-            return false;
-        }
-        for (int t = 0; t < s->ntris; t++)
-            for (int k = 0; k < 3; k++)
-                to_gl(&gv[3 * (size_t)t + (size_t)k], &s->tris[t].v[k], s->h);
-        GLuint vbo;
+        int ntex = samples <= 1 ? scene_texture_count(s) : 0;     /* > 0: drawn textured */
+        GLuint vbo, prog = 0, tex[TEX_MAX + 1];
         glGenBuffers(1, &vbo);
         glBindBuffer(GL_ARRAY_BUFFER, vbo);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * sizeof *gv), gv, GL_STATIC_DRAW);
-        free(gv);
-        glVertexPointer(4, GL_FLOAT, sizeof *gv, (const void *)offsetof(struct gl_vertex, pos));
-        glColorPointer(4, GL_UNSIGNED_BYTE, sizeof *gv, (const void *)offsetof(struct gl_vertex, rgba));
+        if (ntex > TEX_MAX) {
+            snprintf(sh->why, sizeof sh->why, "scene %s: more than %d textures", sc[i].name, TEX_MAX);
+            return false;
+        }
+        if (ntex) {
+            if (!(prog = tex_program(sh)))
+                return false;
+            tex_upload(s, tex, ntex);
+            glDisableClientState(GL_VERTEX_ARRAY);
+            glDisableClientState(GL_COLOR_ARRAY);
+            for (GLuint a = 0; a < 3; a++)
+                glEnableVertexAttribArray(a);
+            glEnable(GL_DEPTH_CLAMP);
+            if (!tex_vertices(s)) {
+                snprintf(sh->why, sizeof sh->why, "out of memory");
+                return false;
+            }
+        } else {
+            struct gl_vertex *gv = malloc(nv * sizeof *gv);
+            if (!gv) {
+                snprintf(sh->why, sizeof sh->why, "out of memory");
+                return false;
+            }
+            for (int t = 0; t < s->ntris; t++)
+                for (int k = 0; k < 3; k++)
+                    to_gl(&gv[3 * (size_t)t + (size_t)k], &s->tris[t].v[k], s->h);
+            glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * sizeof *gv), gv, GL_STATIC_DRAW);
+            free(gv);
+            glVertexPointer(4, GL_FLOAT, sizeof *gv, (const void *)offsetof(struct gl_vertex, pos));
+            glColorPointer(4, GL_UNSIGNED_BYTE, sizeof *gv, (const void *)offsetof(struct gl_vertex, rgba));
+        }
 
         /* timed: colour and depth cleared (untimed), then the whole scene */
         glClearColor((float)s->background[0], (float)s->background[1], (float)s->background[2], 1);
@@ -288,11 +459,24 @@ static bool child(const struct bench_scene *sc, int nscenes, int samples, int wa
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             glFinish();
             double t0 = now();
-            glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
+            if (ntex)
+                tex_draw(s, tex);
+            else
+                glDrawArrays(GL_TRIANGLES, 0, (GLsizei)nv);
             resolve(fbo_rb[0], s->w, s->h);
             glFinish();
             if (r >= 0)
                 bt->t[r] = now() - t0;
+        }
+        if (colour) {           /* the last run's picture, window rows bottom-up */
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            glReadPixels(0, 0, s->w, s->h, GL_BGRA, GL_UNSIGNED_INT_8_8_8_8_REV, readback);
+            if (fbo_rb[0])
+                glBindFramebuffer(GL_FRAMEBUFFER, fbo_rb[0]);
+            for (int y = 0; y < s->h; y++)
+                memcpy(colour + (size_t)y * (size_t)s->w,
+                       readback + (size_t)(s->h - 1 - y) * (size_t)s->w * 4, (size_t)s->w * 4);
+            colour += (size_t)s->w * (size_t)s->h;
         }
 
         /* untimed: coverage counted by a saturating stencil increment, or
@@ -317,6 +501,16 @@ static bool child(const struct bench_scene *sc, int nscenes, int samples, int wa
                    stencil + (size_t)(s->h - 1 - y) * (size_t)s->w, (size_t)s->w);
         cov += (size_t)s->w * (size_t)s->h;
         glDeleteBuffers(1, &vbo);
+        if (ntex) {
+            glDeleteTextures(ntex + 1, tex);
+            glUseProgram(0);
+            glDeleteProgram(prog);
+            for (GLuint a = 0; a < 3; a++)
+                glDisableVertexAttribArray(a);
+            glDisable(GL_DEPTH_CLAMP);
+            glEnableClientState(GL_VERTEX_ARRAY);
+            glEnableClientState(GL_COLOR_ARRAY);
+        }
         if (fbo_rb[0]) {
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glDeleteFramebuffers(1, &fbo_rb[0]);
@@ -336,7 +530,8 @@ static bool child(const struct bench_scene *sc, int nscenes, int samples, int wa
 }
 
 bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int samples, int warmup,
-              int runs, struct bench_timing *out, uint8_t *const coverage[], char *why, size_t whylen)
+              int runs, struct bench_timing *out, uint8_t *const coverage[], uint32_t *const colour[],
+              char *why, size_t whylen)
 {
     size_t covsize = 0;
     for (int i = 0; i < nscenes; i++)
@@ -345,7 +540,9 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
         snprintf(why, whylen, "too many scenes or runs");
         return false;
     }
-    size_t size = sizeof(struct shared) + covsize;
+    /* the shared block: results, then the pictures, then the coverage counts */
+    size_t colsize = colour ? 4 * covsize : 0;
+    size_t size = sizeof(struct shared) + colsize + covsize;
     void *mem = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (mem == MAP_FAILED) {
         snprintf(why, whylen, "mmap: %s", strerror(errno));
@@ -353,7 +550,8 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
     }
     struct shared *sh = mem;
     memset(sh, 0, sizeof *sh);
-    uint8_t *cov = (uint8_t *)mem + sizeof *sh;
+    uint32_t *col = colour ? (uint32_t *)(sh + 1) : NULL;
+    uint8_t *cov = (uint8_t *)(sh + 1) + colsize;
 
     fflush(NULL);
     pid_t pid = fork();
@@ -364,6 +562,9 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
     }
     if (pid == 0) {
         setenv("GALLIUM_DRIVER", "llvmpipe", 1);
+        /* the sampler's exact paths (PEER_EXACT_OPTIONS; the header says why) */
+        setenv("GALLIVM_PERF", "no_quad_lod,no_aos_sampling", 1);
+        unsetenv("LP_PERF");
         if (threads >= 0) {
             char n[16];
             snprintf(n, sizeof n, "%d", threads);
@@ -371,7 +572,7 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
         } else {
             unsetenv("LP_NUM_THREADS");
         }
-        sh->ok = child(sc, nscenes, samples, warmup, runs, sh, cov);
+        sh->ok = child(sc, nscenes, samples, warmup, runs, sh, cov, col);
         _exit(0);
     }
     int status = 0;
@@ -386,6 +587,10 @@ bool peer_run(const struct bench_scene *sc, int nscenes, int threads, int sample
             size_t n = (size_t)sc[i].s.w * (size_t)sc[i].s.h;
             memcpy(coverage[i], cov, n);
             cov += n;
+            if (colour) {
+                memcpy(colour[i], col, 4 * n);
+                col += n;
+            }
         }
     } else if (sh->why[0]) {
         snprintf(why, whylen, "%s", sh->why);

@@ -6,7 +6,8 @@
  * FUZZ_TRIS triangles, each at full precision and at the fewer sub-pixel bits
  * of lesson 03's exhibit; lesson 05 at every block size; narrated runs with
  * a trace that records everything and with one that freezes part way, as the
- * explorer's replay does. Coverage must equal the reference's, pixel for
+ * explorer's replay does; a textured triangle under its image, through
+ * each filter in turn. Coverage must equal the reference's, pixel for
  * pixel. Colours and depths are not compared (they are not exact across
  * lessons) but are computed, so the sanitizers see every value a scene can
  * lead to. */
@@ -75,8 +76,10 @@ int fuzz_lessons(const uint8_t *data, size_t size)
                 static const int blocks[] = { 4, 8, 16 };
                 bool by_block = lesson_param(tv[k].lesson, "block-size", NULL);
                 for (int b = 0; b < (by_block ? 3 : 1); b++) {
-                    struct raster_params p = { .checker = s.checker, .subpixel_bits = bits };
+                    struct raster_params base = { .checker = s.checker, .subpixel_bits = bits };
+                    struct raster_params p = lesson_params_tri(&base, &s, i);  /* its image texture */
                     lesson_param_set(tv[k].lesson, &p, "block-size", by_block ? blocks[b] : 0);
+                    lesson_param_set(tv[k].lesson, &p, "filter", 1 + (i + pass) % 5);
                     lesson_param_set(tv[k].lesson, &p, "affine", (i & 1) != 0);
                     if (!tv[k].narrated) {
                         check(&tv[k], &t, &p, &fb, ref, NULL, i);

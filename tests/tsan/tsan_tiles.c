@@ -1,4 +1,5 @@
-/* tsan_tiles.c - lesson 07's workers under ThreadSanitizer.
+/* tsan_tiles.c - lesson 07's workers under ThreadSanitizer, drawing lesson
+ * 07's pixels and lesson 08's samples (its twin `tiles`, at 4 samples).
  *
  * Criterion runs each test in a process of its own in a way TSan does not
  * support, so this is a small program of its own, built with
@@ -15,7 +16,7 @@
 
 #include "lesson.h"
 
-extern const struct lesson lesson_07;
+extern const struct lesson lesson_07, lesson_08;
 
 static uint64_t next(uint64_t *s)
 {
@@ -33,15 +34,18 @@ static double uniform(uint64_t *s, double lo, double hi)
 static bool same(const struct target *a, const struct target *b)
 {
     size_t n = (size_t)a->w * (size_t)a->h;
+    size_t m = a->samples ? n * (size_t)a->samples->n : 0;
     return memcmp(a->color, b->color, n * 4) == 0 && memcmp(a->depth, b->depth, n * 4) == 0
-           && memcmp(a->count, b->count, n) == 0;
+           && memcmp(a->count, b->count, n) == 0 && !a->samples == !b->samples
+           && (!m || (memcmp(a->samples->color, b->samples->color, m * 4) == 0
+                      && memcmp(a->samples->depth, b->samples->depth, m * 4) == 0));
 }
 
-/* The row of lesson 07's table that --threads sets (lesson.c is not linked here). */
-static int threads_row(void)
+/* The row of lesson l's table that --threads sets (lesson.c is not linked here). */
+static int threads_row(const struct lesson *l)
 {
     int i = 0;
-    while (lesson_07.params[i].option && strcmp(lesson_07.params[i].option, "threads") != 0)
+    while (l->params[i].option && strcmp(l->params[i].option, "threads") != 0)
         i++;
     return i;
 }
@@ -64,29 +68,34 @@ int main(void)
             if (!scene_add(&s, v))
                 return 1;
         }
-        for (int vi = 0; vi < lesson_07.nvariants; vi++) {
-            if (variant_against_exact(&lesson_07.variants[vi]))
-                continue;
-            rasterize_scene_fn whole = lesson_07.rasterize_scene[vi];
-            struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
-            p.knob[threads_row()] = 1;
-            struct target one;
-            if (!target_init(&one, s.w, s.h, 0xff000000u) || !whole(&s, &p, &one))
-                return 1;
-            for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
-                struct target fb;
-                p.knob[threads_row()] = threads[k];
-                if (!target_init(&fb, s.w, s.h, 0xff000000u) || !whole(&s, &p, &fb))
+        static const struct lesson *const tiled[] = { &lesson_07, &lesson_08 };
+        for (int li = 0; li < 2; li++) {
+            for (int vi = 0; vi < tiled[li]->nvariants; vi++) {
+                const struct lesson *l = tiled[li];
+                rasterize_scene_fn whole = l->rasterize_scene[vi];
+                if (variant_against_exact(&l->variants[vi]) || !whole)
+                    continue;
+                struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS,
+                                           .samples = l == &lesson_08 ? 4 : 0 };
+                p.knob[threads_row(l)] = 1;
+                struct target one;
+                if (!target_init(&one, s.w, s.h, 0xff000000u) || !whole(&s, &p, &one))
                     return 1;
-                if (!same(&one, &fb)) {
-                    fprintf(stderr, "tsan-tiles: %s on %d threads differs from 1 thread (scene %d)\n",
-                            lesson_07.variants[vi].name, threads[k], rep);
-                    return 1;
+                for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
+                    struct target fb;
+                    p.knob[threads_row(l)] = threads[k];
+                    if (!target_init(&fb, s.w, s.h, 0xff000000u) || !whole(&s, &p, &fb))
+                        return 1;
+                    if (!same(&one, &fb)) {
+                        fprintf(stderr, "tsan-tiles: %s %s on %d threads differs from 1 thread "
+                                "(scene %d)\n", l->id, l->variants[vi].name, threads[k], rep);
+                        return 1;
+                    }
+                    target_free(&fb);
+                    pictures++;
                 }
-                target_free(&fb);
-                pictures++;
+                target_free(&one);
             }
-            target_free(&one);
         }
         scene_free(&s);
     }

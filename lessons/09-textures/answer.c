@@ -1,0 +1,157 @@
+/* Answer to exercise 09: the skeleton exercise.c with its TODOs written as
+ * README.md explains them; `make check LESSON=09
+ * FILE=lessons/09-textures/answer.c` passes every check.
+ *
+ * The one source of both: `make skeletons` writes exercise.c from this
+ * file (the tests hold the committed one to it). Your parts are marked:
+ * the lines between `#if SKELETON` and `#else` are the skeleton's, those
+ * between `#else` and `#endif` (or under `#if !SKELETON`) the answer's.
+ *
+ * Exercise 09: write lesson 09's texture unit: the bilinear tap, the level
+ * of detail and the trilinear mix.
+ *
+ * The rest is the lesson's own rasterizer, textures_rasterize (textures.h):
+ * lesson 05's blocks, the 2 x 2 quads inside them with their helper
+ * pixels, (s, t) perspective-correct at the four centres, the quad's
+ * coarse derivatives, and the modulate and write. It runs your three
+ * stages for every textured pixel it writes:
+ *
+ *     quad -> derivatives -> YOUR lod -> lambda -> YOUR trilinear
+ *          -> YOUR bilinear at two levels -> x vertex colour -> write
+ *
+ * As given, the level of detail is always 0, the trilinear mix takes
+ * level 0 alone, and the bilinear tap is grey: untextured triangles are
+ * right (the checks of the rasterizer pass), textured ones are grey.
+ *
+ *     make exercise LESSON=09        the explorer on this file
+ *                                    (builtin:texture-floor)
+ *     make check LESSON=09           the checks: the rasterizer's first
+ *                                    (given, they pass), then yours on
+ *                                    textured scenes, from texels
+ *                                    magnified to textured 3-D scenes
+ */
+#include <math.h>
+
+#include "lesson.h"
+#include "textures.h"       /* struct tex_stages, textures_rasterize */
+
+/* --- given: a level's size and one texel --------------------------------------- */
+
+/* The size of level k, W_k x H_k; 1 x 1 for a level the texture does not
+ * have (level 0 .. tex->nlevels - 1), which make check reports when read. */
+static void level_size(const struct texture *tex, int k, int *w, int *h)
+{
+    bool have = k >= 0 && k < tex->nlevels;
+    *w = have ? tex->level[k].w : 1;
+    *h = have ? tex->level[k].h : 1;
+}
+
+/* Texel (i, j) of level k, channels 0..255. i and j must lie in the level,
+ * 0 .. W_k - 1 and 0 .. H_k - 1: wrap them first. One outside is reported
+ * by make check (and read as black, never out of bounds). */
+static struct texel_rgb texel(const struct texture *tex, int k, int64_t i, int64_t j)
+{
+    uint32_t c = exercise_texel(tex, k, i, j);
+    return (struct texel_rgb){ { (float)(c >> 16 & 255u), (float)(c >> 8 & 255u), (float)(c & 255u) } };
+}
+
+/* TODO 1, README section 1, "Texels and wrap": texel index i, any integer, into
+ * 0 .. n - 1. repeat: i mod n, the mathematical mod (never negative:
+ * -1 mod 4 is 3); clamp: the nearest of 0 .. n - 1. */
+static int64_t wrap(int64_t i, int n, enum texture_wrap how)
+{
+#if SKELETON
+    (void)n, (void)how;
+    return i;
+#else
+    if (how == TEXTURE_CLAMP)
+        return i < 0 ? 0 : i >= n ? n - 1 : i;
+    int64_t m = i % n;          /* C's % keeps the sign of i */
+    return m < 0 ? m + n : m;
+#endif
+}
+
+/* TODO 2, README section 2, "Nearest and bilinear": the bilinear tap at level k.
+ *
+ *     u = s W_k - 1/2,  v = t H_k - 1/2      (texel centres at i + 1/2)
+ *     i0 = floor(u), a = u - i0;  j0 = floor(v), b = v - j0
+ *
+ * and the texels (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1),
+ * each index wrapped, weighted (1-a)(1-b), a(1-b), (1-a)b, ab. */
+static struct texel_rgb bilinear(const struct texture *tex, int k, double s, double t)
+{
+#if SKELETON
+    (void)tex, (void)k, (void)s, (void)t, (void)level_size, (void)texel, (void)wrap;
+    return (struct texel_rgb){ { 128, 128, 128 } };
+#else
+    int w, h;
+    level_size(tex, k, &w, &h);
+    double u = s * w - 0.5, v = t * h - 0.5;
+    double fu = floor(u), fv = floor(v);
+    double a = u - fu, b = v - fv;
+    int64_t i0 = wrap((int64_t)fu, w, tex->wrap), i1 = wrap((int64_t)fu + 1, w, tex->wrap);
+    int64_t j0 = wrap((int64_t)fv, h, tex->wrap), j1 = wrap((int64_t)fv + 1, h, tex->wrap);
+    struct texel_rgb t00 = texel(tex, k, i0, j0), t10 = texel(tex, k, i1, j0);
+    struct texel_rgb t01 = texel(tex, k, i0, j1), t11 = texel(tex, k, i1, j1);
+    struct texel_rgb out;
+    for (int c = 0; c < 3; c++)
+        out.c[c] = (float)((1 - a) * (1 - b) * t00.c[c] + a * (1 - b) * t10.c[c] + (1 - a) * b * t01.c[c]
+                           + a * b * t11.c[c]);
+    return out;
+#endif
+}
+
+/* TODO 3, README section 6, "The level of detail": lambda = log2(rho) from the
+ * quad's derivatives. d gives them in texture coordinates per pixel
+ * (ds/dx, dt/dx, ds/dy, dt/dy) and the size of level 0, W_0 x H_0:
+ *
+ *     du/dx = ds/dx W_0,  dv/dx = dt/dx H_0   (the same for y)
+ *     rho = max(sqrt(du/dx^2 + dv/dx^2), sqrt(du/dy^2 + dv/dy^2))
+ *
+ * (log2 of rho squared is twice lambda.) Not clamped here. */
+static double lod(const struct tex_deriv *d)
+{
+#if SKELETON
+    (void)d;
+    return 0;
+#else
+    double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
+    double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+    double rx = dudx * dudx + dvdx * dvdx, ry = dudy * dudy + dvdy * dvdy;
+    return 0.5 * log2(rx > ry ? rx : ry);
+#endif
+}
+
+/* TODO 4, README section 7, "Trilinear": lambda clamped to [0, last level] (lambda
+ * <= 0 magnifies: level 0), then the bilinear taps st->bilinear at levels
+ * k = floor(lambda) and k + 1 (the last level twice at the end), mixed by
+ * f = lambda - k: (1 - f) of level k, f of level k + 1. */
+static struct texel_rgb trilinear(const struct texture *tex, double lambda, double s, double t,
+                                  const struct tex_stages *st)
+{
+#if SKELETON
+    (void)lambda;
+    return st->bilinear(tex, 0, s, t);
+#else
+    int last = tex->nlevels - 1;
+    lambda = lambda > 0 ? (lambda < last ? lambda : last) : 0;     /* a NaN too: 0 */
+    int k = (int)floor(lambda);
+    double f = lambda - k;
+    int k1 = k < last ? k + 1 : last;
+    struct texel_rgb a = st->bilinear(tex, k, s, t), b = st->bilinear(tex, k1, s, t);
+    struct texel_rgb out;
+    for (int c = 0; c < 3; c++)
+        out.c[c] = (float)((1 - f) * a.c[c] + f * b.c[c]);
+    return out;
+#endif
+}
+
+/* --- given: the lesson's rasterizer, with your stages ------------------------- */
+
+static const struct tex_stages yours = { .bilinear = bilinear, .lod = lod, .trilinear = trilinear };
+
+void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
+                        struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &yours, (struct tex_options){ .lod = LOD_COARSE });
+}
