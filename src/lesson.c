@@ -86,8 +86,35 @@ bool lesson_param_allows(const struct lesson_param *r, int v)
     return false;
 }
 
+const char *lesson_param_word(const struct lesson_param *r, int v)
+{
+    if (!r->words)
+        return NULL;
+    if (!r->arg)
+        return r->words[v != 0];
+    return lesson_param_allows(r, v) ? r->words[v - r->min] : NULL;
+}
+
+int lesson_param_named(const struct lesson_param *r, const char *word)
+{
+    for (int v = r->min; r->arg && r->words && v <= r->max; v++)
+        if (strcmp(r->words[v - r->min], word) == 0)
+            return v;
+    return -1;
+}
+
 void lesson_param_range(const struct lesson_param *r, char *buf, size_t n)
 {
+    if (r->arg && r->words) {
+        size_t at = 0;
+        buf[0] = '\0';
+        for (int v = r->min; v <= r->max && at < n; v++) {
+            const char *sep = v == r->min ? "" : v == r->max ? " or " : ", ";
+            int k = snprintf(buf + at, n - at, "%s%s", sep, r->words[v - r->min]);
+            at += k > 0 ? (size_t)k : 0;
+        }
+        return;
+    }
     if (!r->values) {
         snprintf(buf, n, "%d..%d", r->min, r->max);
         return;

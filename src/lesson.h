@@ -38,6 +38,10 @@ struct raster_params {
     /* the scene being drawn, or NULL: lesson 06 narrates the 3-D front end
      * of a world triangle from it before rasterizing its first screen triangle */
     const struct scene *scene;
+    /* the image texture of the triangle being drawn (scene_texture of its
+     * `texture` number), or NULL: set by the drivers per triangle; a lesson
+     * without .texturing draws in the vertex colour and never reads it */
+    const struct texture *texture;
 };
 
 /* One unit of a scene-level lesson's narrated run: triangle `tri` of the
@@ -127,7 +131,10 @@ struct lesson_param {
     const char *arg;        /* "Q", as --help shows it; NULL: a flag (--affine), which sets 1 */
     const char *help;       /* --help's line after the option */
     const char *name;       /* "block size": the panel's and the keys' word */
-    const char *const *words;   /* a flag's two states in the panel ({ "off", "on" }), or NULL */
+    /* the values by name, or NULL (numbers): a flag's two states in the panel
+     * ({ "off", "on" }); with an arg, value min + i is words[i] everywhere
+     * (--filter trilinear, the panel, the keys), min..max all named */
+    const char *const *words;
     int key;                /* the explorer's key: the next value, wrapping; 0: none */
     int key_down;           /* with it, key_down the value before and key the one after, stopping
                              * at the ends ([ and ]); 0: key alone */
@@ -249,7 +256,11 @@ struct raster_params lesson_params_as(const struct lesson *to, const struct less
                                       const struct raster_params *p);
 /* Whether v is a value row r allows. */
 bool lesson_param_allows(const struct lesson_param *r, int v);
-/* Row r's values in words, "4, 8 or 16" or "0..8", into buf[0..n). */
+/* The name of value v of row r (a named row's, a flag's state), or NULL: a number. */
+const char *lesson_param_word(const struct lesson_param *r, int v);
+/* The value of named row r called `word`, or -1 (none, or r is not named). */
+int lesson_param_named(const struct lesson_param *r, const char *word);
+/* Row r's values in words, "4, 8 or 16", "0..8" or "nearest, ... or aniso", into buf[0..n). */
 void lesson_param_range(const struct lesson_param *r, char *buf, size_t n);
 
 #endif

@@ -32,8 +32,8 @@ bool params_key(const struct lesson *l, int key, struct raster_params *p, char *
         int *v = lesson_param_slot(l, i, p);
         int now = lesson_param_allows(r, *v) ? *v : r->def;   /* 0: the lesson's default */
         *v = next_value(r, now, key == r->key_down ? -1 : +1, !r->key_down);
-        if (r->words)
-            snprintf(what, n, "%s: %s", r->name, r->words[*v != 0]);
+        if (lesson_param_word(r, *v))
+            snprintf(what, n, "%s: %s", r->name, lesson_param_word(r, *v));
         else
             snprintf(what, n, "%s: %d", r->name, *v);
         return true;

@@ -164,7 +164,11 @@ static int param_option(const struct lesson *l, const struct lesson_param *row, 
                         struct cli_options *o)
 {
     uint64_t u = 1;
-    if (row->arg && (!parse_uint(arg, (uint64_t)row->max, &u) || !lesson_param_allows(row, (int)u))) {
+    bool named = row->arg && row->words;        /* a value by its name: --filter trilinear */
+    int v = named ? lesson_param_named(row, arg) : 0;
+    if (named && v >= 0)
+        u = (uint64_t)v;
+    if (row->arg && (named ? v < 0 : !parse_uint(arg, (uint64_t)row->max, &u) || !lesson_param_allows(row, (int)u))) {
         char range[64], fmt[128];
         lesson_param_range(row, range, sizeof range);
         snprintf(fmt, sizeof fmt, "--%s '%%s': expected %s", row->option, range);

@@ -374,8 +374,8 @@ void paint_panel(struct painter *p)
             v = lesson_param_allows(r, v) ? v : r->def;     /* 0: the lesson's default */
             if (!r->key)
                 continue;
-            if (r->words)
-                at = cat(buf, sizeof buf, at, "%s  ", r->words[v != 0]);
+            if (lesson_param_word(r, v))
+                at = cat(buf, sizeof buf, at, "%s  ", lesson_param_word(r, v));
             else
                 at = cat(buf, sizeof buf, at, "%s %d  ", r->name, v);
         }
@@ -452,7 +452,7 @@ void paint_help(struct painter *p)
         if (r->key && r->key_down) {
             snprintf(key, sizeof key, "%c / %c", toupper(r->key_down), toupper(r->key));
             at = cat(keys, n, at, "%-21sless / more %s (%s)\n", key, r->name, range);
-        } else if (r->key && r->words) {
+        } else if (r->key && r->words && !r->arg) {
             snprintf(key, sizeof key, "%c", toupper(r->key));
             at = cat(keys, n, at, "%-21s%s / %s\n", key, r->words[1], r->words[0]);
         } else if (r->key) {

@@ -1,0 +1,357 @@
+/* Lesson 09: texture mapping: 2 x 2 quads, derivatives, mip-maps and
+ * filtering.
+ *
+ * Built on lesson 05's blocks: the box is cut into 8 x 8 blocks, each
+ * classified by its corners (empty, full, partial); a block that is not
+ * empty is walked in 2 x 2 quads, as GPUs walk a triangle:
+ *
+ *        x0   x0+1                  the quad of pixel (x, y) is the one
+ *      +----+----+                  whose top-left pixel is (x & ~1, y & ~1)
+ *  y0  | TL | TR |   du/dx = u(TR) - u(TL)       (coarse derivatives:
+ *      +----+----+   du/dy = u(BL) - u(TL)        one set per quad)
+ *  y0+1| BL | BR |
+ *      +----+----+
+ *
+ * A quad with any covered pixel evaluates (s, t) at all four centres, the
+ * uncovered ones too (helper pixels: evaluated, never written), so that
+ * the differences exist; they give rho, the level of detail lambda =
+ * log2(rho), and the texture unit (sampling.c) filters: nearest, bilinear,
+ * mip-bilinear, trilinear (the default) or aniso. The pixel's colour is
+ * the filtered texel times the interpolated vertex colour, rounded once.
+ * (s, t) and the colour are perspective-correct (lesson 04): 1/z, s/z,
+ * t/z and colour/z are linear in the screen, weighted by the barycentric
+ * weights of the exact edge values (lesson 02).
+ *
+ * This file reads: the pixel's values, the quad, the blocks, the variants.
+ * The fast twin (quads_sse.c) draws the same pixels four lanes at a time.
+ */
+#include <math.h>
+
+#include "shade/shade.h"
+#include "textures.h"
+
+static const char *const pseudocode[] = {
+    "setup: F0k, box; 1/z, s/z, t/z, colour/z at A, B, C",                 /* 0 */
+    "loop over the 8 x 8 blocks of the box, classified by corners:",       /* 1 */
+    "  empty: skip",                                                        /* 2 */
+    "  else loop over its 2 x 2 quads, top-left (x & ~1, y & ~1):",        /* 3 */
+    "    covered = F01 >= 0 && F02 >= 0 && F03 >= 0 at each pixel",        /* 4 */
+    "    no pixel covered: skip the quad",                                  /* 5 */
+    "    (s, t) = (s/z, t/z) / (1/z) at all four centres (helpers too)",   /* 6 */
+    "    du/dx, dv/dx, du/dy, dv/dy = differences at the top-left pixel",   /* 7 */
+    "    rho = longer of (du/dx, dv/dx), (du/dy, dv/dy); lambda = log2 rho", /* 8 */
+    "    covered pixels: texel = filter(s, t, lambda)  (levels, taps, mix)", /* 9 */
+    "      colour = texel x vertex colour, rounded once; depth test, write", /* 10 */
+    NULL,
+};
+
+#define Q 8                 /* block size, as lesson 05's default */
+
+enum tex_filter tex_filter_of(const struct raster_params *p)
+{
+    int f = p->knob[P_FILTER];
+    return f >= FILTER_NEAREST && f <= FILTER_ANISO ? (enum tex_filter)f : FILTER_TRILINEAR;
+}
+
+int tex_max_aniso_of(const struct raster_params *p)
+{
+    int n = p->knob[P_MAX_ANISO];
+    return n >= 1 && n <= 16 ? n : MAX_ANISO_DEFAULT;
+}
+
+/* --- the values at a pixel centre ------------------------------------------ */
+
+/* Everything one triangle's quads share. */
+struct run {
+    const struct tri_setup *t;
+    const struct raster_params *p;
+    struct target *fb;
+    struct trace *tr;
+    const struct texture *tex;      /* NULL: untextured, shaded as every lesson shades */
+    const struct tex_stages *st;
+    struct tex_options o;
+    enum tex_filter filter;
+    int max_aniso;
+    struct biased_edges e;
+    double inv_area2;
+    double cz[3][3];            /* per vertex A, B, C: r, g, b */
+    double q[3], sq[3], tq[3];  /* ... and 1/z, s/z, t/z: the analytic derivatives' planes */
+};
+
+/* What is interpolated at one pixel centre. */
+struct at_pixel {
+    double q, s, t, rgb[3];
+};
+
+/* The barycentric weights of A, B, C from the raw edge values (F02, F03,
+ * F01 over twice the area), then the planes: 1/z = sum w_k / z_k, and each
+ * attribute a = (sum w_k a_k / z_k) / (1/z), in this order, so that a
+ * pixel centre exactly on a texel's edge lands where the rule's plain sums
+ * put it. A helper's 1/z may be <= 0 (beyond the horizon): its values are
+ * then not used. */
+static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
+{
+    double area2 = (double)r->t->area2;
+    double b[3] = { (double)f[EDGE_BC] / area2, (double)f[EDGE_CA] / area2,
+                    (double)f[EDGE_AB] / area2 };
+    struct at_pixel a = { 0 };
+    double s = 0, t = 0, c[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; k++) {
+        double w = b[k] / r->t->v[k].z;
+        a.q += w;
+        s += w * r->t->v[k].s, t += w * r->t->v[k].t;
+        for (int i = 0; i < 3; i++)
+            c[i] += w * r->cz[k][i];
+    }
+    a.s = s / a.q, a.t = t / a.q;
+    for (int i = 0; i < 3; i++)
+        a.rgb[i] = c[i] / a.q;
+    if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
+        a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
+        a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
+    }
+    return a;
+}
+
+/* The analytic derivatives at a pixel: a = A / Q with A and Q linear, so
+ * da/dx = (dA/dx - a dQ/dx) / Q. */
+static struct tex_deriv analytic(const struct run *r, const struct at_pixel *a)
+{
+    double ds[2] = { 0, 0 }, dt[2] = { 0, 0 }, dq[2] = { 0, 0 };
+    static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };    /* weight k's edge */
+    for (int axis = 0; axis < 2; axis++)
+        for (int k = 0; k < 3; k++) {
+            int64_t step = axis == 0 ? r->e.dx[edge_of[k]] : r->e.dy[edge_of[k]];
+            double dw = (double)step * r->inv_area2;
+            dq[axis] += dw * r->q[k];
+            ds[axis] += dw * (r->o.affine ? r->t->v[k].s : r->sq[k]);
+            dt[axis] += dw * (r->o.affine ? r->t->v[k].t : r->tq[k]);
+        }
+    double div = r->o.affine ? 1 : a->q;
+    double ks = r->o.affine ? 0 : a->s, kt = r->o.affine ? 0 : a->t;
+    return (struct tex_deriv){ .dsdx = (ds[0] - ks * dq[0]) / div, .dtdx = (dt[0] - kt * dq[0]) / div,
+                               .dsdy = (ds[1] - ks * dq[1]) / div, .dtdy = (dt[1] - kt * dq[1]) / div,
+                               .w0 = r->tex->level[0].w, .h0 = r->tex->level[0].h };
+}
+
+/* --- one quad ----------------------------------------------------------------- */
+
+/* Pixel i of a quad: 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right. */
+#define QX(qx, i) ((qx) + ((i) & 1))
+#define QY(qy, i) ((qy) + ((i) >> 1))
+
+/* Narrate a set of derivatives (the quad's at its top-left pixel, or one
+ * pixel's) with rho and lambda in level-0 texels. */
+static void narrate_deriv(const struct run *r, int x, int y, unsigned covered, const struct tex_deriv *d)
+{
+    double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0, dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+    double rho = fmax(sqrt(dudx * dudx + dvdx * dvdx), sqrt(dudy * dudy + dvdy * dvdy));
+    NARRATE(r->tr, .kind = TRACE_STEP, .line = L_LOD, .span = L_LOD - L_DERIV, .x = x, .y = y,
+            .mask = { (uint16_t)covered }, .flags = d->beyond ? 0 : TRACE_INSIDE,
+            .aux = { (float)dudx, (float)dvdx, (float)dudy, (float)dvdy, (float)rho,
+                     d->beyond ? (float)(r->tex->nlevels - 1) : (float)log2(rho) });
+}
+
+/* The derivatives pixel i uses: the quad's (coarse), its own row's and
+ * column's differences (fine), or the exact ones (analytic). */
+static struct tex_deriv deriv_of(const struct run *r, const struct at_pixel a[4], int i, bool beyond)
+{
+    int row = i & 2, col = i & 1;
+    int tl = r->o.lod == LOD_FINE ? row : 0, tr = tl + 1;           /* along x */
+    int top = r->o.lod == LOD_FINE ? col : 0, bottom = top + 2;     /* along y */
+    if (r->o.lod == LOD_ANALYTIC)
+        return analytic(r, &a[i]);
+    return (struct tex_deriv){ .dsdx = a[tr].s - a[tl].s, .dtdx = a[tr].t - a[tl].t,
+                               .dsdy = a[bottom].s - a[top].s, .dtdy = a[bottom].t - a[top].t,
+                               .w0 = r->tex->level[0].w, .h0 = r->tex->level[0].h,
+                               .beyond = beyond };
+}
+
+/* The quad whose top-left pixel is (qx, qy), inside block [xa, xb] x [ya,
+ * yb] (clipped to the box): full says the block is covered in full. */
+static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, bool full)
+{
+    int64_t f[4][3];
+    unsigned covered = 0;
+    for (int i = 0; i < 4; i++) {
+        int x = QX(qx, i), y = QY(qy, i);
+        bool in = x >= xa && x <= xb && y >= ya && y <= yb;
+        for (int k = 0; k < 3; k++) {
+            f[i][k] = biased_edge_at(&r->e, k, x, y);
+            in = in && (full || f[i][k] >= 0);
+            f[i][k] -= r->e.bias[k];                /* the edge value itself, for the weights */
+        }
+        NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_COVER, .x = x, .y = y,
+                .e = { f[i][0], f[i][1], f[i][2] }, .flags = in ? TRACE_INSIDE : 0);
+        covered |= (unsigned)in << i;
+    }
+    if (!covered) {
+        NARRATE(r->tr, .kind = TRACE_STEP, .line = L_SKIP, .x = qx, .y = qy);
+        return;
+    }
+    /* every centre of the quad, helpers included */
+    struct at_pixel a[4];
+    bool beyond = false;
+    double W = r->tex ? r->tex->level[0].w : 1, H = r->tex ? r->tex->level[0].h : 1;
+    for (int i = 0; i < 4; i++) {
+        a[i] = at_pixel(r, f[i]);
+        beyond = beyond || !(a[i].q > 0);
+        NARRATE(r->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = QX(qx, i), .y = QY(qy, i),
+                .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
+                .aux = { (float)(a[i].s * W), (float)(a[i].t * H), (float)a[i].q });
+    }
+    if (r->tex && r->o.lod == LOD_COARSE) {
+        struct tex_deriv d = deriv_of(r, a, 0, beyond);
+        narrate_deriv(r, qx, qy, covered, &d);
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!(covered >> i & 1))
+            continue;
+        int x = QX(qx, i), y = QY(qy, i);
+        uint32_t rgba;
+        if (!r->tex) {          /* untextured: the shared shading (and the checker) */
+            rgba = shade_pixel(r->p, r->tr, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2], a[i].s, a[i].t);
+        } else {
+            struct tex_deriv d = deriv_of(r, a, i, beyond);
+            if (r->o.lod != LOD_COARSE)
+                narrate_deriv(r, x, y, covered, &d);
+            struct tex_used u;
+            struct texel_rgb texel = tex_filter_texel(r->tex, r->filter, r->max_aniso, a[i].s, a[i].t,
+                                                      &d, r->st, &u);
+            NARRATE(r->tr, .kind = TRACE_STEP, .line = L_FILTER, .x = x, .y = y,
+                    .mask = { (uint16_t)covered, (uint16_t)u.taps, (uint16_t)r->filter },
+                    .aux = { (float)(a[i].s * W), (float)(a[i].t * H), u.lambda, (float)u.level0,
+                             (float)u.level1, u.mix });
+            rgba = tex_modulate(texel, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2]);
+        }
+        PLOT(r->fb, r->tr, L_WRITE, x, y, (float)(1 / a[i].q), rgba);
+    }
+}
+
+/* --- blocks (lesson 05), then quads ---------------------------------------------- */
+
+/* The class of block [x0, x1] x [y0, y1] by its corners' edge signs. */
+static enum block_class classify(const struct run *r, int x0, int y0, int x1, int y1)
+{
+    bool all_in = true;
+    for (int k = 0; k < 3; k++) {
+        int64_t c[4] = { biased_edge_at(&r->e, k, x0, y0), biased_edge_at(&r->e, k, x1, y0),
+                         biased_edge_at(&r->e, k, x0, y1), biased_edge_at(&r->e, k, x1, y1) };
+        int inside = (c[0] >= 0) + (c[1] >= 0) + (c[2] >= 0) + (c[3] >= 0);
+        if (inside == 0)
+            return BLOCK_EMPTY;
+        all_in = all_in && inside == 4;
+    }
+    return all_in ? BLOCK_FULL : BLOCK_PARTIAL;
+}
+
+void textures_rasterize(const struct tri_setup *t, const struct raster_params *p,
+                        struct target *fb, struct trace *tr, const struct tex_stages *st,
+                        struct tex_options o)
+{
+    NARRATE_SETUP(tr, t, L_SETUP);
+    if (t->empty)
+        return;
+    struct run r = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .st = st, .o = o,
+                     .filter = o.no_mipmaps ? FILTER_BILINEAR : tex_filter_of(p),
+                     .max_aniso = tex_max_aniso_of(p), .inv_area2 = 1.0 / (double)t->area2 };
+    biased_edges_setup(&r.e, t, true);
+    for (int k = 0; k < 3; k++) {
+        const struct vertex *v = &t->v[k];
+        r.q[k] = 1 / v->z;
+        r.sq[k] = v->s * r.q[k], r.tq[k] = v->t * r.q[k];
+        r.cz[k][0] = v->r, r.cz[k][1] = v->g, r.cz[k][2] = v->b;
+    }
+    for (int by = t->miny - t->miny % Q; by <= t->maxy; by += Q) {
+        int ya = by < t->miny ? t->miny : by, yb = by + Q - 1 > t->maxy ? t->maxy : by + Q - 1;
+        for (int bx = t->minx - t->minx % Q; bx <= t->maxx; bx += Q) {
+            int xa = bx < t->minx ? t->minx : bx, xb = bx + Q - 1 > t->maxx ? t->maxx : bx + Q - 1;
+            enum block_class klass = classify(&r, xa, ya, xb, yb);
+            int line = klass == BLOCK_EMPTY ? L_EMPTY : L_QUADS;
+            NARRATE(tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
+                    .x = xa, .y = ya, .x1 = xb, .y1 = yb, .klass = (uint8_t)klass, .aux = { Q });
+            if (klass == BLOCK_EMPTY)
+                continue;
+            /* blocks start on even pixels, so a quad never straddles two */
+            for (int qy = ya & ~1; qy <= yb; qy += 2)
+                for (int qx = xa & ~1; qx <= xb; qx += 2)
+                    quad(&r, qx, qy, xa, ya, xb, yb, klass == BLOCK_FULL);
+        }
+    }
+}
+
+/* --- the variants ------------------------------------------------------------------- */
+
+static void rasterize_quads(const struct tri_setup *t, const struct raster_params *p,
+                            struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_COARSE });
+}
+
+static void rasterize_no_mipmaps(const struct tri_setup *t, const struct raster_params *p,
+                                 struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .no_mipmaps = true });
+}
+
+static void rasterize_affine(const struct tri_setup *t, const struct raster_params *p,
+                             struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .affine = true });
+}
+
+static void rasterize_fine(const struct tri_setup *t, const struct raster_params *p,
+                           struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_FINE });
+}
+
+static void rasterize_analytic(const struct tri_setup *t, const struct raster_params *p,
+                               struct target *fb, struct trace *tr)
+{
+    textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_ANALYTIC });
+}
+
+static const struct lesson_variant variants[] = {
+    { .name = "quads", .kind = VARIANT_ALGORITHM, .rasterize = rasterize_quads,
+      .what = "8 x 8 blocks, then 2 x 2 quads with helper pixels, coarse derivatives" },
+    { .name = "quads-sse", .kind = VARIANT_TWIN, .rasterize = tex_rasterize_sse,
+      .what = "the same quads, four pixels in four SSE lanes" },
+    { .name = "no-mipmaps", .kind = VARIANT_CONTRAST, .rasterize = rasterize_no_mipmaps,
+      .what = "level 0 always, bilinear: minification aliases" },
+    { .name = "affine", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_affine,
+      .what = "exhibit: (s, t) interpolated linearly in the screen (lesson 04's swim)" },
+    { .name = "fine-lod", .kind = VARIANT_CONTRAST, .rasterize = rasterize_fine,
+      .what = "fine derivatives: each pixel its own row's and column's differences" },
+    { .name = "analytic-lod", .kind = VARIANT_CONTRAST, .rasterize = rasterize_analytic,
+      .what = "analytic derivatives at each pixel centre, no quads needed" },
+};
+
+static const char *const filter_names[] = { "nearest", "bilinear", "mip-bilinear", "trilinear",
+                                            "aniso" };
+
+static const char *const compare[] = { "05-block-classification", NULL };
+
+const struct lesson lesson_09 = {
+    .id = "09-textures",
+    .title = "texture mapping: quads, derivatives, mip-maps",
+    .pseudocode = pseudocode,
+    .builtin_scene = "texture-floor",
+    .exhibit_scene = "texture-wall",
+    .perspective = true,
+    .variants = variants,
+    .nvariants = sizeof variants / sizeof variants[0],
+    .params = (const struct lesson_param[]){
+        [P_FILTER] = { .option = "filter", .arg = "NAME", .name = "filter", .key = 'f',
+                       .words = filter_names, .min = FILTER_NEAREST, .max = FILTER_ANISO,
+                       .def = FILTER_TRILINEAR,
+                       .help = "texture filter: nearest, bilinear, mip-bilinear, trilinear, aniso" },
+        [P_MAX_ANISO] = { .option = "max-aniso", .arg = "N", .name = "max aniso", .key = ']',
+                          .key_down = '[', .min = 1, .max = 16, .def = MAX_ANISO_DEFAULT,
+                          .help = "most taps of the aniso filter (1..16)" },
+        { 0 } },
+    .compare = compare,
+    .texturing = "by its image: 2 x 2 quads with helper pixels, coarse derivatives, the level of "
+                 "detail and --filter (trilinear by default), times the vertex colour",
+    .exercise = { .write_line = L_WRITE },
+};

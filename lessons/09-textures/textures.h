@@ -1,0 +1,174 @@
+/* textures.h - lesson 09's interface: the texture unit's stages, the
+ * filters, what its narration carries, and the one rasterizer they plug
+ * into. The lesson's files:
+ *
+ *   sampling.c      the texture unit: a bilinear tap, the level of detail,
+ *                   the trilinear mix, anisotropic taps, the five filters
+ *   textures.c      the lesson: lesson 05's blocks, then 2 x 2 quads inside
+ *                   them, narrated; the descriptor and its variants
+ *   quads_sse.c     the fast twin: a quad is four SSE lanes
+ *
+ * The rules are CONVENTIONS.md's "Textures" (src/scene/texture.h holds the
+ * image, its pyramid and texel addressing).
+ *
+ * The stages (struct tex_stages) are what an exercise swaps: the lesson's
+ * own are tex_stages_lesson; the exercise passes the student's to
+ * textures_rasterize(), the very rasterizer the lesson runs, so a student's
+ * bilinear tap, level of detail or trilinear mix is drawn, narrated and
+ * checked by the lesson's own quads (no second rasterizer).
+ */
+#ifndef TRISTEP_TEXTURES_H
+#define TRISTEP_TEXTURES_H
+
+#include <stdbool.h>
+
+#include "lesson.h"
+
+#ifdef __clang__
+#pragma STDC FP_CONTRACT OFF    /* no fused multiply-add: the twin rounds as the lesson does */
+#endif
+
+/* Both builds (narrated and fast) link into one program: what one file of
+ * the lesson calls in another carries the build in its name. */
+#ifndef TRISTEP_NARRATE
+#define tex_bilinear tex_bilinear_fast
+#define tex_lod tex_lod_fast
+#define tex_trilinear tex_trilinear_fast
+#define tex_nearest tex_nearest_fast
+#define tex_filter_texel tex_filter_texel_fast
+#define tex_stages_lesson tex_stages_lesson_fast
+#define tex_quad_lod tex_quad_lod_fast
+#define tex_rasterize_sse tex_rasterize_sse_fast
+#define textures_rasterize textures_rasterize_fast
+#define textures_setup textures_setup_fast
+#define tex_modulate tex_modulate_fast
+#define tex_filter_of tex_filter_of_fast
+#define tex_max_aniso_of tex_max_aniso_of_fast
+#endif
+
+/* --- the filters (--filter NAME) and the parameter rows ------------------ */
+
+/* Numbered from 1, so that a zeroed raster_params (knob 0) means "the
+ * default" (trilinear), as for every lesson's rows. */
+enum tex_filter { FILTER_NEAREST = 1, FILTER_BILINEAR, FILTER_MIP_BILINEAR, FILTER_TRILINEAR,
+                  FILTER_ANISO };
+enum { P_FILTER, P_MAX_ANISO };     /* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO] */
+#define MAX_ANISO_DEFAULT 16
+
+/* The filter and the aniso limit a run's params ask for (defaults for 0). */
+enum tex_filter tex_filter_of(const struct raster_params *p);
+int tex_max_aniso_of(const struct raster_params *p);
+
+/* --- the stages ------------------------------------------------------------ */
+
+/* A filtered colour: r, g, b in 0..255, not rounded. */
+struct texel_rgb {
+    float c[3];
+};
+
+/* The derivatives of (s, t) a quad (or a pixel) uses, per screen pixel, in
+ * texture coordinates (not texels), and the level-0 size that makes texels
+ * of them. beyond: a helper pixel lies beyond the horizon (1/z <= 0): no
+ * derivatives, the last level. */
+struct tex_deriv {
+    double dsdx, dtdx, dsdy, dtdy;
+    int w0, h0;
+    bool beyond;
+};
+
+struct tex_stages {
+    /* The bilinear tap at level k: u = s W_k - 1/2, v = t H_k - 1/2, the
+     * four texels from (floor u, floor v) wrapped as the texture says,
+     * weighted by frac u and frac v. */
+    struct texel_rgb (*bilinear)(const struct texture *tex, int k, double s, double t);
+    /* The level of detail: lambda = log2(rho), rho = the longer of the two
+     * derivative vectors in level-0 texels (-inf for rho = 0). */
+    double (*lod)(const struct tex_deriv *d);
+    /* Trilinear at lambda: lambda clamped to [0, last level], bilinear taps
+     * (st->bilinear) at levels floor(lambda) and the next (the last twice at
+     * the end), mixed by frac(lambda). */
+    struct texel_rgb (*trilinear)(const struct texture *tex, double lambda, double s, double t,
+                                  const struct tex_stages *st);
+};
+
+/* The lesson's own stages (sampling.c), and its pieces by name. */
+extern const struct tex_stages tex_stages_lesson;
+struct texel_rgb tex_bilinear(const struct texture *tex, int k, double s, double t);
+double tex_lod(const struct tex_deriv *d);
+struct texel_rgb tex_trilinear(const struct texture *tex, double lambda, double s, double t,
+                               const struct tex_stages *st);
+struct texel_rgb tex_nearest(const struct texture *tex, double s, double t);
+
+/* What the texture unit did for one pixel, for the narration: the
+ * lambda it used (after the horizon and the clamp), the two levels and
+ * the weight of the second, the aniso taps. */
+struct tex_used {
+    float lambda;
+    int level0, level1;
+    float mix;
+    int taps;
+};
+
+/* The filtered texel of a pixel at (s, t) in a quad with derivatives d,
+ * through stages st. used may be NULL. */
+struct texel_rgb tex_filter_texel(const struct texture *tex, enum tex_filter f, int max_aniso,
+                                  double s, double t, const struct tex_deriv *d,
+                                  const struct tex_stages *st, struct tex_used *used);
+
+/* The pixel's colour: the texel times the interpolated vertex colour
+ * (r, g, b in [0, 1]), rounded to 8 bits once. */
+uint32_t tex_modulate(struct texel_rgb texel, double r, double g, double b);
+
+/* --- the rasterizer --------------------------------------------------------- */
+
+/* How a variant evaluates (s, t) and the level of detail. */
+enum tex_lod_mode { LOD_COARSE, LOD_FINE, LOD_ANALYTIC };
+struct tex_options {
+    enum tex_lod_mode lod;      /* coarse (the quad's top-left pixel), fine, analytic */
+    bool affine;                /* (s, t) interpolated linearly in screen space (lesson 04's swim) */
+    bool no_mipmaps;            /* level 0 always, bilinear */
+};
+
+/* Lesson 09's algorithm on one triangle with the stages st (the lesson's,
+ * or an exercise's) and the options o: what every variant of textures.c
+ * runs. */
+void textures_rasterize(const struct tri_setup *t, const struct raster_params *p,
+                        struct target *fb, struct trace *tr, const struct tex_stages *st,
+                        struct tex_options o);
+/* The fast twin (quads_sse.c): the same pixels, the lesson's stages. */
+void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
+                       struct target *fb, struct trace *tr);
+
+/* --- what the narration carries -------------------------------------------- */
+
+/* Pseudo-code lines (textures.c). */
+enum { L_SETUP, L_BLOCKS, L_EMPTY, L_QUADS, L_COVER, L_SKIP, L_EVAL, L_DERIV, L_LOD, L_FILTER,
+       L_WRITE };
+
+/* The events of one quad, in order, and their aux[] (the lesson's
+ * aux_names is NULL: the values' meaning depends on the line):
+ *
+ *   TRACE_BLOCK     L_EMPTY / L_QUADS  a block classified (lesson 05); aux[0] = q
+ *   TRACE_PIXEL_TEST L_COVER  each of the quad's 4 pixels: e, flags TRACE_INSIDE when covered
+ *   TRACE_STEP      L_SKIP    (x, y) = the quad: no pixel covered, skipped
+ *   TRACE_STEP      L_EVAL    each of the 4 pixels, helpers too: flags TRACE_INSIDE
+ *                             when covered (else a helper, evaluated, never written);
+ *                             aux AUX_U, AUX_V (level-0 texels), AUX_Q (1/z)
+ *   TRACE_STEP      L_DERIV..L_LOD  (x, y) = the quad (its top-left pixel),
+ *                             mask[0] = its covered pixels (bit 0 top-left, 1 top-right,
+ *                             2 bottom-left, 3 bottom-right), flags TRACE_INSIDE unless
+ *                             beyond the horizon; aux AUX_DUDX .. AUX_DVDY (level-0
+ *                             texels per pixel), AUX_RHO, AUX_LAMBDA
+ *   TRACE_STEP      L_FILTER  each covered pixel: aux AUX_U, AUX_V, AUX_USED_LAMBDA,
+ *                             AUX_LEVEL0, AUX_LEVEL1, AUX_MIX; mask[1] = aniso taps
+ *                             (1 for the other filters), mask[2] = the filter
+ *   TRACE_PIXEL_WRITE L_WRITE the write (PLOT)
+ *
+ * A variant with fine or analytic derivatives narrates L_DERIV..L_LOD once
+ * per covered pixel, (x, y) that pixel. Untextured triangles (and the
+ * checker) skip L_DERIV..L_FILTER: shaded as every lesson shades. */
+enum { AUX_U, AUX_V, AUX_Q };
+enum { AUX_DUDX, AUX_DVDX, AUX_DUDY, AUX_DVDY, AUX_RHO, AUX_LAMBDA };
+enum { AUX_USED_LAMBDA = 2, AUX_LEVEL0, AUX_LEVEL1, AUX_MIX };
+
+#endif
