@@ -606,3 +606,27 @@ Test(lesson09_exhibits, helpers_of_three_squares, .timeout = 60)
         scene_free(&s);
     }
 }
+
+/* The answer key's exercise 6: one footprint, 12 texels by 1.5, through the
+ * lesson's texture unit. */
+Test(lesson09_exhibits, answer_6_one_long_footprint)
+{
+    struct scene s = load3("texture-floor");         /* for its 256 x 256 texture */
+    const struct texture *tex = scene_texture(&s, 1);
+    cr_assert(tex && tex->level[0].w == 256 && tex->level[0].h == 256);
+    struct tex_deriv d = { .dsdx = 12.0 / 256, .dtdx = 0, .dsdy = 0, .dtdy = 1.5 / 256, .w0 = 256, .h0 = 256 };
+    struct tex_used tri, a16, a4;
+    tex_filter_texel(tex, FILTER_TRILINEAR, 16, 0.5, 0.5, &d, &tex_stages_lesson, &tri);
+    tex_filter_texel(tex, FILTER_ANISO, 16, 0.5, 0.5, &d, &tex_stages_lesson, &a16);
+    tex_filter_texel(tex, FILTER_ANISO, 4, 0.5, 0.5, &d, &tex_stages_lesson, &a4);
+    cr_expect_eq(tri.taps, 1);
+    cr_expect_eq(tri.level0, 3);
+    cr_expect_eq(a16.level0, 0);
+    cr_expect_eq(a4.level0, 1);
+    expect_quoted(ANSWERS, "l09.ans.trilinear.lambda", tri.lambda);
+    expect_quoted(ANSWERS, "l09.ans.aniso16.taps", a16.taps);
+    expect_quoted(ANSWERS, "l09.ans.aniso16.lambda", a16.lambda);
+    expect_quoted(ANSWERS, "l09.ans.aniso4.taps", a4.taps);
+    expect_quoted(ANSWERS, "l09.ans.aniso4.lambda", a4.lambda);
+    scene_free(&s);
+}

@@ -728,6 +728,11 @@ static const struct key keys[] = {
     { "l09.ans.square4.helpers", NULL, "tests/test_lesson09_exhibits.c" },
     { "l09.ans.square4off.shaded", NULL, "tests/test_lesson09_exhibits.c" },
     { "l09.ans.square4off.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.trilinear.lambda", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso16.taps", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso16.lambda", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso4.taps", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso4.lambda", NULL, "tests/test_lesson09_exhibits.c" },
 };
 
 #define NKEYS (sizeof keys / sizeof keys[0])
