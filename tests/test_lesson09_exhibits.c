@@ -3,12 +3,12 @@
  * a picture, measured against the ideal one.
  *
  * The ideal colour of a pixel is the mean of the texture over the pixel's
- * square: the box filter that every filter of the lesson approximates. It
- * is computed here, from CONVENTIONS.md alone, by brute force: 16 x 16
- * samples per pixel, each with its own perspective-correct (s, t) and the
- * level-0 texel under it (the image as a mosaic of texels). The numbers the
- * lesson's text and answer key quote, marked <!--=l09.KEY--> (testlib.h),
- * are recomputed here. */
+ * square: the box filter that every filter of the lesson approximates. The
+ * independent reference (texref.h, written from CONVENTIONS.md alone)
+ * computes it by brute force: 16 x 16 samples per pixel, each with its own
+ * perspective-correct (s, t) and the level-0 texel under it (the image as a
+ * mosaic of texels). The numbers the lesson's text and answer key quote,
+ * marked <!--=l09.KEY--> (testlib.h), are recomputed here. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -38,166 +38,14 @@ static void expect_quoted(const char *path, const char *key, double got)
               quoted, key, got);
 }
 
-/* --- the ideal picture --------------------------------------------------------- */
+/* --- the ideal picture (texref.h) ------------------------------------------------- */
 
 #define IDEAL_N 16          /* samples per pixel along each axis: 16 x 16 */
 
-struct ideal {
-    int w, h;
-    double *rgb;            /* 3 per pixel, 0..255, not rounded */
-    double *z;              /* depth at the pixel centre, +inf where nothing */
-    int *tri;               /* the triangle seen at the pixel centre, -1 for none */
-    bool *textured;         /* ... and it is under an image texture */
-};
-
-/* A triangle snapped to 1/256 pixel, every edge function positive inside. */
-struct snapped {
-    int64_t X[3], Y[3], area2;
-    struct vertex v[3];
-};
-
-static int64_t edge(const struct snapped *t, int a, int b, int64_t px, int64_t py)
+static struct texref_ideal ideal_scene(const struct scene *s)
 {
-    return (t->X[b] - t->X[a]) * (py - t->Y[a]) - (t->Y[b] - t->Y[a]) * (px - t->X[a]);
-}
-
-static bool snap(struct snapped *t, const struct vertex v[3])
-{
-    for (int k = 0; k < 3; k++) {
-        t->v[k] = v[k];
-        t->X[k] = lrint(v[k].x * 256);
-        t->Y[k] = lrint(v[k].y * 256);
-    }
-    t->area2 = edge(t, 0, 1, t->X[2], t->Y[2]);
-    if (t->area2 < 0) {
-        struct vertex sv = t->v[1];
-        int64_t sx = t->X[1], sy = t->Y[1];
-        t->v[1] = t->v[2], t->X[1] = t->X[2], t->Y[1] = t->Y[2];
-        t->v[2] = sv, t->X[2] = sx, t->Y[2] = sy;
-        t->area2 = -t->area2;
-    }
-    return t->area2 > 0;
-}
-
-/* The pixel centre (px, py) (1/256 units) is covered: the top-left rule. */
-static bool covered(const struct snapped *t, int64_t px, int64_t py)
-{
-    for (int k = 0; k < 3; k++) {
-        int a = k, b = (k + 1) % 3;
-        int64_t e = edge(t, a, b, px, py), dx = t->X[b] - t->X[a], dy = t->Y[b] - t->Y[a];
-        if (e < 0 || (e == 0 && !(dy < 0 || (dy == 0 && dx > 0))))
-            return false;
-    }
-    return true;
-}
-
-/* 1/z and the perspective-correct (s, t) and colour at the point (px, py),
- * through the plane of the triangle (a point outside it too); false when
- * the point lies beyond the horizon (1/z <= 0). */
-static bool at_point(const struct snapped *t, int64_t px, int64_t py, double *q, double st[2],
-                     double rgb[3])
-{
-    double b[3] = { (double)edge(t, 1, 2, px, py) / (double)t->area2,
-                    (double)edge(t, 2, 0, px, py) / (double)t->area2,
-                    (double)edge(t, 0, 1, px, py) / (double)t->area2 };
-    double sum_q = 0, s = 0, tt = 0, c[3] = { 0, 0, 0 };
-    for (int k = 0; k < 3; k++) {
-        double w = b[k] / t->v[k].z;
-        sum_q += w;
-        s += w * t->v[k].s, tt += w * t->v[k].t;
-        c[0] += w * t->v[k].r, c[1] += w * t->v[k].g, c[2] += w * t->v[k].b;
-    }
-    *q = sum_q;
-    if (!(sum_q > 0))
-        return false;
-    st[0] = s / sum_q, st[1] = tt / sum_q;
-    for (int i = 0; i < 3 && rgb; i++)
-        rgb[i] = c[i] / sum_q;
-    return true;
-}
-
-/* The mean of the level-0 texels under the 16 x 16 samples of pixel (x, y)
- * that lie on the near side of the horizon, times the vertex colour at the
- * centre; false when no sample does. */
-static bool ideal_pixel(const struct snapped *t, const struct texref *tex, int x, int y,
-                        const double rgb[3], double out[3])
-{
-    double sum[3] = { 0, 0, 0 };
-    int n = 0;
-    for (int j = 0; j < IDEAL_N; j++)
-        for (int i = 0; i < IDEAL_N; i++) {
-            int64_t px = 256 * (int64_t)x + (256 / IDEAL_N) * i + 128 / IDEAL_N;
-            int64_t py = 256 * (int64_t)y + (256 / IDEAL_N) * j + 128 / IDEAL_N;
-            double q, st[2], texel[3];
-            if (!at_point(t, px, py, &q, st, NULL))
-                continue;
-            texref_texel(tex, 0, (long long)floor(st[0] * tex->w[0]),
-                         (long long)floor(st[1] * tex->h[0]), texel);
-            for (int c = 0; c < 3; c++)
-                sum[c] += texel[c];
-            n++;
-        }
-    for (int c = 0; c < 3; c++) {
-        double k = rgb[c] > 1 ? 1 : rgb[c] > 0 ? rgb[c] : 0;
-        out[c] = sum[c] / n * k;
-    }
-    return n > 0;
-}
-
-static void ideal_free(struct ideal *id)
-{
-    free(id->rgb);
-    free(id->z);
-    free(id->tri);
-    free(id->textured);
-    memset(id, 0, sizeof *id);
-}
-
-/* The ideal picture of a scene's screen triangles, each under its texture. */
-static struct ideal ideal_scene(const struct scene *s)
-{
-    struct ideal id = { .w = s->w, .h = s->h };
-    size_t n = (size_t)s->w * (size_t)s->h;
-    id.rgb = calloc(3 * n, sizeof *id.rgb);
-    id.z = malloc(n * sizeof *id.z);
-    id.tri = malloc(n * sizeof *id.tri);
-    id.textured = calloc(n, sizeof *id.textured);
-    cr_assert(id.rgb && id.z && id.tri && id.textured);
-    for (size_t i = 0; i < n; i++)
-        id.z[i] = INFINITY, id.tri[i] = -1;
-    int ntex = scene_texture_count(s);
-    struct texref *refs = calloc((size_t)ntex + 1, sizeof *refs);
-    cr_assert_not_null(refs);
-    for (int k = 1; k <= ntex; k++) {
-        const struct texture *tx = scene_texture(s, k);
-        cr_assert(texref_init(&refs[k], tx->level[0].w, tx->level[0].h, tx->level[0].texel,
-                              tx->wrap == TEXTURE_CLAMP ? TEXREF_CLAMP : TEXREF_REPEAT));
-    }
-    for (int i = 0; i < s->ntris; i++) {
-        struct snapped t;
-        if (!snap(&t, s->tris[i].v))
-            continue;
-        int k = s->tris[i].texture;
-        const struct texref *tex = k >= 1 && k <= ntex ? &refs[k] : NULL;
-        for (int y = 0; y < s->h; y++)
-            for (int x = 0; x < s->w; x++) {
-                int64_t px = 256 * (int64_t)x + 128, py = 256 * (int64_t)y + 128;
-                double q, st[2], rgb[3];
-                size_t p = (size_t)y * (size_t)s->w + (size_t)x;
-                if (!covered(&t, px, py) || !at_point(&t, px, py, &q, st, rgb) || !(1 / q < id.z[p]))
-                    continue;
-                id.z[p] = 1 / q;
-                id.tri[p] = i;
-                id.textured[p] = tex != NULL;
-                double *out = &id.rgb[3 * p];
-                if (!tex || !ideal_pixel(&t, tex, x, y, rgb, out))
-                    for (int c = 0; c < 3; c++)
-                        out[c] = 255 * (rgb[c] > 1 ? 1 : rgb[c] > 0 ? rgb[c] : 0);
-            }
-    }
-    for (int k = 0; k <= ntex; k++)
-        texref_free(&refs[k]);
-    free(refs);
+    struct texref_ideal id;
+    cr_assert(texref_ideal_scene(&id, s, IDEAL_N));
     return id;
 }
 
@@ -217,7 +65,7 @@ Test(lesson09_exhibits, the_ideal_of_a_pixel_over_4_x_4_texels_is_their_mean)
     struct texref r;
     cr_assert(texref_init(&r, tx->level[0].w, tx->level[0].h, tx->level[0].texel, TEXREF_REPEAT));
     cr_assert_eq(r.w[2], 64);
-    struct ideal id = ideal_scene(&s);
+    struct texref_ideal id = ideal_scene(&s);
     long far = 0;
     for (int y = 0; y < 64; y++)
         for (int x = 0; x < 64; x++) {
@@ -229,7 +77,7 @@ Test(lesson09_exhibits, the_ideal_of_a_pixel_over_4_x_4_texels_is_their_mean)
         }
     cr_expect_eq(far, 0, "%ld channels differ from level 2 by more than a level", far);
     texref_free(&r);
-    ideal_free(&id);
+    texref_ideal_free(&id);
     scene_free(&s);
 }
 
@@ -336,7 +184,7 @@ struct error {
     long pixels, off16;
 };
 
-static struct error error_of(const struct ideal *id, const struct target *fb)
+static struct error error_of(const struct texref_ideal *id, const struct target *fb)
 {
     struct error e = { 0 };
     double sum = 0;
@@ -378,7 +226,7 @@ static long differ(const struct target *a, const struct target *b, int levels)
 Test(lesson09_exhibits, minification_without_mipmaps_aliases, .timeout = 60)
 {
     struct scene s = load3("texture-floor");
-    struct ideal id = ideal_scene(&s);
+    struct texref_ideal id = ideal_scene(&s);
     struct target nomip = draw(&s, "no-mipmaps", FILTER_TRILINEAR), tri = draw(&s, "quads", FILTER_TRILINEAR);
     struct error en = error_of(&id, &nomip), et = error_of(&id, &tri);
     cr_log_info("floor: no mip-maps %.2f levels (%ld off by > 16), trilinear %.2f (%ld), %ld pixels", en.mean,
@@ -393,7 +241,7 @@ Test(lesson09_exhibits, minification_without_mipmaps_aliases, .timeout = 60)
     expect_quoted(README, "l09.floor.trilinear.off16", (double)et.off16);
     target_free(&nomip);
     target_free(&tri);
-    ideal_free(&id);
+    texref_ideal_free(&id);
     scene_free(&s);
 }
 
@@ -445,7 +293,7 @@ Test(lesson09_exhibits, affine_coordinates_swim_more_on_larger_triangles, .timeo
 Test(lesson09_exhibits, per_quad_against_per_pixel_level_of_detail, .timeout = 60)
 {
     struct scene s = load3("texture-floor");
-    struct ideal id = ideal_scene(&s);
+    struct texref_ideal id = ideal_scene(&s);
     struct narrated nq = narrate(&s, "quads", FILTER_TRILINEAR), na = narrate(&s, "analytic-lod", FILTER_TRILINEAR),
                     nf = narrate(&s, "fine-lod", FILTER_TRILINEAR);
     long moved = 0, moved_fine = 0, written = 0;
@@ -472,7 +320,7 @@ Test(lesson09_exhibits, per_quad_against_per_pixel_level_of_detail, .timeout = 6
     narrated_free(&nf);
     target_free(&q);
     target_free(&a);
-    ideal_free(&id);
+    texref_ideal_free(&id);
     scene_free(&s);
 }
 
@@ -481,7 +329,7 @@ Test(lesson09_exhibits, per_quad_against_per_pixel_level_of_detail, .timeout = 6
 Test(lesson09_exhibits, aniso_beats_trilinear_at_a_grazing_angle, .timeout = 60)
 {
     struct scene s = load3("texture-wall");
-    struct ideal id = ideal_scene(&s);
+    struct texref_ideal id = ideal_scene(&s);
     struct target tri = draw(&s, "quads", FILTER_TRILINEAR), an = draw(&s, "quads", FILTER_ANISO);
     struct error et = error_of(&id, &tri), ea = error_of(&id, &an);
     cr_log_info("wall: trilinear %.2f levels (%ld off by > 16), aniso %.2f (%ld), %ld pixels", et.mean, et.off16,
@@ -495,17 +343,17 @@ Test(lesson09_exhibits, aniso_beats_trilinear_at_a_grazing_angle, .timeout = 60)
     expect_quoted(README, "l09.wall.aniso.off16", (double)ea.off16);
     /* and on the floor, the rest of trilinear's error is blur */
     struct scene f = load3("texture-floor");
-    struct ideal idf = ideal_scene(&f);
+    struct texref_ideal idf = ideal_scene(&f);
     struct target fa = draw(&f, "quads", FILTER_ANISO);
     struct error efa = error_of(&idf, &fa);
     cr_log_info("floor: aniso %.2f (%ld)", efa.mean, efa.off16);
     expect_quoted(README, "l09.floor.aniso.error", efa.mean);
     target_free(&fa);
-    ideal_free(&idf);
+    texref_ideal_free(&idf);
     scene_free(&f);
     target_free(&tri);
     target_free(&an);
-    ideal_free(&id);
+    texref_ideal_free(&id);
     scene_free(&s);
 }
 
