@@ -225,6 +225,16 @@ struct lesson {
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };
 
+/* Params p as triangle i of scene s is drawn with: its image texture set
+ * (what every driver hands `rasterize`, triangle by triangle). */
+static inline struct raster_params lesson_params_tri(const struct raster_params *p,
+                                                     const struct scene *s, int i)
+{
+    struct raster_params out = *p;
+    out.texture = scene_texture(s, s->tris[i].texture);
+    return out;
+}
+
 /* The scene-level twin of variant v of lesson l, or NULL. */
 static inline rasterize_scene_fn lesson_scene_fn(const struct lesson *l,
                                                  const struct lesson_variant *v)

@@ -132,7 +132,9 @@ static uint64_t run_frozen_with(const struct lesson *l, int variant, const struc
             up.bin_entry = units[i].bin_entry;
             up.thread = units[i].thread;
         }
-        tri_setup_bits(&t, s->tris[units ? (int)units[i].tri : i].v, s->w, s->h, p.subpixel_bits);
+        int tri = units ? (int)units[i].tri : i;
+        up.texture = lesson_params_tri(&p, s, tri).texture;     /* as the drivers set it */
+        tri_setup_bits(&t, s->tris[tri].v, s->w, s->h, p.subpixel_bits);
         struct trace tr = { .sink = count_kind, .ctx = k };
         k->base = done;
         trace_begin(&tr, (uint32_t)i, n - done);

@@ -46,6 +46,20 @@ static const char *const pseudocode[] = {
 };
 
 #define Q 8                 /* block size, as lesson 05's default */
+#define CORNERS_COST { .mul = 8, .add = 8 }     /* one edge at a block's four corners */
+/* A pixel centre's values (at_pixel): three weights F / 2 area and three
+ * over z (divisions, counted as multiplications), 1/z, s and t summed, s
+ * and t divided by 1/z. Its colour, a covered pixel's: three channels
+ * summed and divided. */
+#define TEX_EVAL_COST { .mul = 14, .add = 9 }
+#define TEX_COLOUR_COST { .mul = 12, .add = 9 }
+/* The texture unit (sampling.c), per tap: a bilinear tap (u, v, the
+ * weights, three channels lerped three times), the level of detail, the
+ * mix of two levels, the modulation by the vertex colour. */
+#define BILINEAR_TAP_COST { .mul = 11, .add = 22 }
+#define LOD_COST { .mul = 9, .add = 3 }
+#define MIX_COST { .mul = 3, .add = 6 }
+#define MODULATE_COST { .mul = 3, .add = 3 }
 
 enum tex_filter tex_filter_of(const struct raster_params *p)
 {
@@ -168,8 +182,8 @@ static struct tex_deriv deriv_of(const struct run *r, const struct at_pixel a[4]
 }
 
 /* The quad whose top-left pixel is (qx, qy), inside block [xa, xb] x [ya,
- * yb] (clipped to the box): full says the block is covered in full. */
-static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, bool full)
+ * yb] (clipped to the box). */
+static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
 {
     int64_t f[4][3];
     unsigned covered = 0;
@@ -178,9 +192,10 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
         bool in = x >= xa && x <= xb && y >= ya && y <= yb;
         for (int k = 0; k < 3; k++) {
             f[i][k] = biased_edge_at(&r->e, k, x, y);
-            in = in && (full || f[i][k] >= 0);
+            in = in && f[i][k] >= 0;
             f[i][k] -= r->e.bias[k];                /* the edge value itself, for the weights */
         }
+        COUNT(r->tr, 3, EDGE_VALUE_COST);
         NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = L_COVER, .x = x, .y = y,
                 .e = { f[i][0], f[i][1], f[i][2] }, .flags = in ? TRACE_INSIDE : 0);
         covered |= (unsigned)in << i;
@@ -195,6 +210,7 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
     double W = r->tex ? r->tex->level[0].w : 1, H = r->tex ? r->tex->level[0].h : 1;
     for (int i = 0; i < 4; i++) {
         a[i] = at_pixel(r, f[i]);
+        COUNT(r->tr, 1, TEX_EVAL_COST);
         beyond = beyond || !(a[i].q > 0);
         NARRATE(r->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = QX(qx, i), .y = QY(qy, i),
                 .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
@@ -209,6 +225,7 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
             continue;
         int x = QX(qx, i), y = QY(qy, i);
         uint32_t rgba;
+        COUNT(r->tr, 1, TEX_COLOUR_COST);
         if (!r->tex) {          /* untextured: the shared shading (and the checker) */
             rgba = shade_pixel(r->p, r->tr, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2], a[i].s, a[i].t);
         } else {
@@ -222,6 +239,12 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
                     .mask = { (uint16_t)covered, (uint16_t)u.taps, (uint16_t)r->filter },
                     .aux = { (float)(a[i].s * W), (float)(a[i].t * H), u.lambda, (float)u.level0,
                              (float)u.level1, u.mix });
+            bool two = u.level1 != u.level0 && u.mix != 0;
+            COUNT(r->tr, r->filter == FILTER_NEAREST ? 0 : (unsigned)u.taps * (two ? 2 : 1),
+                  BILINEAR_TAP_COST);
+            COUNT(r->tr, r->filter == FILTER_NEAREST ? 0 : 1, LOD_COST);
+            COUNT(r->tr, two ? (unsigned)u.taps : 0, MIX_COST);
+            COUNT(r->tr, 1, MODULATE_COST);
             rgba = tex_modulate(texel, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2]);
         }
         PLOT(r->fb, r->tr, L_WRITE, x, y, (float)(1 / a[i].q), rgba);
@@ -230,19 +253,19 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb, 
 
 /* --- blocks (lesson 05), then quads ---------------------------------------------- */
 
-/* The class of block [x0, x1] x [y0, y1] by its corners' edge signs. */
-static enum block_class classify(const struct run *r, int x0, int y0, int x1, int y1)
+/* Is block [x0, x1] x [y0, y1] empty: all four corners outside one edge?
+ * (Lesson 05's classification. A full block is walked like a partial one
+ * here: its quads still evaluate four centres each, and a pixel's edge
+ * test costs little beside its texels.) */
+static bool block_empty(const struct run *r, int x0, int y0, int x1, int y1)
 {
-    bool all_in = true;
     for (int k = 0; k < 3; k++) {
-        int64_t c[4] = { biased_edge_at(&r->e, k, x0, y0), biased_edge_at(&r->e, k, x1, y0),
-                         biased_edge_at(&r->e, k, x0, y1), biased_edge_at(&r->e, k, x1, y1) };
-        int inside = (c[0] >= 0) + (c[1] >= 0) + (c[2] >= 0) + (c[3] >= 0);
-        if (inside == 0)
-            return BLOCK_EMPTY;
-        all_in = all_in && inside == 4;
+        COUNT(r->tr, 1, CORNERS_COST);
+        if (biased_edge_at(&r->e, k, x0, y0) < 0 && biased_edge_at(&r->e, k, x1, y0) < 0
+            && biased_edge_at(&r->e, k, x0, y1) < 0 && biased_edge_at(&r->e, k, x1, y1) < 0)
+            return true;
     }
-    return all_in ? BLOCK_FULL : BLOCK_PARTIAL;
+    return false;
 }
 
 void textures_rasterize(const struct tri_setup *t, const struct raster_params *p,
@@ -266,16 +289,17 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
         int ya = by < t->miny ? t->miny : by, yb = by + Q - 1 > t->maxy ? t->maxy : by + Q - 1;
         for (int bx = t->minx - t->minx % Q; bx <= t->maxx; bx += Q) {
             int xa = bx < t->minx ? t->minx : bx, xb = bx + Q - 1 > t->maxx ? t->maxx : bx + Q - 1;
-            enum block_class klass = classify(&r, xa, ya, xb, yb);
-            int line = klass == BLOCK_EMPTY ? L_EMPTY : L_QUADS;
+            bool empty = block_empty(&r, xa, ya, xb, yb);
+            int line = empty ? L_EMPTY : L_QUADS;
             NARRATE(tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
-                    .x = xa, .y = ya, .x1 = xb, .y1 = yb, .klass = (uint8_t)klass, .aux = { Q });
-            if (klass == BLOCK_EMPTY)
+                    .x = xa, .y = ya, .x1 = xb, .y1 = yb,
+                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { Q });
+            if (empty)
                 continue;
             /* blocks start on even pixels, so a quad never straddles two */
             for (int qy = ya & ~1; qy <= yb; qy += 2)
                 for (int qx = xa & ~1; qx <= xb; qx += 2)
-                    quad(&r, qx, qy, xa, ya, xb, yb, klass == BLOCK_FULL);
+                    quad(&r, qx, qy, xa, ya, xb, yb);
         }
     }
 }
@@ -350,6 +374,9 @@ const struct lesson lesson_09 = {
                           .key_down = '[', .min = 1, .max = 16, .def = MAX_ANISO_DEFAULT,
                           .help = "most taps of the aniso filter (1..16)" },
         { 0 } },
+    .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_VALUE_COST), { 0 } },
+    .cost_covered = (const struct cost_term[]){
+        COST_TERM(1, TEX_COLOUR_COST), COST_TERM(1, PACK_RGB_COST), { 0 } },
     .compare = compare,
     .texturing = "by its image: 2 x 2 quads with helper pixels, coarse derivatives, the level of "
                  "detail and --filter (trilinear by default), times the vertex colour",

@@ -21,7 +21,7 @@ struct raster_params replay_params(const struct replay *r, int i)
 {
     struct raster_params p = r->params;
     if (i >= 0 && i < r->ntris)
-        p.texture = scene_texture(r->scene, r->scene->tris[replay_unit_tri(r, i)].texture);
+        p = lesson_params_tri(&r->params, r->scene, replay_unit_tri(r, i));
     if (r->units && i >= 0 && i < r->ntris) {
         const struct lesson_unit *u = &r->units[i];
         p.tile = u->tile + 1;
@@ -533,8 +533,7 @@ bool render_scene(const struct scene *s, const struct lesson_variant *v,
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, bits);
-        struct raster_params pi = *p;
-        pi.texture = scene_texture(s, s->tris[i].texture);
+        struct raster_params pi = lesson_params_tri(p, s, i);
         v->rasterize(&t, &pi, fb, NULL);
     }
     return true;
