@@ -143,8 +143,8 @@ static struct narrated narrate(const struct scene *s, const char *name, enum tex
         struct test_events ev = { 0 };
         struct trace tr = { .sink = test_collect, .ctx = &ev };
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
-        p.texture = scene_texture(s, s->tris[i].texture);
-        variant(name)->rasterize(&t, &p, &fb, &tr);
+        struct raster_params pi = lesson_params_tri(&p, s, i);
+        variant(name)->rasterize(&t, &pi, &fb, &tr);
         int level = -1;
         float u = 0, v = 0;
         for (size_t k = 0; k < ev.n; k++) {
