@@ -42,6 +42,12 @@ struct raster_params {
      * `texture` number), or NULL: set by the drivers per triangle; a lesson
      * without .texturing draws in the vertex colour and never reads it */
     const struct texture *texture;
+    /* For the explorer's drawings and watch only (NULL in every run): the
+     * last event the current unit told at each line of the pseudo-code up
+     * to the step shown, told[line] (.kind TRACE_KIND_COUNT: none yet), so
+     * that a step can be shown with the steps before it (lesson 09: a
+     * pixel's filter with its quad's derivatives). */
+    const struct trace_event *told;
 };
 
 /* One unit of a scene-level lesson's narrated run: triangle `tri` of the

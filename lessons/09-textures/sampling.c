@@ -25,48 +25,28 @@
 
 #include "textures.h"
 
-/* |u|, |v| beyond this (a helper's extrapolation near the horizon, an
- * aniso tap spread by an enormous derivative) are held here, so that the
- * texel index stays an integer (2^52 texels is a multiple of every size). */
-#define TEXEL_COORD_MAX 0x1p52
-
-/* Texel (i, j) of level l as three floats. Repeat is the mathematical mod
- * (sizes are powers of two: the low bits of i as an unsigned number, for
- * negative i too); clamp holds i inside 0 .. W - 1. */
+/* Texel (i, j) of level l as three floats (texel_at, textures.h). */
 static inline struct texel_rgb texel(const struct texture_level *l, enum texture_wrap wrap, int64_t i,
                                      int64_t j)
 {
-    int x, y;
-    if (wrap == TEXTURE_REPEAT) {
-        x = (int)((uint64_t)i & (uint64_t)(l->w - 1));
-        y = (int)((uint64_t)j & (uint64_t)(l->h - 1));
-    } else {
-        x = i < 0 ? 0 : i >= l->w ? l->w - 1 : (int)i;
-        y = j < 0 ? 0 : j >= l->h ? l->h - 1 : (int)j;
-    }
-    uint32_t c = l->texel[(size_t)y * (size_t)l->w + (size_t)x];
+    uint32_t c = texel_at(l, wrap, i, j);
     return (struct texel_rgb){ { (float)(c >> 16 & 255), (float)(c >> 8 & 255), (float)(c & 255) } };
-}
-
-static inline double held(double u)
-{
-    return u >= -TEXEL_COORD_MAX ? (u <= TEXEL_COORD_MAX ? u : TEXEL_COORD_MAX) : -TEXEL_COORD_MAX;
 }
 
 struct texel_rgb tex_nearest(const struct texture *tex, double s, double t)
 {
     const struct texture_level *l = &tex->level[0];
-    return texel(l, tex->wrap, (int64_t)floor(held(s * l->w)), (int64_t)floor(held(t * l->h)));
+    double u = tex_coord_held(s * l->w), v = tex_coord_held(t * l->h);
+    return texel(l, tex->wrap, (int64_t)floor(u), (int64_t)floor(v));
 }
 
 /* One level's bilinear tap: lerp along u on both rows, then along v. */
 struct texel_rgb tex_bilinear(const struct texture *tex, int k, double s, double t)
 {
     const struct texture_level *l = &tex->level[k];
-    double u = held(s * l->w - 0.5), v = held(t * l->h - 0.5);
-    double i0 = floor(u), j0 = floor(v);
-    float a = (float)(u - i0), b = (float)(v - j0);
-    int64_t i = (int64_t)i0, j = (int64_t)j0;
+    int64_t i, j;
+    float a, b;
+    bilinear_corner(l, s, t, &i, &j, &a, &b);
     struct texel_rgb c00 = texel(l, tex->wrap, i, j), c10 = texel(l, tex->wrap, i + 1, j);
     struct texel_rgb c01 = texel(l, tex->wrap, i, j + 1), c11 = texel(l, tex->wrap, i + 1, j + 1);
     struct texel_rgb out;

@@ -20,7 +20,9 @@
 #ifndef TRISTEP_TEXTURES_H
 #define TRISTEP_TEXTURES_H
 
+#include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "lesson.h"
 
@@ -90,6 +92,46 @@ struct tex_stages {
     struct texel_rgb (*trilinear)(const struct texture *tex, double lambda, double s, double t,
                                   const struct tex_stages *st);
 };
+
+/* --- texel addressing, shared by the stages and the twin ----------------- */
+
+/* |u|, |v| beyond this (a helper's extrapolation near the horizon, an
+ * aniso tap spread by an enormous derivative) are held here, so that the
+ * texel index stays an integer (2^52 texels is a multiple of every size). */
+#define TEXEL_COORD_MAX 0x1p52
+
+static inline double tex_coord_held(double u)
+{
+    return u >= -TEXEL_COORD_MAX ? (u <= TEXEL_COORD_MAX ? u : TEXEL_COORD_MAX) : -TEXEL_COORD_MAX;
+}
+
+/* Texel (i, j) of level l, 0xAARRGGBB. Repeat is the mathematical mod
+ * (sizes are powers of two: the low bits of i as an unsigned number, for
+ * negative i too); clamp holds i inside 0 .. W - 1. */
+static inline uint32_t texel_at(const struct texture_level *l, enum texture_wrap wrap, int64_t i,
+                                int64_t j)
+{
+    int x, y;
+    if (wrap == TEXTURE_REPEAT) {
+        x = (int)((uint64_t)i & (uint64_t)(l->w - 1));
+        y = (int)((uint64_t)j & (uint64_t)(l->h - 1));
+    } else {
+        x = i < 0 ? 0 : i >= l->w ? l->w - 1 : (int)i;
+        y = j < 0 ? 0 : j >= l->h ? l->h - 1 : (int)j;
+    }
+    return l->texel[(size_t)y * (size_t)l->w + (size_t)x];
+}
+
+/* A bilinear tap's top-left texel (i, j) and weights (a, b) at (s, t) on
+ * level l: u - 1/2 = i + a, v - 1/2 = j + b. */
+static inline void bilinear_corner(const struct texture_level *l, double s, double t, int64_t *i,
+                                   int64_t *j, float *a, float *b)
+{
+    double u = tex_coord_held(s * l->w - 0.5), v = tex_coord_held(t * l->h - 0.5);
+    double i0 = floor(u), j0 = floor(v);
+    *a = (float)(u - i0), *b = (float)(v - j0);
+    *i = (int64_t)i0, *j = (int64_t)j0;
+}
 
 /* The lesson's own stages (sampling.c), and its pieces by name. */
 extern const struct tex_stages tex_stages_lesson;

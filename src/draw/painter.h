@@ -120,7 +120,7 @@ struct swatch {
     uint32_t colour;
     const char *label;
 };
-#define VIEW_LEGEND_MAX 8
+#define VIEW_LEGEND_MAX 13      /* a texture's 13 levels, one colour each (lesson 09) */
 
 void view_ctx_init(struct view_ctx *v, const struct explorer *ex, const struct palette *pal);
 /* Colour of pixel (x, y) in the current view. */
