@@ -46,6 +46,7 @@ struct look {
     bool beyond;                /* a helper beyond the horizon: the last level */
     bool filtered;              /* the filter has run: what follows is told */
     int filter;                 /* enum tex_filter */
+    double used_lambda;         /* the lambda it read the levels at (aniso's: log2(P_max / n)) */
     int nlevels, level[2];      /* the levels read, finer first */
     double level_w[2];          /* their weights */
     int nprobes;                /* 1, or aniso's n along the major axis */
@@ -134,6 +135,7 @@ static bool look_at(const struct raster_params *p, struct look *lk)
     lk->filtered = true;
     lk->filter = fil->mask[2] >= FILTER_NEAREST && fil->mask[2] <= FILTER_ANISO ? fil->mask[2]
                                                                                  : FILTER_TRILINEAR;
+    lk->used_lambda = fil->aux[AUX_USED_LAMBDA];
     double mix = fil->aux[AUX_MIX] > 0 ? (fil->aux[AUX_MIX] < 1 ? fil->aux[AUX_MIX] : 1) : 0;
     lk->level[0] = level_of(lk->tex, fil->aux[AUX_LEVEL0]);
     lk->level[1] = level_of(lk->tex, fil->aux[AUX_LEVEL1]);
@@ -148,7 +150,6 @@ static bool look_at(const struct raster_params *p, struct look *lk)
  * weight (0..255 per channel), and that pixel: what the texels view draws,
  * held by the tests to the colour the lesson wrote. False when no pixel
  * has been filtered. */
-bool textures_explorer_taps(const struct raster_params *p, int *x, int *y, double rgb[3]);
 bool textures_explorer_taps(const struct raster_params *p, int *x, int *y, double rgb[3])
 {
     struct look lk;
@@ -190,8 +191,12 @@ static void describe(const struct look *lk, char *buf, size_t n)
         snprintf(buf + at, n - at, "nearest: level 0, texel (%.0f, %.0f)\n", floor(lk->u), floor(lk->v));
         return;
     }
-    at += (size_t)snprintf(buf + at, n - at, "%s: level %d x %.4g", filter_word[lk->filter], lk->level[0],
-                           lk->level_w[0]);
+    if (lk->filter == FILTER_BILINEAR || !(lk->used_lambda > 0))
+        at += (size_t)snprintf(buf + at, n - at, "%s: bilinear, level 0%s", filter_word[lk->filter],
+                               lk->filter == FILTER_BILINEAR ? "" : " (magnified)");
+    else
+        at += (size_t)snprintf(buf + at, n - at, "%s at lambda %.4g:\nlevel %d x %.4g", filter_word[lk->filter],
+                               lk->used_lambda, lk->level[0], lk->level_w[0]);
     if (lk->nlevels == 2 && at < n)
         at += (size_t)snprintf(buf + at, n - at, " + level %d x %.4g", lk->level[1], lk->level_w[1]);
     if (lk->nprobes > 1 && at < n)
@@ -268,14 +273,6 @@ static void footprint(const struct look *lk, const struct frame *f, double cu, d
         at(f, cu + sign[k][0] * ax + sign[k][1] * bx, cv + sign[k][0] * ay + sign[k][1] * by, out[k]);
 }
 
-static bool reads(const struct look *lk, int k)
-{
-    for (int m = 0; m < lk->nlevels; m++)
-        if (lk->level[m] == k)
-            return true;
-    return false;
-}
-
 /* The pyramid in r: level 0, the levels below it in a column beside it,
  * each the whole texture (the square of s, t in [0, 1]) at half the size;
  * on the levels read, the footprint and a ring at (s, t) brought into the
@@ -297,7 +294,7 @@ static double draw_pyramid(const struct lesson_canvas *c, struct rect r, const s
         if (box.x1 - box.x0 < 3 * c->unit || box.y1 - box.y0 < 3 * c->unit || box.y1 > r.y1)
             break;          /* too small to show */
         c->image(c, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0, L->texel, L->w, L->h);
-        bool read = shown && reads(lk, k);
+        bool read = shown && (k == lk->level[0] || (lk->nlevels == 2 && k == lk->level[1]));
         rect_pen(c, box, (struct pen){ .stroke = read ? INK_PROBE : INK_TEXT, .width = read ? 2.5 : 1,
                                        .alpha = read ? 1 : 0.5 });
         if (!read)
@@ -503,11 +500,14 @@ static void draw_quads(const struct lesson_canvas *c, const struct tri_setup *t,
     if (t->area2 <= 0 || t->empty || c->unit > 1.0 / 5)
         return;
     int x0 = t->minx & ~1, y0 = t->miny & ~1, x1 = (t->maxx | 1) + 1, y1 = (t->maxy | 1) + 1;
-    struct pen grid = { .stroke = INK_MARK, .width = 1.5, .alpha = 0.6 };
-    for (int x = x0; x <= x1; x += 2)
-        c->line(c, x, y0, x, y1, grid);
-    for (int y = y0; y <= y1; y += 2)
-        c->line(c, x0, y, x1, y, grid);
+    for (int pass = 0; pass < 2; pass++) {     /* white on a dark halo: seen on any cell */
+        struct pen grid = pass ? (struct pen){ .stroke = INK_MARK, .width = 2 }
+                               : (struct pen){ .stroke = INK_OUTLINE, .width = 4.5, .alpha = 0.8 };
+        for (int x = x0; x <= x1; x += 2)
+            c->line(c, x, y0, x, y1, grid);
+        for (int y = y0; y <= y1; y += 2)
+            c->line(c, x0, y, x1, y, grid);
+    }
     bool quad_step = last && (last->kind == TRACE_PIXEL_TEST || last->kind == TRACE_PIXEL_WRITE
                               || (last->kind == TRACE_STEP && last->line >= L_SKIP && last->line <= L_FILTER));
     if (quad_step) {
