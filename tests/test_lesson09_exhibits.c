@@ -26,16 +26,25 @@ extern const struct lesson lesson_09;
 #define README "lessons/09-textures/README.md"
 #define ANSWERS "lessons/09-textures/ANSWERS.md"
 
-/* The count `got` is the number the text quotes before marker `key`
+/* The count `got` is the number the text quotes before marker `key`,
+ * wherever it quotes it, to the precision of each quote
  * (TRISTEP_PRINT_NUMBERS=1 prints it, for writing the text). */
 static void expect_quoted(const char *path, const char *key, double got)
 {
     if (getenv("TRISTEP_PRINT_NUMBERS"))
         fprintf(stderr, "%-32s %.17g\n", key, got);
     double tol;
-    double quoted = text_number(path, key, &tol);
+    double quoted = text_number(path, key, &tol);      /* fails when there is none */
     cr_expect(fabs(quoted - got) <= tol, "%s quotes %g for %s, the lesson computes %.17g", path,
               quoted, key, got);
+    char marker[128];
+    snprintf(marker, sizeof marker, "<!--=%s-->", key);
+    const char *text = test_read_text(path);
+    for (const char *at = strstr(strstr(text, marker) + 1, marker); at; at = strstr(at + 1, marker)) {
+        quoted = number_before(text, at, &tol);
+        cr_expect(fabs(quoted - got) <= tol, "%s quotes %g for %s again, the lesson computes %.17g",
+                  path, quoted, key, got);
+    }
 }
 
 /* --- the ideal picture (texref.h) ------------------------------------------------- */
