@@ -3,9 +3,11 @@
  * The same pixels, the same bytes: every value a pixel's colour depends on
  * is computed by the same IEEE operations in the same order, only four
  * pixels at a time (two pairs of doubles for the weights and the divides).
- * What is different is the walk: the box's quads row by row, with no block
- * classification, coverage from the edge values of the quad's four pixels
- * at once, and a pixel's texel sampled only once it passes the depth test.
+ * What is different: a quad's four pixels are evaluated at once (and a
+ * level's taps for all four), trilinear takes one lambda per quad (the
+ * quad's, which every pixel of it uses anyway), and a pixel's texel is
+ * sampled only once it passes the depth test. The walk is the lesson's:
+ * the 8 x 8 blocks of the box, the empty ones skipped, then their quads.
  *
  *      lanes:   [ TL | TR ]  the quad's top row     (x0, x0 + 1) at y0
  *               [ BL | BR ]  its bottom row         (x0, x0 + 1) at y0 + 1
@@ -14,6 +16,9 @@
  * are exact in doubles too: coverage tested on doubles is the integer
  * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
  */
+#include <math.h>
+
+#include "shade/shade.h"
 #include "simd.h"
 #include "textures.h"
 
@@ -65,71 +70,88 @@ static inline void wrap_pair(int64_t i, int n, enum texture_wrap wrap, int *x0, 
     }
 }
 
-/* One level's bilinear taps for the quad's four pixels: the wrapped
- * columns and rows of each pixel's four texels and its weights, as
- * bilinear_corner finds them. The quad's u and v at once: u = s W - 1/2,
- * floor(u) from the truncation (exact below 2^31 texels), a = u - floor(u)
- * as a float; a lane out of that range (or a NaN) is found by
- * bilinear_corner itself. Pixels not in `lanes` are left alone. */
+/* One level's bilinear taps for the quad's four pixels: where each
+ * pixel's four texels are in the level (offsets into its texels, wrapped as
+ * texel_at wraps them) and its weights, as bilinear_corner finds them. */
 struct level_taps {
-    int x0[4], x1[4], y0[4], y1[4];
+    int o00[4], o10[4], o01[4], o11[4];
     float a[4], b[4];
 };
 
+/* floor(u) of two doubles below 2^31 in size, and the same as int32 in
+ * the low two lanes of *i: the truncation, one less where it rounded up. */
 static inline __m128d floor2(__m128d u, __m128i *i)
 {
     __m128i t = _mm_cvttpd_epi32(u);
     __m128d f = _mm_cvtepi32_pd(t);
-    __m128d above = _mm_cmpgt_pd(f, u);         /* negative and not whole: one less */
+    __m128d above = _mm_cmpgt_pd(f, u);
     *i = _mm_add_epi32(t, _mm_shuffle_epi32(_mm_castpd_si128(above), _MM_SHUFFLE(3, 3, 2, 0)));
     return _mm_sub_pd(f, _mm_and_pd(above, _mm_set1_pd(1)));
 }
 
+/* u - 1/2 (or v) of four pixels, its floor as four int32 and its fraction
+ * as four floats; false when a lane is 2^30 texels out or more (or NaN). */
+static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
+{
+    const __m128d scale = _mm_set1_pd(w), half = _mm_set1_pd(0.5), limit = _mm_set1_pd(0x1p30);
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d u0 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s), scale), half);
+    __m128d u1 = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s + 2), scale), half);
+    __m128d in = _mm_and_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, u0), limit),
+                            _mm_cmplt_pd(_mm_andnot_pd(sign, u1), limit));
+    if (_mm_movemask_pd(in) != 3)
+        return false;
+    __m128i i0, i1;
+    __m128 a0 = _mm_cvtpd_ps(_mm_sub_pd(u0, floor2(u0, &i0)));
+    __m128 a1 = _mm_cvtpd_ps(_mm_sub_pd(u1, floor2(u1, &i1)));
+    *i = _mm_unpacklo_epi64(i0, i1);
+    *a = _mm_movelh_ps(a0, a1);
+    return true;
+}
+
+/* s and t of the quad's pixels (a helper's: anything, even NaN; `lanes`
+ * says which are wanted). */
 static inline void level_taps(const struct texture_level *l, enum texture_wrap wrap, const double s[4],
                               const double t[4], unsigned lanes, struct level_taps *o)
 {
-    const __m128d w = _mm_set1_pd(l->w), h = _mm_set1_pd(l->h), half = _mm_set1_pd(0.5);
-    const __m128d limit = _mm_set1_pd(0x1p30), sign = _mm_set1_pd(-0.0);
-    int64_t ii[4], jj[4];
-    bool wide = false;
-    for (int p = 0; p < 4; p += 2) {
-        __m128d u = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(s + p), w), half);
-        __m128d v = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(t + p), h), half);
-        __m128d in = _mm_and_pd(_mm_cmplt_pd(_mm_andnot_pd(sign, u), limit),
-                                _mm_cmplt_pd(_mm_andnot_pd(sign, v), limit));
-        int ok = _mm_movemask_pd(in), want = (int)(lanes >> p & 3);
-        if ((ok & want) != want) {
-            wide = true;
-            break;
-        }
-        __m128i iu, iv;
-        __m128 a = _mm_cvtpd_ps(_mm_sub_pd(u, floor2(u, &iu)));
-        __m128 b = _mm_cvtpd_ps(_mm_sub_pd(v, floor2(v, &iv)));
-        int32_t i32[4], j32[4];
-        _mm_storeu_si128((__m128i *)i32, iu);
-        _mm_storeu_si128((__m128i *)j32, iv);
-        float af[4], bf[4];
-        _mm_storeu_ps(af, a), _mm_storeu_ps(bf, b);
-        for (int k = 0; k < 2; k++)
-            ii[p + k] = i32[k], jj[p + k] = j32[k], o->a[p + k] = af[k], o->b[p + k] = bf[k];
+    double sl[4], tl[4];
+    for (int p = 0; p < 4; p++)
+        sl[p] = lanes >> p & 1 ? s[p] : 0, tl[p] = lanes >> p & 1 ? t[p] : 0;
+    __m128i iu, iv;
+    __m128 a, b;
+    if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
+        /* the mathematical mod of a power of two: the low bits, negatives too */
+        const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
+        int log2w = 0;
+        while (1 << log2w < l->w)
+            log2w++;
+        __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
+        __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
+        __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));
+        _mm_storeu_si128((__m128i *)o->o00, _mm_add_epi32(row0, x0));
+        _mm_storeu_si128((__m128i *)o->o10, _mm_add_epi32(row0, x1));
+        _mm_storeu_si128((__m128i *)o->o01, _mm_add_epi32(row1, x0));
+        _mm_storeu_si128((__m128i *)o->o11, _mm_add_epi32(row1, x1));
+        _mm_storeu_ps(o->a, a);
+        _mm_storeu_ps(o->b, b);
+        return;
     }
-    for (int p = 0; p < 4; p++) {
-        if (!(lanes >> p & 1))
-            continue;
-        if (wide)
-            bilinear_corner(l, s[p], t[p], &ii[p], &jj[p], &o->a[p], &o->b[p]);
-        wrap_pair(ii[p], l->w, wrap, &o->x0[p], &o->x1[p]);
-        wrap_pair(jj[p], l->h, wrap, &o->y0[p], &o->y1[p]);
+    for (int p = 0; p < 4; p++) {       /* clamp, or far out: bilinear_corner itself */
+        int64_t i, j;
+        int x0, x1, y0, y1;
+        bilinear_corner(l, sl[p], tl[p], &i, &j, &o->a[p], &o->b[p]);
+        wrap_pair(i, l->w, wrap, &x0, &x1);
+        wrap_pair(j, l->h, wrap, &y0, &y1);
+        o->o00[p] = y0 * l->w + x0, o->o10[p] = y0 * l->w + x1;
+        o->o01[p] = y1 * l->w + x0, o->o11[p] = y1 * l->w + x1;
     }
 }
 
 /* Pixel p's bilinear tap from its level's taps. */
 static inline __m128 bilinear4(const struct texture_level *l, const struct level_taps *o, int p)
 {
-    const uint32_t *row0 = l->texel + (size_t)o->y0[p] * (size_t)l->w;
-    const uint32_t *row1 = l->texel + (size_t)o->y1[p] * (size_t)l->w;
-    __m128 c00 = texel4(row0[o->x0[p]]), c10 = texel4(row0[o->x1[p]]);
-    __m128 c01 = texel4(row1[o->x0[p]]), c11 = texel4(row1[o->x1[p]]);
+    __m128 c00 = texel4(l->texel[o->o00[p]]), c10 = texel4(l->texel[o->o10[p]]);
+    __m128 c01 = texel4(l->texel[o->o01[p]]), c11 = texel4(l->texel[o->o11[p]]);
     __m128 va = _mm_set1_ps(o->a[p]), vb = _mm_set1_ps(o->b[p]);
     __m128 top = _mm_add_ps(c00, _mm_mul_ps(va, _mm_sub_ps(c10, c00)));
     __m128 bottom = _mm_add_ps(c01, _mm_mul_ps(va, _mm_sub_ps(c11, c01)));
@@ -159,6 +181,13 @@ struct trilinear_at {
 static inline struct trilinear_at trilinear_at(const struct texture *tex, const struct tex_deriv *d)
 {
     double last = tex->nlevels - 1;
+    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho <= 1, no log2 needed */
+        double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
+        double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+        double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
+        if (!(sqrt(px2 > py2 ? px2 : py2) > 1))
+            return (struct trilinear_at){ 0, 0, 0 };
+    }
     double lambda = d->beyond ? last : tex_lod(d);
     if (!(lambda > 0))
         return (struct trilinear_at){ 0, 0, 0 };
@@ -178,104 +207,134 @@ static inline __m128 trilinear4(const struct texture *tex, struct trilinear_at a
     return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(at.f), _mm_sub_ps(b, a)));
 }
 
+/* What one triangle's quads share. */
+struct twin {
+    const struct tri_setup *t;
+    const struct raster_params *p;
+    struct target *fb;
+    struct trace *tr;
+    const struct texture *tex;
+    enum tex_filter filter;
+    int max_aniso;
+    struct biased_edges e;
+    __m128d area2;
+    double s_k[3], t_k[3], ones[3];
+    double col[3][3];                   /* r, g, b of A, B and C */
+};
+
+/* The quad whose top-left pixel is (qx, qy). */
+static inline void quad_sse(const struct twin *tw, int qx, int qy)
+{
+    static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
+    const struct tri_setup *t = tw->t;
+    const struct texture *tex = tw->tex;
+    /* coverage: the biased edge values of the four pixels, exact */
+    unsigned covered = 0xF;
+    int64_t raw[3];
+    for (int k = 0; k < 3; k++) {
+        int64_t f = biased_edge_at(&tw->e, k, qx, qy), dx = tw->e.dx[k], dy = tw->e.dy[k];
+        covered &= (unsigned)(f >= 0) | (unsigned)(f + dx >= 0) << 1
+                 | (unsigned)(f + dy >= 0) << 2 | (unsigned)(f + dx + dy >= 0) << 3;
+        raw[k] = f - tw->e.bias[k];
+    }
+    /* ... and inside the box (a pixel past the target's edge is never covered) */
+    if (qx < t->minx) covered &= ~5u;
+    if (qx + 1 > t->maxx) covered &= ~10u;
+    if (qy < t->miny) covered &= ~3u;
+    if (qy + 1 > t->maxy) covered &= ~12u;
+    if (!covered)
+        return;
+    /* the weights of A, B, C over z at the four centres (edge values are
+     * exact in doubles, and so are their sums), then 1/z, s and t */
+    struct quad2 w[3];
+    for (int k = 0; k < 3; k++) {
+        int j = edge_of[k];
+        double f = (double)raw[j], dx = (double)tw->e.dx[j], dy = (double)tw->e.dy[j];
+        __m128d z = _mm_set1_pd(t->v[k].z);
+        w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), tw->area2), z);
+        w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), tw->area2), z);
+    }
+    struct quad2 vq = pair_sum3(w, tw->ones);
+    struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
+    double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
+    _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
+    _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
+    _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
+    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
+    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+    _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
+    double *out[3] = { cr, cg, cb };
+    for (int c = 0; c < 3; c++) {
+        struct quad2 sum = pair_sum3(w, tw->col[c]);
+        _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, depth.top));
+        _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, depth.bottom));
+    }
+    if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
+        for (int i = 0; i < 4; i++)
+            if (covered >> i & 1)
+                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i],
+                     shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
+        return;
+    }
+    /* the quad's derivatives, and trilinear's levels for all four pixels */
+    bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
+    struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
+                           .dtdy = tt[2] - tt[0], .w0 = tex->level[0].w, .h0 = tex->level[0].h,
+                           .beyond = beyond };
+    struct trilinear_at at = { 0, 0, 0 };
+    struct level_taps taps[2];
+    if (tw->filter == FILTER_TRILINEAR) {
+        at = trilinear_at(tex, &d);
+        level_taps(&tex->level[at.k0], tex->wrap, s, tt, covered, &taps[0]);
+        if (at.k1 != at.k0 && at.f != 0)
+            level_taps(&tex->level[at.k1], tex->wrap, s, tt, covered, &taps[1]);
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!(covered >> i & 1))
+            continue;
+        int x = qx + (i & 1), y = qy + (i >> 1);
+        float z = (float)zs[i];
+        if (!target_depth_pass(tw->fb, x, y, z)) {
+            target_write(tw->fb, x, y, z, 0);       /* counted, hidden: no texel needed */
+            continue;
+        }
+        __m128 texel;
+        if (tw->filter == FILTER_TRILINEAR) {
+            texel = trilinear4(tex, at, &taps[0], &taps[1], i);
+        } else {                /* the other filters: the texture unit's own code */
+            struct texel_rgb c = tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d,
+                                                  &tex_stages_lesson, NULL);
+            texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
+        }
+        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z,
+             modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
+    }
+}
+
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
-    const struct texture *tex = p->texture;
-    if (!tex) {     /* untextured: the shared shading, as the lesson draws it */
-        textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .lod = LOD_COARSE });
-        return;
-    }
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
-    enum tex_filter filter = tex_filter_of(p);
-    int max_aniso = tex_max_aniso_of(p);
-    struct biased_edges e;
-    biased_edges_setup(&e, t, true);
-    double s_k[3], t_k[3], ones[3] = { 1, 1, 1 };
-    __m128d col_bg[3], col_r0[3];       /* the vertex colours, lanes (b, g) and (r, 0) */
+    struct twin tw = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
+                       .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
+                       .ones = { 1, 1, 1 } };
+    biased_edges_setup(&tw.e, t, true);
     for (int k = 0; k < 3; k++) {
-        s_k[k] = t->v[k].s, t_k[k] = t->v[k].t;
-        col_bg[k] = _mm_set_pd(t->v[k].g, t->v[k].b);
-        col_r0[k] = _mm_set_pd(0, t->v[k].r);
+        tw.s_k[k] = t->v[k].s, tw.t_k[k] = t->v[k].t;
+        tw.col[0][k] = t->v[k].r, tw.col[1][k] = t->v[k].g, tw.col[2][k] = t->v[k].b;
     }
-    const __m128d area2 = _mm_set1_pd((double)t->area2);
-    static const int edge_of[3] = { EDGE_BC, EDGE_CA, EDGE_AB };   /* the edge of weight k */
-    const int W = tex->level[0].w, H = tex->level[0].h;
-    for (int qy = t->miny & ~1; qy <= t->maxy; qy += 2) {
-        for (int qx = t->minx & ~1; qx <= t->maxx; qx += 2) {
-            /* coverage: the biased edge values of the four pixels, exact */
-            unsigned covered = 0xF;
-            int64_t raw[3];
-            for (int k = 0; k < 3; k++) {
-                int64_t f = biased_edge_at(&e, k, qx, qy), dx = e.dx[k], dy = e.dy[k];
-                covered &= (unsigned)(f >= 0) | (unsigned)(f + dx >= 0) << 1
-                         | (unsigned)(f + dy >= 0) << 2 | (unsigned)(f + dx + dy >= 0) << 3;
-                raw[k] = f - e.bias[k];
-            }
-            /* ... and inside the box (a pixel past the target's edge is never covered) */
-            if (qx < t->minx) covered &= ~5u;
-            if (qx + 1 > t->maxx) covered &= ~10u;
-            if (qy < t->miny) covered &= ~3u;
-            if (qy + 1 > t->maxy) covered &= ~12u;
-            if (!covered)
+    for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK)
+        for (int bx = t->minx - t->minx % TEX_BLOCK; bx <= t->maxx; bx += TEX_BLOCK) {
+            int xa = bx < t->minx ? t->minx : bx;
+            int xb = bx + TEX_BLOCK - 1 > t->maxx ? t->maxx : bx + TEX_BLOCK - 1;
+            int ya = by < t->miny ? t->miny : by;
+            int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
+            if (tex_block_empty(&tw.e, xa, ya, xb, yb))
                 continue;
-            /* the weights of A, B, C over z at the four centres, then the planes */
-            struct quad2 w[3];
-            for (int k = 0; k < 3; k++) {
-                int j = edge_of[k];
-                double f = (double)raw[j], dx = (double)e.dx[j], dy = (double)e.dy[j];
-                __m128d z = _mm_set1_pd(t->v[k].z);
-                w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), area2), z);
-                w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), area2), z);
-            }
-            struct quad2 vq = pair_sum3(w, ones);
-            struct quad2 vs = pair_div(pair_sum3(w, s_k), vq), vt = pair_div(pair_sum3(w, t_k), vq);
-            double qs[4], s[4], tt[4], wl[3][4];
-            _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
-            _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
-            _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
-            for (int k = 0; k < 3; k++)
-                _mm_storeu_pd(wl[k], w[k].top), _mm_storeu_pd(wl[k] + 2, w[k].bottom);
-            bool beyond = !(qs[0] > 0) || !(qs[1] > 0) || !(qs[2] > 0) || !(qs[3] > 0);
-            struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
-                                   .dtdy = tt[2] - tt[0], .w0 = W, .h0 = H, .beyond = beyond };
-            struct trilinear_at at = { 0, 0, 0 };
-            struct level_taps taps[2];
-            if (filter == FILTER_TRILINEAR) {
-                at = trilinear_at(tex, &d);         /* one lambda for the quad */
-                level_taps(&tex->level[at.k0], tex->wrap, s, tt, covered, &taps[0]);
-                if (at.k1 != at.k0 && at.f != 0)
-                    level_taps(&tex->level[at.k1], tex->wrap, s, tt, covered, &taps[1]);
-            }
-            for (int i = 0; i < 4; i++) {
-                if (!(covered >> i & 1))
-                    continue;
-                int x = qx + (i & 1), y = qy + (i >> 1);
-                float z = (float)(1 / qs[i]);
-                if (!target_depth_pass(fb, x, y, z)) {
-                    target_write(fb, x, y, z, 0);   /* counted, hidden: no texel needed */
-                    continue;
-                }
-                /* the vertex colour: sum_k w_k c_k from 0, over 1/z, as the narrated sum */
-                __m128d bg = _mm_setzero_pd(), r0 = _mm_setzero_pd(), q = _mm_set1_pd(qs[i]);
-                for (int k = 0; k < 3; k++) {
-                    __m128d wk = _mm_set1_pd(wl[k][i]);
-                    bg = _mm_add_pd(bg, _mm_mul_pd(wk, col_bg[k]));
-                    r0 = _mm_add_pd(r0, _mm_mul_pd(wk, col_r0[k]));
-                }
-                bg = _mm_div_pd(bg, q), r0 = _mm_div_pd(r0, q);
-                __m128 texel;
-                if (filter == FILTER_TRILINEAR) {
-                    texel = trilinear4(tex, at, &taps[0], &taps[1], i);
-                } else {
-                    struct texel_rgb c = tex_filter_texel(tex, filter, max_aniso, s[i], tt[i], &d,
-                                                          &tex_stages_lesson, NULL);
-                    texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
-                }
-                PLOT(fb, tr, L_WRITE, x, y, z, modulate4(texel, bg, r0));
-            }
+            for (int qy = ya & ~1; qy <= yb; qy += 2)
+                for (int qx = xa & ~1; qx <= xb; qx += 2)
+                    quad_sse(&tw, qx, qy);
         }
-    }
 }

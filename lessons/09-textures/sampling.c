@@ -64,8 +64,8 @@ double tex_lod(const struct tex_deriv *d)
 {
     double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
     double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
-    double px = sqrt(dudx * dudx + dvdx * dvdx), py = sqrt(dudy * dudy + dvdy * dvdy);
-    return log2(px > py ? px : py);
+    double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
+    return log2(sqrt(px2 > py2 ? px2 : py2));      /* the longer's length: one square root */
 }
 
 /* Levels floor(lambda) and the next, mixed by frac(lambda). */

@@ -45,8 +45,7 @@ static const char *const pseudocode[] = {
     NULL,
 };
 
-#define Q 8                 /* block size, as lesson 05's default */
-#define CORNERS_COST { .mul = 8, .add = 8 }     /* one edge at a block's four corners */
+#define CORNERS_COST { .mul = 4, .add = 7 }     /* one edge at a block's four corners */
 /* A pixel centre's values (at_pixel): three weights F / 2 area and three
  * over z (divisions, counted as multiplications), 1/z, s and t summed, s
  * and t divided by 1/z. Its colour, a covered pixel's: three channels
@@ -118,8 +117,9 @@ static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
             c[i] += w * r->cz[k][i];
     }
     a.s = s / a.q, a.t = t / a.q;
+    double z = 1 / a.q;                 /* the depth, and what the colour is multiplied by */
     for (int i = 0; i < 3; i++)
-        a.rgb[i] = c[i] / a.q;
+        a.rgb[i] = c[i] * z;
     if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
         a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
         a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
@@ -253,21 +253,6 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
 
 /* --- blocks (lesson 05), then quads ---------------------------------------------- */
 
-/* Is block [x0, x1] x [y0, y1] empty: all four corners outside one edge?
- * (Lesson 05's classification. A full block is walked like a partial one
- * here: its quads still evaluate four centres each, and a pixel's edge
- * test costs little beside its texels.) */
-static bool block_empty(const struct run *r, int x0, int y0, int x1, int y1)
-{
-    for (int k = 0; k < 3; k++) {
-        COUNT(r->tr, 1, CORNERS_COST);
-        if (biased_edge_at(&r->e, k, x0, y0) < 0 && biased_edge_at(&r->e, k, x1, y0) < 0
-            && biased_edge_at(&r->e, k, x0, y1) < 0 && biased_edge_at(&r->e, k, x1, y1) < 0)
-            return true;
-    }
-    return false;
-}
-
 void textures_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr, const struct tex_stages *st,
                         struct tex_options o)
@@ -285,15 +270,21 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
         r.sq[k] = v->s * r.q[k], r.tq[k] = v->t * r.q[k];
         r.cz[k][0] = v->r, r.cz[k][1] = v->g, r.cz[k][2] = v->b;
     }
-    for (int by = t->miny - t->miny % Q; by <= t->maxy; by += Q) {
-        int ya = by < t->miny ? t->miny : by, yb = by + Q - 1 > t->maxy ? t->maxy : by + Q - 1;
-        for (int bx = t->minx - t->minx % Q; bx <= t->maxx; bx += Q) {
-            int xa = bx < t->minx ? t->minx : bx, xb = bx + Q - 1 > t->maxx ? t->maxx : bx + Q - 1;
-            bool empty = block_empty(&r, xa, ya, xb, yb);
+    for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK) {
+        int ya = by < t->miny ? t->miny : by;
+        int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
+        for (int bx = t->minx - t->minx % TEX_BLOCK; bx <= t->maxx; bx += TEX_BLOCK) {
+            int xa = bx < t->minx ? t->minx : bx;
+            int xb = bx + TEX_BLOCK - 1 > t->maxx ? t->maxx : bx + TEX_BLOCK - 1;
+            /* lesson 05's corners; a block that is not empty is walked quad by
+             * quad, full or partial: its quads still evaluate four centres each,
+             * and a pixel's edge test costs little beside its texels */
+            bool empty = tex_block_empty(&r.e, xa, ya, xb, yb);
+            COUNT(tr, 3, CORNERS_COST);
             int line = empty ? L_EMPTY : L_QUADS;
             NARRATE(tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
                     .x = xa, .y = ya, .x1 = xb, .y1 = yb,
-                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { Q });
+                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { TEX_BLOCK });
             if (empty)
                 continue;
             /* blocks start on even pixels, so a quad never straddles two */

@@ -133,6 +133,21 @@ static inline void bilinear_corner(const struct texture_level *l, double s, doub
     *i = (int64_t)i0, *j = (int64_t)j0;
 }
 
+/* --- the blocks the quads are walked in (lesson 05's) ------------------------ */
+
+#define TEX_BLOCK 8
+
+/* Is block [x0, x1] x [y0, y1] empty: all four corners outside one edge? */
+static inline bool tex_block_empty(const struct biased_edges *e, int x0, int y0, int x1, int y1)
+{
+    for (int k = 0; k < 3; k++) {
+        int64_t f = biased_edge_at(e, k, x0, y0), dx = e->dx[k] * (x1 - x0), dy = e->dy[k] * (y1 - y0);
+        if (f < 0 && f + dx < 0 && f + dy < 0 && f + dx + dy < 0)
+            return true;
+    }
+    return false;
+}
+
 /* The lesson's own stages (sampling.c), and its pieces by name. */
 extern const struct tex_stages tex_stages_lesson;
 struct texel_rgb tex_bilinear(const struct texture *tex, int k, double s, double t);

@@ -222,17 +222,10 @@ static void rect_pen(const struct lesson_canvas *c, struct rect r, struct pen pe
 static void clipped_polygon(const struct lesson_canvas *c, struct rect r, const double (*xy)[2], int n,
                             struct pen pen)
 {
-    struct poly p = { .n = n }, q;
+    struct poly p = { .n = n };
     for (int k = 0; k < n; k++)
         p.v[k] = (struct pvert){ .pos = { xy[k][0], xy[k][1], 1 } };
-    const struct plane edges[4] = { { PLANE_LEFT, "x >= x0", 0, r.x0, +1, true },
-                                    { PLANE_RIGHT, "x <= x1", 0, r.x1, -1, true },
-                                    { PLANE_TOP, "y >= y0", 1, r.y0, +1, true },
-                                    { PLANE_BOTTOM, "y <= y1", 1, r.y1, -1, true } };
-    for (int k = 0; k < 4 && p.n > 0; k++) {
-        clip_polygon(&q, &p, &edges[k], NULL);
-        p = q;
-    }
+    clip_polygon_rect(&p, r.x0, r.y0, r.x1, r.y1);
     double out[POLY_MAX][2];
     for (int k = 0; k < p.n; k++)
         out[k][0] = p.v[k].pos[0], out[k][1] = p.v[k].pos[1];
@@ -284,7 +277,6 @@ static double draw_pyramid(const struct lesson_canvas *c, struct rect r, const s
     double scale = fmin((r.x1 - r.x0) / (1.5 * w0), (r.y1 - r.y0) / h0);
     double a = w0 * scale, b = h0 * scale, gap = 3 * c->unit, y = r.y0;
     for (int k = 0; k < tex->nlevels; k++) {
-        const struct texture_level *L = &tex->level[k];
         double f = ldexp(1.0, -k);
         struct rect box = { r.x0, r.y0, r.x0 + a, r.y0 + b };
         if (k > 0) {
@@ -293,7 +285,13 @@ static double draw_pyramid(const struct lesson_canvas *c, struct rect r, const s
         }
         if (box.x1 - box.x0 < 3 * c->unit || box.y1 - box.y0 < 3 * c->unit || box.y1 > r.y1)
             break;          /* too small to show */
-        c->image(c, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0, L->texel, L->w, L->h);
+        /* more texels than screen pixels: a coarser level shows them (a 4096 x 4096 image is
+         * not copied at every frame, and averaged texels alias less than picked ones) */
+        int j = k;
+        while (j + 1 < tex->nlevels && tex->level[j].w > 2 * (box.x1 - box.x0) / c->unit)
+            j++;
+        c->image(c, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0, tex->level[j].texel,
+                 tex->level[j].w, tex->level[j].h);
         bool read = shown && (k == lk->level[0] || (lk->nlevels == 2 && k == lk->level[1]));
         rect_pen(c, box, (struct pen){ .stroke = read ? INK_PROBE : INK_TEXT, .width = read ? 2.5 : 1,
                                        .alpha = read ? 1 : 0.5 });
@@ -500,9 +498,9 @@ static void draw_quads(const struct lesson_canvas *c, const struct tri_setup *t,
     if (t->area2 <= 0 || t->empty || c->unit > 1.0 / 5)
         return;
     int x0 = t->minx & ~1, y0 = t->miny & ~1, x1 = (t->maxx | 1) + 1, y1 = (t->maxy | 1) + 1;
-    for (int pass = 0; pass < 2; pass++) {     /* white on a dark halo: seen on any cell */
-        struct pen grid = pass ? (struct pen){ .stroke = INK_MARK, .width = 2 }
-                               : (struct pen){ .stroke = INK_OUTLINE, .width = 4.5, .alpha = 0.8 };
+    for (int pass = 0; pass < 2 && c->unit <= 1.0 / 12; pass++) {  /* white on a dark halo: seen on any cell */
+        struct pen grid = pass ? (struct pen){ .stroke = INK_MARK, .width = 1.5 }
+                               : (struct pen){ .stroke = INK_OUTLINE, .width = 4, .alpha = 0.8 };
         for (int x = x0; x <= x1; x += 2)
             c->line(c, x, y0, x, y1, grid);
         for (int y = y0; y <= y1; y += 2)

@@ -153,16 +153,7 @@ static void overlay_image(const struct lesson_canvas *c, double x, double y, dou
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++)
             to[(size_t)j * (size_t)stride + (size_t)i] = px[(size_t)j * (size_t)w + (size_t)i] & 0xffffff;
-    cairo_surface_mark_dirty(img);
-    cairo_save(cr);
-    cairo_translate(cr, x, y);
-    cairo_scale(cr, dw / w, dh / h);
-    cairo_set_source_surface(cr, img, 0, 0);
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-    cairo_rectangle(cr, 0, 0, w, h);
-    cairo_fill(cr);
-    cairo_restore(cr);
-    cairo_surface_destroy(img);
+    paint_sharp_image(cr, img, x, y, dw / w, dh / h);
 }
 
 static void overlay_cover(const struct lesson_canvas *c)

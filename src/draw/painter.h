@@ -82,6 +82,10 @@ struct painter {
 };
 
 void paint_canvas(struct painter *p);
+/* An RGB24 image surface drawn with its pixels as sharp squares (no
+ * smoothing), its top-left corner at (x, y), a pixel sx by sy; the surface
+ * is released. */
+void paint_sharp_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double sx, double sy);
 void paint_overlay(struct painter *p);
 void paint_bar(struct painter *p);
 void paint_panel(struct painter *p);
