@@ -109,10 +109,9 @@ static const struct lesson_variant *variant(const char *name)
     return v;
 }
 
-static struct raster_params params_for(const struct scene *s, enum tex_filter f)
+static struct raster_params params_for(enum tex_filter f)
 {
     struct raster_params p = default_params();
-    p.scene = s;
     p.knob[P_FILTER] = f;
     return p;
 }
@@ -120,7 +119,7 @@ static struct raster_params params_for(const struct scene *s, enum tex_filter f)
 /* Variant `name`'s picture of s with filter f. */
 static struct target draw(const struct scene *s, const char *name, enum tex_filter f)
 {
-    struct raster_params p = params_for(s, f);
+    struct raster_params p = params_for(f);
     struct target fb;
     cr_assert(render_scene(s, variant(name), &p, &fb));
     return fb;
@@ -143,7 +142,7 @@ static struct narrated narrate(const struct scene *s, const char *name, enum tex
     cr_assert(out.level && out.u && out.v);
     for (size_t i = 0; i < n; i++)
         out.level[i] = -1;
-    struct raster_params p = params_for(s, f);
+    struct raster_params p = params_for(f);
     struct target fb;
     cr_assert(target_init(&fb, s->w, s->h, scene_background(s)));
     for (int i = 0; i < s->ntris; i++) {
