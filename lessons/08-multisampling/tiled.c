@@ -143,6 +143,7 @@ static void draw(void *buf, const struct tri_setup *t, struct rect rc, const str
     ms_setup(&r, t, p, b->fb, tr, (struct ms_options){ .fill_rule = true });
     r.scolor = b->color, r.sdepth = b->depth;
     r.sx = rc.x0, r.sy = rc.y0, r.srow = TILE, r.touched = b->touched;
+    r.pixels = ms_pixels(&r);     /* fast build: SIMD pixels (pixels.c) */
     ms_blocks(&r, box, p->knob[MS_P_BLOCK] > 0 ? p->knob[MS_P_BLOCK] : Q_DEFAULT);
     restore_lines(tr, was);
 }
