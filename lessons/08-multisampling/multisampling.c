@@ -417,7 +417,7 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
                    biased_edge_at(b, 2, x0, y0) - b->bias[2] },
             .aux = { (float)r->pt.n, 0, 0, r->grid });
     if (r->pixels && klass != BLOCK_EMPTY)
-        r->pixels(r, x0, y0, x1, y1, klass == BLOCK_FULL);   /* the tiled twin's, fast build */
+        r->pixels(r, x0, y0, x1, y1, klass == BLOCK_FULL);   /* the tiled twin's, untraced */
     else if (klass == BLOCK_FULL && !trace_frozen(r->tr))
         full_block(r, x0, y0, x1, y1);
     else if (klass == BLOCK_PARTIAL)

@@ -75,7 +75,7 @@ struct run {
      * of touched[j] says pixel (sx + i, sy + j) was, to be resolved once, at
      * the tile's store */
     uint64_t *touched;
-    /* the tiled twin's fast build: a FULL or PARTIAL block's pixels, SIMD
+    /* the tiled twin, untraced: a FULL or PARTIAL block's pixels, SIMD
      * (pixels.c), instead of full_block and partial_block; NULL: theirs */
     void (*pixels)(const struct run *r, int x0, int y0, int x1, int y1, bool full);
 };

@@ -15,8 +15,6 @@
  * where it can. The pixel is marked for the resolve at the tile's store
  * (tiled.c). Runs where the CPU has AVX2, at 4 or 8 samples; elsewhere, and
  * narrated, msaa's own loops. */
-#include <string.h>
-
 #include "multisampling.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TRISTEP_SIMDE)
