@@ -187,3 +187,44 @@ Test(lesson08_tiles, the_explorers_units_drawn_in_order_make_the_same_picture)
     }
     scene_free(&s);
 }
+
+/* Layers a hair apart in depth (relative 1e-2 down to 1e-7, and equal),
+ * tilted, drawn far-to-near and near-to-far: where the fast build decides a
+ * sample is hidden without its division (pixels.c), and where it must not,
+ * tiles writes msaa's bytes. */
+Test(lesson08_tiles, layers_a_hair_apart_in_depth_resolve_as_msaas)
+{
+    static const double gap[] = { 1e-2, 2e-3, 1e-3, 1e-4, 1e-7, 0 };
+    struct scene s;
+    memset(&s, 0, sizeof s);
+    s.w = 140, s.h = 75;
+    for (int order = 0; order < 2; order++)
+        for (int g = 0; g < 6; g++) {
+            int k = order ? 5 - g : g;
+            double z = 10.0 * (1 + gap[k]), lean = 0.5 * k;    /* far to near, then near to far */
+            struct vertex a[3] = { { -3.3, -2.1, z, 0.1 * k, 0.5, 0.9, 0, 0 },
+                                   { 150.6, -1.7, z + lean, 0.9, 0.1 * k, 0.2, 0, 0 },
+                                   { 4.2, 80.4, z - lean, 0.3, 0.7, 0.1 * k, 0, 0 } };
+            struct vertex b[3] = { a[1], { 149.7, 79.2, z, 0.5, 0.5, 0.5, 0, 0 }, a[2] };
+            cr_assert(scene_add(&s, a));
+            cr_assert(scene_add(&s, b));
+        }
+    for (int n = 4; n <= 8; n += 4) {
+        struct raster_params p = default_params();
+        p.samples = n;
+        struct target ref;
+        cr_assert(render_scene(&s, lesson_variant(&lesson_08, "msaa"), &p, &ref));
+        for (int threads = 1; threads <= 2; threads++) {
+            struct target fb;
+            cr_assert(lesson_param_set(&lesson_08_fast, &p, "threads", threads));
+            cr_assert(render_lesson_scene(&lesson_08_fast, &s, lesson_variant(&lesson_08_fast, "tiles"),
+                                          &p, &fb));
+            char what[64];
+            snprintf(what, sizeof what, "%d samples, %d threads", n, threads);
+            expect_same(&ref, &fb, what);
+            target_free(&fb);
+        }
+        target_free(&ref);
+    }
+    scene_free(&s);
+}

@@ -416,7 +416,9 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
             .e = { biased_edge_at(b, 0, x0, y0) - b->bias[0], biased_edge_at(b, 1, x0, y0) - b->bias[1],
                    biased_edge_at(b, 2, x0, y0) - b->bias[2] },
             .aux = { (float)r->pt.n, 0, 0, r->grid });
-    if (klass == BLOCK_FULL && !trace_frozen(r->tr))
+    if (r->pixels && klass != BLOCK_EMPTY)
+        r->pixels(r, x0, y0, x1, y1, klass == BLOCK_FULL);   /* the tiled twin's, untraced */
+    else if (klass == BLOCK_FULL && !trace_frozen(r->tr))
         full_block(r, x0, y0, x1, y1);
     else if (klass == BLOCK_PARTIAL)
         partial_block(r, x0, y0, x1, y1);
@@ -462,7 +464,7 @@ void ms_setup(struct run *r, const struct tri_setup *t, const struct raster_para
     r->t = t, r->p = p, r->fb = fb, r->tr = tr;
     r->scolor = n > 1 ? fb->samples->color : fb->color;
     r->sdepth = n > 1 ? fb->samples->depth : fb->depth;
-    r->sx = r->sy = 0, r->srow = (size_t)fb->w, r->touched = NULL;
+    r->sx = r->sy = 0, r->srow = (size_t)fb->w, r->touched = NULL, r->pixels = NULL;
     r->per_sample = o.per_sample;
     r->tent = o.tent && n > 1;       /* one sample: the tent weighs only the pixel's own */
     if (r->tent)

@@ -17,6 +17,7 @@
 #define ms_units ms_units_fast
 #define ms_tiled_scene ms_tiled_scene_fast
 #define rasterize_tiled rasterize_tiled_fast
+#define ms_pixels ms_pixels_fast
 #endif
 
 /* The pseudo-code's line of the blocks (multisampling.c), where the tiled
@@ -74,6 +75,9 @@ struct run {
      * of touched[j] says pixel (sx + i, sy + j) was, to be resolved once, at
      * the tile's store */
     uint64_t *touched;
+    /* the tiled twin, untraced: a FULL or PARTIAL block's pixels, SIMD
+     * (pixels.c), instead of full_block and partial_block; NULL: theirs */
+    void (*pixels)(const struct run *r, int x0, int y0, int x1, int y1, bool full);
 };
 
 struct ms_options {
@@ -99,6 +103,11 @@ void ms_setup(struct run *r, const struct tri_setup *t, const struct raster_para
 void ms_blocks(const struct run *r, const int box[4], int q);
 /* A pixel's n samples resolved: the mean colour (rounded), the nearest depth. */
 void ms_resolve(int n, const uint32_t *color, const float *z, uint32_t *rgba, float *nearest);
+
+/* The tiled twin's SIMD pixels for run r (pixels.c): NULL where the CPU or
+ * the run has none (then msaa's own loops draw). */
+typedef void (*ms_pixels_fn)(const struct run *r, int x0, int y0, int x1, int y1, bool full);
+ms_pixels_fn ms_pixels(const struct run *r);
 
 /* The tiled twin (tiled.c): one triangle, the whole scene, the explorer's order. */
 void rasterize_tiled(const struct tri_setup *t, const struct raster_params *p, struct target *fb,
