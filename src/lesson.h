@@ -56,6 +56,12 @@ struct run_place {
      * and the whole order (for the explorer's drawings); NULL outside one */
     const struct lesson_unit *unit, *units;
     int nunits;
+    /* in the explorer's drawings and watch only (NULL in every run): the
+     * last event the unit told at each line of the pseudo-code up to the
+     * step shown, told[line] (.kind TRACE_KIND_COUNT: none yet), so that a
+     * step can be shown with the steps before it (lesson 09: a pixel's
+     * filter with its quad's derivatives) */
+    const struct trace_event *told;
 };
 
 /* The scene of the run p draws in, or NULL. */

@@ -75,6 +75,15 @@ struct lesson_canvas {
     /* an arrow from (x0, y0) to (x1, y1) in the explorer's style */
     void (*arrow)(const struct lesson_canvas *c, double x0, double y0, double x1, double y1,
                   enum ink ink);
+    /* an image of w x h pixels (0xAARRGGBB, row-major, row 0 at the top,
+     * alpha ignored) stretched over the rectangle (x, y)..(x + dw, y + dh),
+     * each pixel a sharp square (no smoothing): a texture, a level of its
+     * pyramid. The data's colours, not the palette's */
+    void (*image)(const struct lesson_canvas *c, double x, double y, double dw, double dh,
+                  const uint32_t *px, int w, int h);
+    /* paint the whole canvas over in the backing ink: for a view that
+     * draws a picture of its own */
+    void (*cover)(const struct lesson_canvas *c);
     void *painter;                      /* the explorer's, for the verbs */
 };
 
@@ -97,14 +106,21 @@ struct lesson_canvas {
  *
  * `test` or `write` is NULL when the pixel saw no such event this step (a
  * pixel covered without a test of its own, in a full block or a span, gets
- * a test event with its x, y and TRACE_INSIDE, the rest zero); `t`
- * is the triangle's setup (its vertices, for values the events do not carry).
+ * a test event with its x, y and TRACE_INSIDE, the rest zero; its aux and
+ * line are those of the pixel's last test or cell_lines step); `t` is the
+ * triangle's setup (its vertices, for values the events do not carry).
  * The name is what --view accepts; the legend is shown under it. */
 struct lesson_view {
     const char *name;
     const char *legend;
     bool (*cell)(const struct tri_setup *t, const struct trace_event *test,
                  const struct trace_event *write, double rgb[3]);
+};
+
+/* A colour a view names under its legend (lesson_explorer.swatches). */
+struct lesson_swatch {
+    double rgb[3];
+    char label[48];
 };
 
 struct lesson_explorer {
@@ -139,6 +155,20 @@ struct lesson_explorer {
      * not the centre's alone (lesson 08: any of its samples), so that the
      * centre's edge values printed after it do not contradict it. */
     const char *const *verdict;
+
+    /* Lines whose TRACE_STEP events tell about the pixel (x, y), ending
+     * with -1, or NULL: the explorer keeps such a step's aux in the pixel's
+     * cell, as a pixel test's, and a view's cell() sees it with the line in
+     * test->line (lesson 09: a pixel's (u, v) evaluated, helper or not; its
+     * texel filtered, the levels and weights). */
+    const int *cell_lines;
+
+    /* The colours view `view` (one of the lesson's own) names one by one
+     * under its legend, or NULL: at most `max` written to out, their count
+     * returned (0: none). For a view whose colours depend on the run (one
+     * colour per level of the scene's texture pyramids, lesson 09). */
+    int (*swatches)(const char *view, const struct raster_params *p, struct lesson_swatch *out,
+                    int max);
 };
 
 /* Every lesson's explorer side, NULL-terminated (the generated lessons.c),

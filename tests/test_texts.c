@@ -696,6 +696,43 @@ static const struct key keys[] = {
     { "l08.full8", NULL, "tests/test_lesson08.c" },
     { "l08.tested1", NULL, "tests/test_lesson08.c" },
     { "l08.tested4", NULL, "tests/test_lesson08.c" },
+    { "l09.floor.pixels", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.nomip.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.nomip.off16", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.floor.trilinear.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.floor.trilinear.off16", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.floor.aniso.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.affine.model.worst", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.affine.model.differ", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.affine.model.pixels", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.affine.floor.worst", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.affine.floor.differ", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.perpixel.level", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.perpixel.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.fine.level", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.wall.pixels", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.wall.trilinear.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.wall.aniso.error", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.wall.trilinear.off16", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.wall.aniso.off16", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.helpers.64", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.helpers.16", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.helpers.8", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.helpers.4", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.helpers.2", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.tiny.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.floor.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square3.shaded", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square3.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square4.shaded", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square4.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square4off.shaded", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.square4off.helpers", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.trilinear.lambda", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso16.taps", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso16.lambda", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso4.taps", NULL, "tests/test_lesson09_exhibits.c" },
+    { "l09.ans.aniso4.lambda", NULL, "tests/test_lesson09_exhibits.c" },
 };
 
 #define NKEYS (sizeof keys / sizeof keys[0])
@@ -941,12 +978,13 @@ static long words_of(const char *text)
 }
 
 /* The later lessons stay lessons a class can read before the lecture. */
-Test(texts, lessons_06_to_08_keep_to_their_length)
+Test(texts, lessons_06_to_09_keep_to_their_length)
 {
     static const struct { const char *path; long most; } limits[] = {
         { "lessons/06-clipping/README.md", 2800 },
         { "lessons/07-tiles/README.md", 2800 },
         { "lessons/08-multisampling/README.md", 2200 },
+        { "lessons/09-textures/README.md", 2800 },
     };
     for (size_t i = 0; i < sizeof limits / sizeof limits[0]; i++) {
         long n = words_of(test_read_text(limits[i].path));

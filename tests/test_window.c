@@ -26,6 +26,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "app/app.h"
+#include "lesson.h"
 #include "util/file.h"
 #include "draw/paint.h"
 #include "testlib.h"
@@ -351,6 +353,26 @@ Test(window, light_theme_and_canvas_part_from_keys_export_the_print_figure, .fin
                  (unsigned)(px[2] & 0xffffff));
     cairo_surface_destroy(got);
     cairo_surface_destroy(want);
+}
+
+/* A lesson's parameter keys are keys the window leaves to it: the window
+ * reads its own first (lesson 09's filter on f was zoom-to-fit instead). */
+Test(window, no_lesson_parameter_key_is_a_window_key)
+{
+    int keys = 0;
+    for (int i = 0; all_lessons[i]; i++)
+        for (const struct lesson_param *r = all_lessons[i]->params; r && r->option; r++) {
+            int k[2] = { r->key, r->key_down };
+            for (int j = 0; j < 2; j++) {
+                if (!k[j])
+                    continue;
+                keys++;
+                cr_expect(!app_window_key(k[j]), "%s: --%s's key '%c' is the window's own",
+                          all_lessons[i]->id, r->option, k[j]);
+            }
+        }
+    cr_assert_gt(keys, 4, "the lessons' tables have keys");
+    cr_assert(app_window_key('f') && app_window_key('v') && !app_window_key('g'));
 }
 
 /* Every lesson's window opens, paints its first frame before its steps are

@@ -279,9 +279,8 @@ struct at_pixel {
     double q, z, s, t, rgb[3];
 };
 
-static struct at_pixel interpolate(const struct snapped *t, int x, int y)
+static struct at_pixel interpolate_at(const struct snapped *t, long long px, long long py)
 {
-    long long px = 256LL * x + 128, py = 256LL * y + 128;
     double b[3] = { (double)edge(t, 1, 2, px, py) / t->area2,   /* weight of vertex 0 */
                     (double)edge(t, 2, 0, px, py) / t->area2,
                     (double)edge(t, 0, 1, px, py) / t->area2 };
@@ -299,6 +298,12 @@ static struct at_pixel interpolate(const struct snapped *t, int x, int y)
             a.rgb[i] = c[i] / a.q;
     }
     return a;
+}
+
+/* ... at the centre of pixel (x, y) */
+static struct at_pixel interpolate(const struct snapped *t, int x, int y)
+{
+    return interpolate_at(t, 256LL * x + 128, 256LL * y + 128);
 }
 
 /* P_max / P_min of the derivatives */
@@ -426,4 +431,89 @@ struct texref_diff texref_compare(const struct texref_target *ref, const struct 
                 d.x = x, d.y = y;
         }
     return d;
+}
+
+/* --- the ideal picture -------------------------------------------------------------- */
+
+/* The mean of the level-0 texels under n x n samples of pixel (x, y), each
+ * at its own perspective-correct (s, t) on the triangle's plane (those
+ * beyond its horizon left out): false when none is left. */
+static bool box_mean(const struct snapped *t, const struct texref *tex, int x, int y, int n,
+                     double out[3])
+{
+    double sum[3] = { 0, 0, 0 };
+    long used = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            /* sample (i, j) at ((i + 1/2) / n, (j + 1/2) / n) of the pixel, in 1/256 units */
+            struct at_pixel a = interpolate_at(t, 256LL * x + (512LL * i + 256) / (2 * n),
+                                               256LL * y + (512LL * j + 256) / (2 * n));
+            if (!(a.q > 0))
+                continue;
+            double texel[3];
+            texref_texel(tex, 0, (long long)floor(a.s * tex->w[0]), (long long)floor(a.t * tex->h[0]), texel);
+            for (int c = 0; c < 3; c++)
+                sum[c] += texel[c];
+            used++;
+        }
+    for (int c = 0; c < 3; c++)
+        out[c] = used ? sum[c] / (double)used : 0;
+    return used > 0;
+}
+
+bool texref_ideal_scene(struct texref_ideal *id, const struct scene *s, int n)
+{
+    memset(id, 0, sizeof *id);
+    id->w = s->w, id->h = s->h;
+    size_t npx = (size_t)s->w * (size_t)s->h;
+    id->rgb = calloc(3 * npx, sizeof *id->rgb);
+    id->textured = calloc(npx, sizeof *id->textured);
+    double *z = malloc(npx * sizeof *z);
+    int ntex = scene_texture_count(s);
+    struct texref *refs = calloc((size_t)ntex + 1, sizeof *refs);
+    bool ok = id->rgb && id->textured && z && refs && n >= 1 && n <= 256;
+    for (size_t i = 0; ok && i < npx; i++)
+        z[i] = INFINITY;
+    for (int k = 1; ok && k <= ntex; k++) {
+        const struct texture *tx = scene_texture(s, k);        /* its level 0 only */
+        ok = texref_init(&refs[k], tx->level[0].w, tx->level[0].h, tx->level[0].texel,
+                         tx->wrap == TEXTURE_CLAMP ? TEXREF_CLAMP : TEXREF_REPEAT);
+    }
+    for (int i = 0; ok && i < s->ntris; i++) {
+        struct snapped t;
+        if (!snap(&t, s->tris[i].v))
+            continue;
+        int k = s->tris[i].texture;
+        const struct texref *tex = k >= 1 && k <= ntex ? &refs[k] : NULL;
+        for (int y = 0; y < s->h; y++)
+            for (int x = 0; x < s->w; x++) {
+                size_t p = (size_t)y * (size_t)s->w + (size_t)x;
+                if (!covered(&t, x, y))
+                    continue;
+                struct at_pixel a = interpolate(&t, x, y);
+                if (!(a.q > 0) || !(a.z < z[p]))
+                    continue;                           /* nearer wins, ties keep the earlier */
+                z[p] = a.z;
+                double texel[3] = { 255, 255, 255 };
+                id->textured[p] = tex && box_mean(&t, tex, x, y, n, texel);
+                for (int c = 0; c < 3; c++) {
+                    double v = a.rgb[c] > 1 ? 1 : a.rgb[c] > 0 ? a.rgb[c] : 0;
+                    id->rgb[3 * p + c] = texel[c] * v;
+                }
+            }
+    }
+    for (int k = 0; refs && k <= ntex; k++)
+        texref_free(&refs[k]);
+    free(refs);
+    free(z);
+    if (!ok)
+        texref_ideal_free(id);
+    return ok;
+}
+
+void texref_ideal_free(struct texref_ideal *id)
+{
+    free(id->rgb);
+    free(id->textured);
+    memset(id, 0, sizeof *id);
 }

@@ -94,6 +94,20 @@ void texref_draw_tri(struct texref_target *fb, const struct vertex v[3], const s
 bool texref_draw_scene(struct texref_target *fb, const struct scene *s, enum texref_filter f,
                        int max_aniso);
 
+/* The ideal picture: each pixel's colour the mean of the texture over the
+ * pixel's square, the box filter every filter approximates, by brute
+ * force: n x n samples (1..256), each with its own perspective-correct
+ * (s, t) and the level-0 texel under it (those beyond the plane's horizon
+ * left out), times the vertex colour at the centre. Coverage and depth as
+ * above. Lesson 09's exhibits measure its filters against it. */
+struct texref_ideal {
+    int w, h;
+    double *rgb;                       /* 3 per pixel, 0..255, not rounded */
+    bool *textured;                    /* the pixel shows an image texture */
+};
+bool texref_ideal_scene(struct texref_ideal *id, const struct scene *s, int n);
+void texref_ideal_free(struct texref_ideal *id);
+
 /* How a lesson's picture compares with the reference's: the pixels whose
  * coverage count differs, and the covered pixels whose colour differs by
  * more than `levels` in a channel (the first of them in *x, *y, -1 when

@@ -164,17 +164,10 @@ static void rect_polygon(const struct lesson_canvas *c, const struct rect *r, co
 {
     if (n < 3 || n > POLY_MAX - 4)
         return;
-    struct poly p = { .n = n }, q;
+    struct poly p = { .n = n };
     for (int k = 0; k < n; k++)
         p.v[k] = (struct pvert){ .pos = { xy[k][0], xy[k][1], 1 } };
-    const struct plane edges[4] = { { PLANE_LEFT, "x >= x0", 0, r->x0, +1, true },
-                                    { PLANE_RIGHT, "x <= x1", 0, r->x1, -1, true },
-                                    { PLANE_TOP, "y >= y0", 1, r->y0, +1, true },
-                                    { PLANE_BOTTOM, "y <= y1", 1, r->y1, -1, true } };
-    for (int k = 0; k < 4 && p.n > 0; k++) {
-        clip_polygon(&q, &p, &edges[k], NULL);
-        p = q;
-    }
+    clip_polygon_rect(&p, r->x0, r->y0, r->x1, r->y1);
     double out[POLY_MAX][2];
     for (int k = 0; k < p.n; k++)
         out[k][0] = p.v[k].pos[0], out[k][1] = p.v[k].pos[1];

@@ -358,7 +358,7 @@ const struct lesson lesson_09 = {
     .variants = variants,
     .nvariants = sizeof variants / sizeof variants[0],
     .params = (const struct lesson_param[]){
-        [P_FILTER] = { .option = "filter", .arg = "NAME", .name = "filter", .key = 'f',
+        [P_FILTER] = { .option = "filter", .arg = "NAME", .name = "filter", .key = 'g',
                        .words = filter_names, .min = FILTER_NEAREST, .max = FILTER_ANISO,
                        .def = FILTER_TRILINEAR,
                        .help = "texture filter: nearest, bilinear, mip-bilinear, trilinear, aniso" },

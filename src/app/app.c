@@ -244,6 +244,24 @@ static bool has_twins(const struct lesson *l)
     return false;
 }
 
+/* The window's own keys: key() reads these and no others, before a
+ * lesson's parameter keys (params.c), so a lesson's table must use none of
+ * them (tests/test_window.c holds every lesson to it). */
+static const SDL_Keycode window_keys[] = {
+    SDLK_RIGHT, SDLK_LEFT, SDLK_PAGEDOWN, SDLK_PAGEUP, SDLK_HOME, SDLK_END, SDLK_SPACE,
+    SDLK_PLUS, SDLK_EQUALS, SDLK_KP_PLUS, SDLK_MINUS, SDLK_KP_MINUS, SDLK_v,
+    SDLK_0, SDLK_1, SDLK_2, SDLK_3, SDLK_n, SDLK_x, SDLK_t, SDLK_e, SDLK_l, SDLK_c,
+    SDLK_s, SDLK_f, SDLK_h, SDLK_F1, SDLK_q, SDLK_ESCAPE,
+};
+
+bool app_window_key(int k)
+{
+    for (size_t i = 0; i < sizeof window_keys / sizeof *window_keys; i++)
+        if (window_keys[i] == k)
+            return true;
+    return false;
+}
+
 static void key(struct app *a, SDL_Keycode k, Uint16 mod)
 {
     struct explorer *ex = &a->ex;
@@ -252,6 +270,13 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
     struct raster_params p = ex->params;
     ex->message[0] = '\0';
     a->dirty = true;
+    if (!app_window_key(k)) {   /* a key of a row of the lesson's parameter table, or none */
+        if (params_key(a->lesson, (int)k, &p, buf, sizeof buf))
+            set_params(a, &p, buf);
+        else
+            a->dirty = false;
+        return;
+    }
     switch (k) {
     case SDLK_RIGHT: step(a, unit, +1); break;
     case SDLK_LEFT: step(a, unit, -1); break;
@@ -308,12 +333,7 @@ static void key(struct app *a, SDL_Keycode k, Uint16 mod)
     case SDLK_f: ex->zoom = 0; break;
     case SDLK_h: case SDLK_F1: ex->help = !ex->help; break;
     case SDLK_q: case SDLK_ESCAPE: a->quit = true; break;
-    default:    /* a key of a row of the lesson's parameter table (params.c), or none */
-        if (params_key(a->lesson, (int)k, &p, buf, sizeof buf))
-            set_params(a, &p, buf);
-        else
-            a->dirty = false;
-        break;
+    default: break;     /* none: window_keys holds only the keys above */
     }
 }
 

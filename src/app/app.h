@@ -15,6 +15,10 @@ struct app_desc {
     int width, height;              /* window size, 0: 1280 x 800 */
 };
 
+/* Whether the window reads key k itself (SDL_Keycode: a lowercase letter
+ * is its ASCII code); a lesson's parameter keys must not be among them. */
+bool app_window_key(int k);
+
 /* Open the explorer's window; returns the program's exit status. */
 int explorer_run(const struct app_desc *d);
 

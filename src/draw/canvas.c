@@ -17,6 +17,20 @@ static void cell_rect(const struct painter *p, double x0, double y0, double x1, 
                     (y1 - y0) * L->zoom);
 }
 
+void paint_sharp_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double sx, double sy)
+{
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, sx, sy);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_rectangle(cr, 0, 0, cairo_image_surface_get_width(img), cairo_image_surface_get_height(img));
+    cairo_fill(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
+}
+
 static void paint_cells(struct painter *p, int x0, int y0, int x1, int y1)
 {
     cairo_t *cr = p->cr;
@@ -34,16 +48,7 @@ static void paint_cells(struct painter *p, int x0, int y0, int x1, int y1)
         for (int y = y0; y < y1; y++)
             for (int x = x0; x < x1; x++)
                 px[(y - y0) * stride + (x - x0)] = view_cell(&v, x, y);
-        cairo_surface_mark_dirty(img);
-        cairo_save(cr);
-        cairo_translate(cr, L->ox + x0 * L->zoom, L->oy + y0 * L->zoom);
-        cairo_scale(cr, L->zoom, L->zoom);
-        cairo_set_source_surface(cr, img, 0, 0);
-        cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-        cairo_rectangle(cr, 0, 0, w, h);
-        cairo_fill(cr);
-        cairo_restore(cr);
-        cairo_surface_destroy(img);
+        paint_sharp_image(cr, img, L->ox + x0 * L->zoom, L->oy + y0 * L->zoom, L->zoom, L->zoom);
         return;
     }
     /* vector surfaces: runs of one colour as rectangles */

@@ -135,6 +135,34 @@ static void overlay_label(const struct lesson_canvas *c, double x, double y, con
     cairo_restore(p->cr);
 }
 
+/* An image as sharp squares: an image surface scaled without smoothing
+ * (cairo writes it into a PDF or SVG as the image it is). */
+static void overlay_image(const struct lesson_canvas *c, double x, double y, double dw, double dh,
+                          const uint32_t *px, int w, int h)
+{
+    if (w <= 0 || h <= 0 || !(dw > 0) || !(dh > 0))
+        return;
+    cairo_t *cr = painter_of(c)->cr;
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(img);
+        return;
+    }
+    uint32_t *to = (uint32_t *)cairo_image_surface_get_data(img);
+    int stride = cairo_image_surface_get_stride(img) / 4;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            to[(size_t)j * (size_t)stride + (size_t)i] = px[(size_t)j * (size_t)w + (size_t)i] & 0xffffff;
+    paint_sharp_image(cr, img, x, y, dw / w, dh / h);
+}
+
+static void overlay_cover(const struct lesson_canvas *c)
+{
+    struct painter *p = painter_of(c);
+    set_rgb(p->cr, p->pal->shadow);
+    cairo_paint(p->cr);
+}
+
 /* Build the canvas for the lesson and let its overlay draw: in scene pixel
  * units, after the triangle's edges. */
 void paint_overlay(struct painter *p)
@@ -148,7 +176,8 @@ void paint_overlay(struct painter *p)
     struct lesson_canvas c = {
         .unit = 1 / L->zoom, .view = explorer_view_name(ex, ex->view),
         .line = overlay_line, .polygon = overlay_polygon, .disc = overlay_disc,
-        .label = overlay_label, .arrow = overlay_arrow, .painter = &o,
+        .label = overlay_label, .arrow = overlay_arrow, .image = overlay_image,
+        .cover = overlay_cover, .painter = &o,
     };
     cairo_save(p->cr);
     cairo_translate(p->cr, L->ox, L->oy);
@@ -156,6 +185,7 @@ void paint_overlay(struct painter *p)
     cairo_new_path(p->cr);
     struct run_place at;
     struct raster_params params = replay_params(&ex->replay, ex->cur, &at);  /* the unit's, lesson 07 */
+    at.told = ex->told;
     ex->side->overlay(&c, &ex->tri, &params, ex->has_last ? &ex->last : NULL);
     cairo_restore(p->cr);
 }

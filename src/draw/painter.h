@@ -82,6 +82,10 @@ struct painter {
 };
 
 void paint_canvas(struct painter *p);
+/* An RGB24 image surface drawn with its pixels as sharp squares (no
+ * smoothing), its top-left corner at (x, y), a pixel sx by sy; the surface
+ * is released. */
+void paint_sharp_image(cairo_t *cr, cairo_surface_t *img, double x, double y, double sx, double sy);
 void paint_overlay(struct painter *p);
 void paint_bar(struct painter *p);
 void paint_panel(struct painter *p);
@@ -120,7 +124,7 @@ struct swatch {
     uint32_t colour;
     const char *label;
 };
-#define VIEW_LEGEND_MAX 8
+#define VIEW_LEGEND_MAX 13      /* a texture's 13 levels, one colour each (lesson 09) */
 
 void view_ctx_init(struct view_ctx *v, const struct explorer *ex, const struct palette *pal);
 /* Colour of pixel (x, y) in the current view. */

@@ -54,9 +54,17 @@ static double legend(struct painter *p, double x, double y, double w)
 {
     struct explorer *ex = p->ex;
     double y0 = y, s = p->s;
-    if (ex->view >= VIEW_BUILTIN_COUNT)
-        y += draw_text(p, x, y, w, ex->side->views[ex->view - VIEW_BUILTIN_COUNT].legend, 11.5,
-                       p->pal->text, false);
+    if (ex->view >= VIEW_BUILTIN_COUNT) {
+        const struct lesson_view *lv = &ex->side->views[ex->view - VIEW_BUILTIN_COUNT];
+        y += draw_text(p, x, y, w, lv->legend, 11.5, p->pal->text, false);
+        struct lesson_swatch own[VIEW_LEGEND_MAX];
+        struct run_place at;
+        struct raster_params params = replay_params(&ex->replay, ex->cur, &at);
+        int n = ex->side->swatches ? ex->side->swatches(lv->name, &params, own, VIEW_LEGEND_MAX) : 0;
+        for (int i = 0; i < n && i < VIEW_LEGEND_MAX; i++)
+            y += swatch(p, x, y, w, from_rgb(own[i].rgb[0], own[i].rgb[1], own[i].rgb[2]),
+                        own[i].label) + 1 * s;
+    }
     struct view_ctx v;
     view_ctx_init(&v, ex, p->pal);
     struct swatch items[VIEW_LEGEND_MAX];
@@ -188,6 +196,7 @@ static size_t watch_values(const struct explorer *ex, char *buf, size_t n, size_
     if (ex->side && ex->side->watch && (ex->tri.area2 > 0 || ev->kind == TRACE_FRONT) && at < n) {
         struct run_place place;
         struct raster_params params = replay_params(&ex->replay, ex->cur, &place);  /* the unit's, lesson 07 */
+        place.told = ex->told;
         ex->side->watch(&ex->tri, &params, ev, buf + at, n - at);
         at += strlen(buf + at);
     }
@@ -394,7 +403,9 @@ void paint_panel(struct painter *p)
     y += watch(p, x, y, w) + 8 * s;
     if (ex->side && ex->side->constants && ex->scene.ntris > 0 && !ex->tri.empty) {
         buf[0] = '\0';
-        ex->side->constants(&ex->tri, &ex->params, buf, sizeof buf);
+        struct run_place at;
+        struct raster_params params = replay_params(&ex->replay, ex->cur >= 0 ? ex->cur : 0, &at);  /* its texture */
+        ex->side->constants(&ex->tri, &params, buf, sizeof buf);
         for (size_t e = strlen(buf); e > 0 && buf[e - 1] == '\n'; e--)
             buf[e - 1] = '\0';
         y += heading(p, x, y, w, "TRIANGLE");

@@ -317,7 +317,7 @@ static uint32_t lesson_cell(const struct view_ctx *v, int x, int y)
     /* covered without a test of its own (a full block, a span): a test event
      * with the pixel and TRACE_INSIDE, its aux zero */
     bool tested = f & (CELL_TESTED | CELL_INSIDE);
-    struct trace_event test = { .kind = TRACE_PIXEL_TEST, .x = x, .y = y,
+    struct trace_event test = { .kind = TRACE_PIXEL_TEST, .x = x, .y = y, .line = c->line,
                                 .flags = (f & CELL_INSIDE) ? TRACE_INSIDE : 0 };
     memcpy(test.e, c->e, sizeof test.e);
     memcpy(test.aux, c->aux, sizeof test.aux);

@@ -50,6 +50,7 @@ static void take_event(void *ctx, const struct trace_event *ev)
     struct explorer *ex = ctx;
     ex->last = *ev;
     ex->has_last = true;
+    ex->told[ev->line] = *ev;
     struct cell *c;
     switch ((enum trace_kind)ev->kind) {
     case TRACE_ROW:
@@ -79,6 +80,7 @@ static void take_event(void *ctx, const struct trace_event *ev)
                     c->bary[k] = (float)b[k];
             }
             memcpy(c->aux, ev->aux, sizeof c->aux);
+            c->line = ev->line;
         }
         break;
     case TRACE_PIXEL_WRITE:
@@ -89,9 +91,15 @@ static void take_event(void *ctx, const struct trace_event *ev)
             c->rgba = ev->rgba;
         }
         break;
+    case TRACE_STEP:            /* about a pixel when the lesson says so (its cell_lines) */
+        for (const int *l = ex->side ? ex->side->cell_lines : NULL; l && *l >= 0; l++)
+            if (*l == ev->line && (c = explorer_cell_mut(ex, ev->x, ev->y))) {
+                memcpy(c->aux, ev->aux, sizeof c->aux);
+                c->line = ev->line;
+            }
+        break;
     case TRACE_SETUP:
     case TRACE_FRONT:           /* a step of the 3-D front end: no pixel of the grid */
-    case TRACE_STEP:
     case TRACE_KIND_COUNT:
         break;
     }
@@ -307,6 +315,8 @@ bool explorer_set_step(struct explorer *ex, uint64_t step)
     uint64_t local;
     int cur = replay_locate(&ex->replay, step, &local);
     ex->has_last = false;
+    for (size_t i = 0; i < sizeof ex->told / sizeof ex->told[0]; i++)
+        ex->told[i].kind = TRACE_KIND_COUNT;
     ex->focus = cur >= 0 ? replay_unit_tri(&ex->replay, cur) : 0;
     memset(&ex->tri, 0, sizeof ex->tri);
     if (ex->scene.ntris > 0 && ex->replay.ntris > 0)

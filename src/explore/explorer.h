@@ -61,6 +61,8 @@ struct cell {
     uint32_t rgba;
     uint8_t flags;          /* enum cell_flags */
     uint8_t klass;          /* block class when CELL_BLOCK */
+    uint8_t line;           /* the line of the event that left aux: the test's, or a step
+                             * of the lesson's cell_lines told after it */
 };
 
 /* Where things are on the screen, from the window or figure size. */
@@ -118,6 +120,7 @@ struct explorer {
     struct trace_counters tri_c;    /* the current triangle's counters so far */
     struct trace_event last;        /* the last event that happened */
     bool has_last;
+    struct trace_event told[256];   /* the current unit's last event at each line (run_place.told) */
     int focus;                      /* triangle whose vectors are drawn (cur, or 0) */
     struct tri_setup tri;           /* its setup */
     struct cell *cells;             /* cells of the current triangle's region */

@@ -174,6 +174,19 @@ void clip_polygon(struct poly *out, const struct poly *in, const struct plane *p
     }
 }
 
+void clip_polygon_rect(struct poly *p, double x0, double y0, double x1, double y1)
+{
+    const struct plane edges[4] = { { PLANE_LEFT, "x >= x0", 0, x0, +1, true },
+                                    { PLANE_RIGHT, "x <= x1", 0, x1, -1, true },
+                                    { PLANE_TOP, "y >= y0", 1, y0, +1, true },
+                                    { PLANE_BOTTOM, "y <= y1", 1, y1, -1, true } };
+    struct poly q;
+    for (int k = 0; k < 4 && p->n > 0; k++) {
+        clip_polygon(&q, p, &edges[k], NULL);
+        *p = q;
+    }
+}
+
 /* --- projection and the guard band ------------------------------------------------ */
 
 void project(const struct frustum *v, struct poly *p)

@@ -101,6 +101,10 @@ bool pvert_before(const struct pvert *a, const struct pvert *b);
  * for a new one, t). */
 void clip_polygon(struct poly *out, const struct poly *in, const struct plane *pl,
                   struct trace *tr);
+/* The same clipper on a polygon of the plane (pos[0], pos[1]; pos[2] 1):
+ * what of p lies in x0 <= x <= x1, y0 <= y <= y1, in place. For the
+ * explorer's drawings (lesson 06's views, lesson 09's footprints). */
+void clip_polygon_rect(struct poly *p, double x0, double y0, double x1, double y1);
 
 /* View to screen: x_s = W/2 (1 + g x_v / (a d)), y_s = H/2 (1 - g y_v / d). */
 void project(const struct frustum *v, struct poly *p);

@@ -347,6 +347,19 @@ const struct builtin_scene builtin_scenes[] = {
         "texture builtin:grid\n"
         "obj builtin:sheet.obj  1 1 1\n"
     },
+    { "texture-close", "2-D: a corner of a digit magnified, 6 pixels to a texel (lesson 09)",
+        "# 8 x 6 texels of builtin:checker-numbers at the top-left corner of the\n"
+        "# digit 0 in cell 1 (s from 36/256, t from 7/256) over 48 x 36 pixels:\n"
+        "# every texel covers 6 x 6 pixels, so nearest shows its squares and\n"
+        "# bilinear blends each texel into the next\n"
+        "size 48 36\n"
+        "background 0.08 0.08 0.1\n"
+        "texture builtin:checker-numbers clamp\n"
+        "tri 0 0 1 1 1 1 0.140625 0.02734375   48 0 1 1 1 1 0.171875 0.02734375"
+        "   48 36 1 1 1 1 0.171875 0.05078125\n"
+        "tri 0 0 1 1 1 1 0.140625 0.02734375   48 36 1 1 1 1 0.171875 0.05078125"
+        "   0 36 1 1 1 1 0.140625 0.05078125\n"
+    },
 };
 
 const int builtin_scene_count = (int)(sizeof builtin_scenes / sizeof builtin_scenes[0]);
