@@ -6,7 +6,10 @@
  * What is different: a quad's four pixels are evaluated at once (and a
  * level's taps for all four), trilinear takes one lambda per quad (the
  * quad's, which every pixel of it uses anyway), and a pixel's texel is
- * sampled only once it passes the depth test. The walk is the lesson's:
+ * sampled only once it passes the depth test; an untextured quad without
+ * the checker needs no s and t, and packs its four colours at once (the
+ * narrated build shades it pixel by pixel, as the lesson does, so that its
+ * counts are the lesson's). The walk is the lesson's:
  * the 8 x 8 blocks of the box, the empty ones skipped, then their quads.
  *
  *      lanes:   [ TL | TR ]  the quad's top row     (x0, x0 + 1) at y0
@@ -179,6 +182,23 @@ static inline uint32_t modulate4(__m128 texel, __m128d bg, __m128d r0)
     return 0xff000000u | (uint32_t)_mm_cvtsi128_si32(c);
 }
 
+/* pack_rgb of the quad's four pixels, r, g, b a pair of doubles per row:
+ * clamped to [0, 1] (a NaN to 0), times 255, rounded half up. */
+static inline void pack4(const struct quad2 c[3], uint32_t out[4])
+{
+    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1), scale = _mm_set1_pd(255.0),
+                  half = _mm_set1_pd(0.5);
+    __m128i px = _mm_set1_epi32((int)0xff000000u);
+    for (int k = 0; k < 3; k++) {
+        __m128d top = _mm_min_pd(_mm_max_pd(c[k].top, zero), one);
+        __m128d bottom = _mm_min_pd(_mm_max_pd(c[k].bottom, zero), one);
+        __m128i v = _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_add_pd(_mm_mul_pd(top, scale), half)),
+                                       _mm_cvttpd_epi32(_mm_add_pd(_mm_mul_pd(bottom, scale), half)));
+        px = _mm_or_si128(px, _mm_sll_epi32(v, _mm_cvtsi32_si128(16 - 8 * k)));
+    }
+    _mm_storeu_si128((__m128i *)out, px);
+}
+
 /* Trilinear as the quad's lambda asks: levels k0 and k1 mixed by f (one
  * level when they are the same or f is 0): tex_filter_texel's rule. */
 struct trilinear_at {
@@ -263,20 +283,31 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
         w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), tw->area2), z);
     }
     struct quad2 vq = pair_sum3(w, tw->ones);
+    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
+    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+    struct quad2 rgb[3];
+    for (int c = 0; c < 3; c++) {
+        struct quad2 sum = pair_sum3(w, tw->col[c]);
+        rgb[c] = (struct quad2){ _mm_mul_pd(sum.top, depth.top), _mm_mul_pd(sum.bottom, depth.bottom) };
+    }
+    double qs[4], zs[4], s[4], tt[4], cb[4], cg[4], cr[4];
+    _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
+    if (!tex && !(tw->p->checker > 0) && !(NARRATING && tw->tr)) {
+        /* untextured, no checker: no s and t, the four colours packed at once */
+        uint32_t rgba[4];
+        pack4(rgb, rgba);
+        for (int i = 0; i < 4; i++)
+            if (covered >> i & 1)
+                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
+        return;
+    }
     struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
-    double qs[4], s[4], tt[4], zs[4], cb[4], cg[4], cr[4];
     _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
     _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
     _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
-    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
-    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
-    _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
     double *out[3] = { cr, cg, cb };
-    for (int c = 0; c < 3; c++) {
-        struct quad2 sum = pair_sum3(w, tw->col[c]);
-        _mm_storeu_pd(out[c], _mm_mul_pd(sum.top, depth.top));
-        _mm_storeu_pd(out[c] + 2, _mm_mul_pd(sum.bottom, depth.bottom));
-    }
+    for (int c = 0; c < 3; c++)
+        _mm_storeu_pd(out[c], rgb[c].top), _mm_storeu_pd(out[c] + 2, rgb[c].bottom);
     if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
         for (int i = 0; i < 4; i++)
             if (covered >> i & 1)
