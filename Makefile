@@ -4,6 +4,9 @@
 #          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
+ifeq ($(MAKELEVEL),0)             # build on every core unless told (make -j1); sub-makes share the jobs
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 2)
+endif
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
 B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
