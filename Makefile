@@ -130,7 +130,7 @@ fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp nice -n 10 $(B)/fuzz-$$f -max_total_time=$(SECONDS) -print_final_stats=1 -artifact_prefix=$(B)/crashes/$$f- \
 	    $$([ -f tests/fuzz/$$f.dict ] && echo -dict=tests/fuzz/$$f.dict) $(B)/corpus/$$f tests/fuzz/corpus/$$f || exit 1; done
 
-# Portable (issue 17): the core, the lessons (both builds) and the
+# Portable: the core, the lessons (both builds) and the
 # exactness driver tests/portable/exact.c, no SDL, cairo or Criterion:
 # `make aarch64` cross-compiles them statically and runs them under qemu,
 # `make simde-test` runs them natively through SIMDe's portable code.

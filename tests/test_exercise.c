@@ -1,4 +1,4 @@
-/* test_exercise.c - the exercises' checks are honest (issue 13):
+/* test_exercise.c - the exercises' checks are honest:
  *
  *   - every lesson's own algorithm (each exact variant), run as an
  *     exercise, passes its lesson's check, and so does the worked answer
@@ -31,8 +31,8 @@
 #include "front/front.h"   /* front_scene */
 #include "testlib.h"
 
-/* A whole check must finish in 30 s on the slowest machine of the course
- * (issue 13); here, with the tests running two at a time, a check that
+/* A whole check must finish in 30 s on the slowest machine of the course;
+ * here, with the tests running two at a time, a check that
  * takes more than 10 s of CPU has grown far beyond what it was. */
 #define CHECK_SECONDS 10.0
 

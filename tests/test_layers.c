@@ -248,9 +248,8 @@ Test(layers, check_catches_a_cycle_and_an_upward_include)
     cr_assert(strstr(why, "src/gui is not in src/layers.h"), "%s", why);
 }
 
-/* Every file of src/ stays readable in one sitting: under 700 lines (issue
- * 11 split the 1,349-line painter by concern; a file growing past this is
- * the sign that it holds two concerns). */
+/* Every file of src/ stays readable in one sitting: under 700 lines (a file
+ * growing past this is the sign that it holds two concerns). */
 #define SRC_LINES_MAX 700
 
 static void longest_in(const char *dir, char *longest, size_t n, int *lines)

@@ -48,7 +48,7 @@ extern const struct lesson *const all_lessons[];   /* narrated: for the explorer
 #define SCENE_SMALL 1
 #define SCENE_MIXED 2
 
-/* Targets, medians of the same run. Lesson 07 against llvmpipe (issue 15): */
+/* Targets, medians of the same run. Lesson 07 against llvmpipe: */
 #define TARGET_L07_LARGE_X 2.5  /* lesson 07 vs llvmpipe, both on every core, Mpix/s on large */
 #define TARGET_L07_SMALL_X 2.5  /* ... Mtri/s on small */
 #define TARGET_L07_MIXED_X 2.5  /* ... Mtri/s on mixed */
@@ -842,7 +842,7 @@ static void print_targets(const struct bench_scene *sc, double limit, double cac
         if (lp->runs && lp1->runs)
             printf("  %-60s %6.2fx\n", "  ... llvmpipe there, default threads vs 1", lp1->median / lp->median);
     }
-    /* lesson 08's tiles against llvmpipe, both at 4 samples (issue 25) */
+    /* lesson 08's tiles against llvmpipe, both at 4 samples */
     const struct row *l08 = find_row("08-", "tiles 4 samples"), *l08_1 = find_row("08-", "tiles 1 thread 4 samples");
     const struct row *lp4 = find_row("llvmpipe", "default 4 samples");
     const struct row *lp4_1 = find_row("llvmpipe", "1 thread 4 samples");
