@@ -404,6 +404,13 @@ static void soak_one(const char *path, const char *name, double seconds, bool ex
                                          "runtime error:", "AddressSanitizer:" };
     for (size_t k = 0; e && !report && k < sizeof marks / sizeof marks[0]; k++)
         report = strstr(e, marks[k]);
+    if (!report && status != 0 && e && *e) {   /* no sanitizer's: the program's own last words */
+        size_t len = strlen(e);
+        while (len && e[len - 1] == '\n')
+            e[--len] = '\0';
+        char *last = strrchr(e, '\n');
+        report = last ? last + 1 : e;
+    }
     if (status != 0)
         snprintf(res->why, sizeof res->why, "%s (exit status %d)%s%.120s",
                  status < 0 ? "did not quit on Q within 60 s" : "failed", status,
