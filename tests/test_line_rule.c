@@ -1,0 +1,488 @@
+/* test_line_rule.c - lines (CONVENTIONS.md, "Lines"): the diamond-exit
+ * rule with the perturbation delta = (e, e^2), held three ways.
+ *
+ * - An oracle written from CONVENTIONS alone, by another method than the
+ *   code's: the moved segment A + delta + t (B - A), t in [0, 1], clipped
+ *   against the diamond's four open half-planes (Liang-Barsky), each bound
+ *   on t a rational whose numerator is a polynomial in e, compared by cross
+ *   multiplication and read lexicographically. Its own snapping (lrint),
+ *   every pixel of the target (no box).
+ * - src/raster/line.c's reference (the separating-axis test on every pixel
+ *   of the box) and its walk (Bresenham's midpoint step, the rule at the
+ *   ends) against it: 0 pixels apart on seeded random and tie-heavy scenes
+ *   (ends and paths on diamonds' corners and edges, axis-parallel lines on
+ *   pixel boundaries, 45 degree lines, ends off screen to +-16,000 px,
+ *   zero length).
+ * - The rule's consequences CONVENTIONS names: the examples, the joint of
+ *   a path drawn once, a segment split at an exact point drawing the same
+ *   pixels, a reversed segment differing only at its two ends' pixels as
+ *   the rule predicts.
+ */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/line.h"
+#include "testlib.h"
+
+/* --- the oracle ------------------------------------------------------------------ */
+
+/* a0 + a1 e + a2 e^2 */
+struct poly {
+    int64_t a[3];
+};
+
+static int poly_sign(struct poly p)
+{
+    for (int i = 0; i < 3; i++)
+        if (p.a[i] != 0)
+            return p.a[i] > 0 ? 1 : -1;
+    return 0;
+}
+
+/* A bound on t: num / den, den > 0, open (strict) or closed. */
+struct bound {
+    struct poly num;
+    int64_t den;
+    bool open;
+};
+
+/* sign(b1 - b2) */
+static int bound_cmp(const struct bound *b1, const struct bound *b2)
+{
+    struct poly d;
+    for (int i = 0; i < 3; i++)
+        d.a[i] = b1->num.a[i] * b2->den - b2->num.a[i] * b1->den;
+    return poly_sign(d);
+}
+
+struct oracle_line {
+    int64_t ax, ay, bx, by;     /* snapped by the oracle itself */
+};
+
+static struct oracle_line oracle_snap(const struct vertex v[2])
+{
+    return (struct oracle_line){ lrint(v[0].x * 256.0), lrint(v[0].y * 256.0),
+                                 lrint(v[1].x * 256.0), lrint(v[1].y * 256.0) };
+}
+
+/* Does A + delta + t (B - A), t in [0, 1], meet the open diamond of (px, py)? */
+static bool oracle_meets(const struct oracle_line *o, int px, int py)
+{
+    int64_t cx = 256 * (int64_t)px + 128, cy = 256 * (int64_t)py + 128;
+    int64_t dx = o->bx - o->ax, dy = o->by - o->ay;
+    struct bound lower[6], upper[6];
+    int nl = 0, nu = 0;
+    lower[nl++] = (struct bound){ { { 0, 0, 0 } }, 1, false };     /* t >= 0 */
+    upper[nu++] = (struct bound){ { { 1, 0, 0 } }, 1, false };     /* t <= 1 */
+    for (int sx = -1; sx <= 1; sx += 2)
+        for (int sy = -1; sy <= 1; sy += 2) {
+            /* sx (x - cx) + sy (y - cy) < 128 at x = ax + e + t dx, y = ay + e^2 + t dy:
+             * alpha + beta t < 128 */
+            struct poly alpha = { { sx * (o->ax - cx) + sy * (o->ay - cy), sx, sy } };
+            int64_t beta = sx * dx + sy * dy;
+            struct poly rest = { { 128 - alpha.a[0], -alpha.a[1], -alpha.a[2] } };  /* 128 - alpha */
+            if (beta == 0) {
+                if (poly_sign(rest) <= 0)
+                    return false;           /* alpha >= 128 for every t */
+            } else if (beta > 0) {
+                upper[nu++] = (struct bound){ rest, beta, true };   /* t < rest / beta */
+            } else {
+                struct poly neg = { { -rest.a[0], -rest.a[1], -rest.a[2] } };
+                lower[nl++] = (struct bound){ neg, -beta, true };   /* t > rest / beta */
+            }
+        }
+    for (int i = 0; i < nl; i++)
+        for (int j = 0; j < nu; j++) {
+            int c = bound_cmp(&lower[i], &upper[j]);
+            if (c > 0 || (c == 0 && (lower[i].open || upper[j].open)))
+                return false;
+        }
+    return true;
+}
+
+/* Is the moved point (x + e, y + e^2) inside the open diamond of (px, py)? */
+static bool oracle_in(int64_t x, int64_t y, int px, int py)
+{
+    int64_t cx = 256 * (int64_t)px + 128, cy = 256 * (int64_t)py + 128;
+    for (int sx = -1; sx <= 1; sx += 2)
+        for (int sy = -1; sy <= 1; sy += 2) {
+            struct poly g = { { sx * (x - cx) + sy * (y - cy) - 128, sx, sy } };
+            if (poly_sign(g) >= 0)
+                return false;
+        }
+    return true;
+}
+
+/* Add the oracle's pixels of the line to mask (w x h), every pixel tested. */
+static void oracle_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct oracle_line o = oracle_snap(v);
+    if (o.ax == o.bx && o.ay == o.by)
+        return;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            if (oracle_meets(&o, x, y) && !oracle_in(o.bx, o.by, x, y))
+                mask[(size_t)y * w + x]++;
+}
+
+/* --- the code under test --------------------------------------------------------- */
+
+struct mask_ctx {
+    uint8_t *mask;
+    int w;
+};
+
+static void add_pixel(void *ctx, int x, int y)
+{
+    struct mask_ctx *m = ctx;
+    m->mask[(size_t)y * m->w + x]++;
+}
+
+static void reference_line_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct line_setup l;
+    line_setup(&l, v, w, h);
+    line_reference(&l, add_pixel, &(struct mask_ctx){ mask, w });
+}
+
+static void walk_line_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct line_setup l;
+    line_setup(&l, v, w, h);
+    line_walk(&l, add_pixel, &(struct mask_ctx){ mask, w });
+}
+
+/* --- scenes: random and tie-heavy ---------------------------------------------- */
+
+#define TW 40
+#define TH 32
+
+/* A coordinate on the 1/256 grid where ties live: a pixel centre, a pixel
+ * boundary, a diamond's corner (centre +- 1/2 on one axis), or anywhere. */
+static double tie_coord(struct rng *r, int n)
+{
+    int p = rng_int(r, -2, n + 1);
+    switch (rng_int(r, 0, 5)) {
+    case 0: return p + 0.5;
+    case 1: return p;
+    case 2: return p + 0.5 + (rng_chance(r, 0.5) ? 0.5 : -0.5) * rng_int(r, 0, 1);
+    case 3: return p + rng_int(r, 0, 256) / 256.0;
+    case 4: return p + 0.5 + rng_int(r, -128, 128) / 256.0;     /* on a diamond's edge with the other */
+    default: return rng_range(r, -3, n + 3);
+    }
+}
+
+enum line_kind { LK_RANDOM, LK_TIES, LK_DIAMOND_EDGE, LK_AXIS, LK_DIAGONAL, LK_FAR, LK_ZERO, LK_SHORT,
+                 LK_COUNT };
+static const char *const kind_names[] = { "random", "ties", "diamond-edge", "axis", "diagonal",
+                                          "far", "zero", "short" };
+
+static struct vertex line_end(double x, double y, struct rng *r)
+{
+    struct vertex v = test_vertex(x, y);
+    v.z = rng_range(r, 0.5, 4);
+    v.r = rng_unit(r), v.g = rng_unit(r), v.b = rng_unit(r);
+    return v;
+}
+
+static void random_line(struct rng *r, enum line_kind k, struct vertex v[2])
+{
+    double x0, y0, x1, y1;
+    switch (k) {
+    case LK_RANDOM:
+        x0 = rng_range(r, -4, TW + 4), y0 = rng_range(r, -4, TH + 4);
+        x1 = rng_range(r, -4, TW + 4), y1 = rng_range(r, -4, TH + 4);
+        break;
+    case LK_TIES:
+        x0 = tie_coord(r, TW), y0 = tie_coord(r, TH), x1 = tie_coord(r, TW), y1 = tie_coord(r, TH);
+        break;
+    case LK_DIAMOND_EDGE: {
+        /* ends exactly on a diamond's edge or corner: |X| + |Y| = 1/2 */
+        double c[4];
+        for (int i = 0; i < 2; i++) {
+            int a = rng_int(r, 0, 128);
+            c[2 * i] = rng_int(r, 0, TW - 1) + 0.5 + (rng_chance(r, 0.5) ? a : -a) / 256.0;
+            c[2 * i + 1] = rng_int(r, 0, TH - 1) + 0.5 + (rng_chance(r, 0.5) ? 128 - a : a - 128) / 256.0;
+        }
+        x0 = c[0], y0 = c[1], x1 = c[2], y1 = c[3];
+        break;
+    }
+    case LK_AXIS:
+        x0 = tie_coord(r, TW), y0 = tie_coord(r, TH), x1 = tie_coord(r, TW), y1 = tie_coord(r, TH);
+        if (rng_chance(r, 0.5))
+            y1 = y0;
+        else
+            x1 = x0;
+        break;
+    case LK_DIAGONAL: {
+        x0 = tie_coord(r, TW), y0 = tie_coord(r, TH);
+        double d = rng_int(r, -20 * 256, 20 * 256) / 256.0;
+        x1 = x0 + d, y1 = y0 + (rng_chance(r, 0.5) ? d : -d);
+        break;
+    }
+    case LK_FAR: {
+        /* through the target, ends up to 16,000 px away */
+        double cx = tie_coord(r, TW), cy = tie_coord(r, TH);
+        double a = rng_range(r, 0, 6.283185307179586);
+        if (rng_chance(r, 0.3))
+            a = rng_int(r, 0, 7) * 0.7853981633974483;     /* axis-parallel or 45 degrees */
+        double d0 = rng_range(r, 1, 16000), d1 = rng_range(r, 1, 16000);
+        x0 = cx - d0 * cos(a), y0 = cy - d0 * sin(a), x1 = cx + d1 * cos(a), y1 = cy + d1 * sin(a);
+        x0 = fmax(-16000, fmin(16000, x0)), y0 = fmax(-16000, fmin(16000, y0));
+        x1 = fmax(-16000, fmin(16000, x1)), y1 = fmax(-16000, fmin(16000, y1));
+        break;
+    }
+    case LK_ZERO:
+        x0 = x1 = tie_coord(r, TW), y0 = y1 = tie_coord(r, TH);
+        if (rng_chance(r, 0.5))
+            x1 += 1 / 1024.0;       /* snaps to the same point */
+        break;
+    default:    /* LK_SHORT: within a pixel or two, ends on the grid */
+        x0 = tie_coord(r, TW), y0 = tie_coord(r, TH);
+        x1 = x0 + rng_int(r, -384, 384) / 256.0, y1 = y0 + rng_int(r, -384, 384) / 256.0;
+        break;
+    }
+    v[0] = line_end(x0, y0, r);
+    v[1] = line_end(x1, y1, r);
+}
+
+static void print_line(const char *what, const struct vertex v[2])
+{
+    fprintf(stderr, "%s: line %.17g %.17g 1 1 1 1  %.17g %.17g 1 1 1 1 (target %d x %d)\n", what,
+            v[0].x, v[0].y, v[1].x, v[1].y, TW, TH);
+}
+
+static bool masks_equal(const uint8_t *want, const uint8_t *got, const char *what,
+                        const struct vertex v[2], uint64_t seed, int index)
+{
+    if (memcmp(want, got, TW * TH) == 0)
+        return true;
+    print_line(what, v);
+    struct case_info info = { what, seed, (uint64_t)index, v, 0 };
+    coverage_equal(want, got, TW, TH, &info);
+    return false;
+}
+
+/* --- 0 pixels apart ------------------------------------------------------------- */
+
+Test(line_rule, reference_and_walk_equal_the_oracle_on_random_and_tie_heavy_lines)
+{
+    struct rng r = rng_for(3400);
+    int lit = 0, lines = 0;
+    for (int k = 0; k < LK_COUNT; k++)
+        for (int i = 0; i < 400; i++) {
+            struct vertex v[2];
+            random_line(&r, (enum line_kind)k, v);
+            uint8_t want[TW * TH] = { 0 }, ref[TW * TH] = { 0 }, walk[TW * TH] = { 0 };
+            oracle_mask(v, TW, TH, want);
+            reference_line_mask(v, TW, TH, ref);
+            walk_line_mask(v, TW, TH, walk);
+            char what[96];
+            snprintf(what, sizeof what, "%s line %d, the reference", kind_names[k], i);
+            cr_assert(masks_equal(want, ref, what, v, test_seed(), i));
+            snprintf(what, sizeof what, "%s line %d, the walk", kind_names[k], i);
+            cr_assert(masks_equal(want, walk, what, v, test_seed(), i));
+            for (int p = 0; p < TW * TH; p++) {
+                cr_assert_leq(want[p], 1, "a line draws a pixel at most once");
+                lit += want[p];
+            }
+            lines++;
+        }
+    /* the scenes drew something (the oracle is not vacuously empty) */
+    cr_assert_gt(lit, lines * 3, "%d pixels for %d lines", lit, lines);
+}
+
+/* Whole lines across a large target, with ends far off it: the walk and
+ * the reference (the oracle is slow for every pixel of 512 x 256). */
+Test(line_rule, walk_equals_the_reference_on_a_large_target)
+{
+    enum { W = 512, H = 256 };
+    uint8_t *ref = calloc(W * H, 1), *walk = calloc(W * H, 1);
+    cr_assert(ref && walk);
+    struct rng r = rng_for(3401);
+    for (int i = 0; i < 200; i++) {
+        struct vertex v[2];
+        for (int k = 0; k < 2; k++)
+            v[k] = line_end(rng_chance(&r, 0.3) ? rng_range(&r, -16000, 16000) : rng_int(&r, -40, W + 40) + rng_int(&r, 0, 4) / 4.0,
+                            rng_chance(&r, 0.3) ? rng_range(&r, -16000, 16000) : rng_int(&r, -40, H + 40) + rng_int(&r, 0, 4) / 4.0, &r);
+        struct line_setup l;
+        line_setup(&l, v, W, H);
+        line_reference(&l, add_pixel, &(struct mask_ctx){ ref, W });
+        line_walk(&l, add_pixel, &(struct mask_ctx){ walk, W });
+    }
+    size_t first = 0;
+    while (first < (size_t)W * H && ref[first] == walk[first])
+        first++;
+    cr_assert_eq(first, (size_t)W * H, "pixel (%zu, %zu): reference %d, walk %d", first % W, first / W,
+                 ref[first], walk[first]);
+    free(ref);
+    free(walk);
+}
+
+/* --- what CONVENTIONS says follows ------------------------------------------------ */
+
+static void expect_pixels(const char *what, double x0, double y0, double x1, double y1,
+                          const char *want_rows[])
+{
+    struct vertex v[2] = { test_vertex(x0, y0), test_vertex(x1, y1) };
+    uint8_t want[TW * TH] = { 0 }, got[TW * TH] = { 0 }, walk[TW * TH] = { 0 };
+    for (int y = 0; want_rows[y]; y++)
+        for (int x = 0; want_rows[y][x]; x++)
+            want[y * TW + x] = want_rows[y][x] == '#';
+    oracle_mask(v, TW, TH, got);
+    cr_assert(masks_equal(want, got, what, v, 0, 0), "%s: the oracle", what);
+    memset(got, 0, sizeof got);
+    reference_line_mask(v, TW, TH, got);
+    cr_assert(masks_equal(want, got, what, v, 0, 0), "%s: the reference", what);
+    walk_line_mask(v, TW, TH, walk);
+    cr_assert(masks_equal(want, walk, what, v, 0, 0), "%s: the walk", what);
+}
+
+Test(line_rule, the_examples_of_the_conventions)
+{
+    expect_pixels("centre of pixel 0 to centre of pixel 5 draws pixels 0..4", 0.5, 1.5, 5.5, 1.5,
+                  (const char *[]){ "......", "#####.", NULL });
+    expect_pixels("... and back draws 1..5", 5.5, 1.5, 0.5, 1.5,
+                  (const char *[]){ "......", ".#####", NULL });
+    expect_pixels("horizontal on y = 2 draws the row below it", 0.25, 2, 4.25, 2,
+                  (const char *[]){ "....", "....", "####", "....", NULL });
+    expect_pixels("... from a diamond's top corner, not that diamond", 0.5, 2, 4.25, 2,
+                  (const char *[]){ "....", "....", ".###", "....", NULL });
+    expect_pixels("vertical on x = 2 draws the column to its right", 2, 0.5, 2, 3.75,
+                  (const char *[]){ "..#.", "..#.", "..#.", "..#.", "....", NULL });
+    expect_pixels("a diagonal through the diamonds' corners", 1, 1, 4, 4,
+                  (const char *[]){ "....", ".#..", "..#.", "...#", "....", NULL });
+    expect_pixels("zero length draws nothing", 2.5, 2.5, 2.5, 2.5, (const char *[]){ NULL });
+    expect_pixels("inside one diamond, start to end: nothing", 2.5, 2.5, 2.625, 2.5,
+                  (const char *[]){ NULL });
+    expect_pixels("out of a diamond: the start's pixel", 2.5, 2.5, 2.5, 3,
+                  (const char *[]){ "...", "...", "..#", NULL });
+}
+
+/* The pixels of a path v[0] -> v[1] -> ... -> v[n - 1]. */
+static void path_mask(const struct vertex *v, int n, uint8_t *mask)
+{
+    for (int i = 0; i + 1 < n; i++)
+        reference_line_mask(v + i, TW, TH, mask);
+}
+
+static int pixel_of(int32_t c)
+{
+    return (int)floor_div(c, SUBPIXEL_ONE);
+}
+
+/* The pixel whose diamond holds the moved point (x, y), or false. */
+static bool diamond_of(int32_t x, int32_t y, int *px, int *py)
+{
+    for (int j = pixel_of(y) - 1; j <= pixel_of(y) + 1; j++)
+        for (int i = pixel_of(x) - 1; i <= pixel_of(x) + 1; i++)
+            if (oracle_in(x, y, i, j)) {
+                *px = i, *py = j;
+                return true;
+            }
+    return false;
+}
+
+Test(line_rule, a_joint_inside_a_diamond_is_drawn_once)
+{
+    struct rng r = rng_for(3402);
+    int joints = 0;
+    for (int i = 0; i < 3000; i++) {
+        struct vertex v[3];
+        random_line(&r, i % 2 ? LK_TIES : LK_RANDOM, v);
+        /* the joint: a grid point within a diamond, often on its edges */
+        int a = rng_int(&r, -127, 127), b = (128 - abs(a)) - rng_int(&r, 1, 8) * (rng_chance(&r, 0.5) ? 0 : 1);
+        if (b < 0)
+            b = 0;
+        int jx = rng_int(&r, 2, TW - 3), jy = rng_int(&r, 2, TH - 3);
+        v[2] = v[1];
+        v[1] = line_end(jx + 0.5 + a / 256.0, jy + 0.5 + (rng_chance(&r, 0.5) ? b : -b) / 256.0, &r);
+        int px, py;
+        if (!diamond_of(snap_coord(v[1].x, 8), snap_coord(v[1].y, 8), &px, &py))
+            continue;
+        uint8_t m[TW * TH] = { 0 };
+        path_mask(v, 3, m);
+        struct line_setup l0, l1;
+        if (!line_setup(&l0, v, TW, TH) || !line_setup(&l1, v + 1, TW, TH))
+            continue;
+        if (oracle_in(l1.x[1], l1.y[1], px, py))
+            continue;       /* the path ends in the joint's diamond: drawn by neither */
+        if (m[py * TW + px] != 1)
+            print_line("first segment", v), print_line("second segment", v + 1);
+        cr_assert_eq(m[py * TW + px], 1, "case %d: the joint's pixel (%d, %d) drawn %d times", i, px,
+                     py, m[py * TW + px]);
+        joints++;
+    }
+    cr_assert_gt(joints, 1000, "only %d joints tested", joints);
+}
+
+Test(line_rule, splitting_at_an_exact_point_changes_no_pixel)
+{
+    struct rng r = rng_for(3403);
+    for (int i = 0; i < 2000; i++) {
+        struct vertex v[2];
+        random_line(&r, i % 3 == 0 ? LK_AXIS : i % 3 == 1 ? LK_TIES : LK_DIAGONAL, v);
+        int32_t ax = snap_coord(v[0].x, 8), ay = snap_coord(v[0].y, 8);
+        int32_t bx = snap_coord(v[1].x, 8), by = snap_coord(v[1].y, 8);
+        /* a point exactly on the segment and on the grid: A + j (B - A) / k
+         * where k divides both differences */
+        int k = rng_int(&r, 2, 8);
+        bx = ax + (bx - ax) / k * k, by = ay + (by - ay) / k * k;
+        int j = rng_int(&r, 0, k);
+        int32_t sx = ax + (bx - ax) / k * j, sy = ay + (by - ay) / k * j;
+        struct vertex path[3] = { v[0], v[1], v[1] };
+        path[0].x = ax / 256.0, path[0].y = ay / 256.0;
+        path[1].x = sx / 256.0, path[1].y = sy / 256.0;
+        path[2].x = bx / 256.0, path[2].y = by / 256.0;
+        uint8_t whole[TW * TH] = { 0 }, split[TW * TH] = { 0 };
+        struct vertex ab[2] = { path[0], path[2] };
+        reference_line_mask(ab, TW, TH, whole);
+        path_mask(path, 3, split);
+        cr_assert(masks_equal(whole, split, "split at an exact point", ab, test_seed(), i),
+                  "case %d: split at (%.17g, %.17g)", i, sx / 256.0, sy / 256.0);
+    }
+}
+
+Test(line_rule, reversing_changes_only_the_two_end_pixels_as_the_rule_says)
+{
+    struct rng r = rng_for(3404);
+    int changed = 0;
+    for (int i = 0; i < 3000; i++) {
+        struct vertex v[2], back[2];
+        random_line(&r, (enum line_kind)(i % LK_COUNT), v);
+        back[0] = v[1], back[1] = v[0];
+        uint8_t fwd[TW * TH] = { 0 }, rev[TW * TH] = { 0 };
+        reference_line_mask(v, TW, TH, fwd);
+        reference_line_mask(back, TW, TH, rev);
+        int32_t ax = snap_coord(v[0].x, 8), ay = snap_coord(v[0].y, 8);
+        int32_t bx = snap_coord(v[1].x, 8), by = snap_coord(v[1].y, 8);
+        int pa[2] = { -1000, -1000 }, pb[2] = { -1000, -1000 };
+        bool in_a = diamond_of(ax, ay, &pa[0], &pa[1]);
+        bool in_b = diamond_of(bx, by, &pb[0], &pb[1]);
+        bool same = in_a && in_b && pa[0] == pb[0] && pa[1] == pb[1];
+        bool zero = ax == bx && ay == by;
+        for (int y = 0; y < TH; y++)
+            for (int x = 0; x < TW; x++) {
+                bool at_a = in_a && x == pa[0] && y == pa[1];
+                bool at_b = in_b && x == pb[0] && y == pb[1];
+                /* A -> B leaves out B's pixel and draws A's (its start is
+                 * in it); B -> A the other way round; one diamond holding
+                 * both ends is drawn by neither */
+                int want_fwd = rev[y * TW + x], want_rev = fwd[y * TW + x];
+                if (!zero && !same && at_a)
+                    want_fwd = 1, want_rev = 0;
+                else if (!zero && !same && at_b)
+                    want_fwd = 0, want_rev = 1;
+                if (fwd[y * TW + x] != want_fwd || rev[y * TW + x] != want_rev)
+                    print_line("forward", v);
+                cr_assert(fwd[y * TW + x] == want_fwd && rev[y * TW + x] == want_rev,
+                          "case %d, pixel (%d, %d): forward %d, reversed %d", i, x, y, fwd[y * TW + x],
+                          rev[y * TW + x]);
+                changed += fwd[y * TW + x] != rev[y * TW + x];
+            }
+    }
+    cr_assert_gt(changed, 1000, "the ends differed on only %d pixels", changed);
+}
