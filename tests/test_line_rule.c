@@ -24,17 +24,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "front/front.h"
 #include "raster/line.h"
 #include "testlib.h"
 
 /* --- the oracle ------------------------------------------------------------------ */
 
 /* a0 + a1 e + a2 e^2 */
-struct poly {
+struct epoly {
     int64_t a[3];
 };
 
-static int poly_sign(struct poly p)
+static int poly_sign(struct epoly p)
 {
     for (int i = 0; i < 3; i++)
         if (p.a[i] != 0)
@@ -44,7 +45,7 @@ static int poly_sign(struct poly p)
 
 /* A bound on t: num / den, den > 0, open (strict) or closed. */
 struct bound {
-    struct poly num;
+    struct epoly num;
     int64_t den;
     bool open;
 };
@@ -52,7 +53,7 @@ struct bound {
 /* sign(b1 - b2) */
 static int bound_cmp(const struct bound *b1, const struct bound *b2)
 {
-    struct poly d;
+    struct epoly d;
     for (int i = 0; i < 3; i++)
         d.a[i] = b1->num.a[i] * b2->den - b2->num.a[i] * b1->den;
     return poly_sign(d);
@@ -81,16 +82,16 @@ static bool oracle_meets(const struct oracle_line *o, int px, int py)
         for (int sy = -1; sy <= 1; sy += 2) {
             /* sx (x - cx) + sy (y - cy) < 128 at x = ax + e + t dx, y = ay + e^2 + t dy:
              * alpha + beta t < 128 */
-            struct poly alpha = { { sx * (o->ax - cx) + sy * (o->ay - cy), sx, sy } };
+            struct epoly alpha = { { sx * (o->ax - cx) + sy * (o->ay - cy), sx, sy } };
             int64_t beta = sx * dx + sy * dy;
-            struct poly rest = { { 128 - alpha.a[0], -alpha.a[1], -alpha.a[2] } };  /* 128 - alpha */
+            struct epoly rest = { { 128 - alpha.a[0], -alpha.a[1], -alpha.a[2] } };  /* 128 - alpha */
             if (beta == 0) {
                 if (poly_sign(rest) <= 0)
                     return false;           /* alpha >= 128 for every t */
             } else if (beta > 0) {
                 upper[nu++] = (struct bound){ rest, beta, true };   /* t < rest / beta */
             } else {
-                struct poly neg = { { -rest.a[0], -rest.a[1], -rest.a[2] } };
+                struct epoly neg = { { -rest.a[0], -rest.a[1], -rest.a[2] } };
                 lower[nl++] = (struct bound){ neg, -beta, true };   /* t > rest / beta */
             }
         }
@@ -109,7 +110,7 @@ static bool oracle_in(int64_t x, int64_t y, int px, int py)
     int64_t cx = 256 * (int64_t)px + 128, cy = 256 * (int64_t)py + 128;
     for (int sx = -1; sx <= 1; sx += 2)
         for (int sy = -1; sy <= 1; sy += 2) {
-            struct poly g = { { sx * (x - cx) + sy * (y - cy) - 128, sx, sy } };
+            struct epoly g = { { sx * (x - cx) + sy * (y - cy) - 128, sx, sy } };
             if (poly_sign(g) >= 0)
                 return false;
         }
@@ -485,4 +486,154 @@ Test(line_rule, reversing_changes_only_the_two_end_pixels_as_the_rule_says)
             }
     }
     cr_assert_gt(changed, 1000, "the ends differed on only %d pixels", changed);
+}
+
+/* --- colour, depth and counts ------------------------------------------------------- */
+
+static int channel(uint32_t c, int i)
+{
+    return (int)((c >> (16 - 8 * i)) & 255);
+}
+
+Test(line_draw, colour_and_z_by_the_projection_parameter_clamped)
+{
+    struct rng r = rng_for(3405);
+    struct target fb;
+    cr_assert(target_init(&fb, TW, TH, 0xff000000u));
+    int checked = 0;
+    for (int i = 0; i < 600; i++) {
+        struct vertex v[2];
+        random_line(&r, (enum line_kind)(i % LK_COUNT), v);
+        target_clear(&fb);
+        struct line_setup l;
+        line_setup(&l, v, TW, TH);
+        line_draw(&l, &fb);
+        uint8_t want[TW * TH] = { 0 };
+        oracle_mask(v, TW, TH, want);
+        struct oracle_line o = oracle_snap(v);
+        double len2 = (double)(o.bx - o.ax) * (o.bx - o.ax) + (double)(o.by - o.ay) * (o.by - o.ay);
+        for (int y = 0; y < TH; y++)
+            for (int x = 0; x < TW; x++) {
+                size_t p = (size_t)y * TW + x;
+                cr_assert_eq(fb.count[p], want[p], "case %d (%d, %d): count %d, the rule %d", i, x, y,
+                             fb.count[p], want[p]);
+                if (!want[p])
+                    continue;
+                /* t of the pixel centre, from CONVENTIONS */
+                double t = ((256.0 * x + 128 - o.ax) * (o.bx - o.ax) + (256.0 * y + 128 - o.ay) * (o.by - o.ay)) / len2;
+                t = t < 0 ? 0 : t > 1 ? 1 : t;
+                double c[3] = { (1 - t) * v[0].r + t * v[1].r, (1 - t) * v[0].g + t * v[1].g,
+                                (1 - t) * v[0].b + t * v[1].b };
+                double z = (1 - t) * v[0].z + t * v[1].z;
+                for (int k = 0; k < 3; k++) {
+                    int got = channel(fb.color[p], k), exact = (int)lround(c[k] * 255);
+                    cr_assert(abs(got - exact) <= PIXEL_COLOUR_LEVELS, "case %d (%d, %d) channel %d: %d, "
+                              "exact %d", i, x, y, k, got, exact);
+                }
+                cr_assert(fabs(fb.depth[p] - z) <= 1e-6 * z, "case %d (%d, %d): z %g, exact %g", i, x, y,
+                          fb.depth[p], z);
+                checked++;
+            }
+    }
+    cr_assert_gt(checked, 2000);
+    target_free(&fb);
+}
+
+Test(line_draw, the_nearer_line_wins_and_a_tie_keeps_the_earlier)
+{
+    struct target fb;
+    cr_assert(target_init(&fb, 8, 8, 0xff000000u));
+    struct vertex red[2] = { test_vertex(0.5, 3.5), test_vertex(7.5, 3.5) };
+    struct vertex green[2] = { test_vertex(3.5, 0.5), test_vertex(3.5, 7.5) };
+    red[0].r = red[1].r = 1, red[0].g = red[1].g = red[0].b = red[1].b = 0;
+    green[0].g = green[1].g = 1, green[0].r = green[1].r = green[0].b = green[1].b = 0;
+    struct line_setup a, b;
+    for (int c = 0; c < 3; c++) {
+        /* red at z 2, green at z 1, 2 or 3 drawn after it */
+        double gz = 1 + c;
+        red[0].z = red[1].z = 2;
+        green[0].z = green[1].z = gz;
+        target_clear(&fb);
+        line_setup(&a, red, 8, 8);
+        line_setup(&b, green, 8, 8);
+        line_draw(&a, &fb);
+        line_draw(&b, &fb);
+        uint32_t crossing = fb.color[3 * 8 + 3];
+        cr_assert_eq(fb.count[3 * 8 + 3], 2, "both lines counted at the crossing");
+        cr_assert_eq(crossing, gz < 2 ? 0xff00ff00u : 0xffff0000u, "green at z = %g: %08x", gz, crossing);
+    }
+    target_free(&fb);
+}
+
+/* --- the wireframe ---------------------------------------------------------------- */
+
+static struct scene scene_of(const char *text)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_parse(&s, "test.scene", text, strlen(text), err, sizeof err), "%s", err);
+    return s;
+}
+
+static bool lex_le(const struct vertex *a, const struct vertex *b)
+{
+    int32_t ax = snap_coord(a->x, 8), bx = snap_coord(b->x, 8);
+    return ax < bx || (ax == bx && snap_coord(a->y, 8) <= snap_coord(b->y, 8));
+}
+
+Test(line_draw, wireframe_draws_each_shared_edge_once_from_its_smaller_end_in_file_order)
+{
+    struct scene s = scene_of(
+        "size 16 16\n"
+        "line 1 1 1  1 0 0   9 1 1  1 0 0\n"
+        "tri 2 2 1  1 1 1   10 2 1  1 1 1   2 10 1  1 1 1\n"
+        "line 3 3 1  0 1 0   3 3 1  0 1 0\n"
+        "tri 10 2 1  0 0 1   2 10.001 1  0 0 1   10 10 1  0 0 1\n"     /* shares 10,2 - 2,10 (snapped) */
+        "line 15 15 1  0 0 1   0 0 1  0 0 1\n");
+    int n;
+    struct vertex *w = scene_wireframe(&s, &n);
+    cr_assert_not_null(w);
+    cr_assert_eq(n, 3 + 3 + 2, "three lines, three edges, then two (one shared): %d", n);
+    cr_assert(w[0].x == 1 && w[1].x == 9, "the first line first, as the file has it");
+    cr_assert(w[2].x == 2 && w[2].y == 2 && w[3].x == 10 && w[3].y == 2, "edge AB");
+    cr_assert(w[4].x == 2 && w[4].y == 10 && w[5].x == 10 && w[5].y == 2,
+              "edge BC from its smaller end (2, 10)");
+    cr_assert(w[6].x == 2 && w[6].y == 2 && w[7].x == 2 && w[7].y == 10, "edge CA from (2, 2)");
+    cr_assert(w[8].x == 3 && w[9].x == 3, "the second line after the first triangle");
+    /* the second triangle: 10,2 -> 2,10 is drawn already; 2,10 -> 10,10 and 10,10 -> 10,2 */
+    cr_assert(w[10].x == 2 && w[10].y == 10.001 && w[11].x == 10 && w[11].y == 10);
+    cr_assert(w[12].x == 10 && w[12].y == 2 && w[13].x == 10 && w[13].y == 10);
+    cr_assert(w[14].x == 15 && w[15].x == 0, "a line keeps its own direction");
+    free(w);
+    scene_free(&s);
+}
+
+Test(line_draw, wireframe_of_meshes_and_a_3d_scene)
+{
+    const char *names[] = { "mesh", "fan", "offgrid-strip", "room", "model" };
+    for (int k = 0; k < 5; k++) {
+        struct scene s;
+        char err[256];
+        cr_assert(scene_builtin(&s, names[k], err, sizeof err), "%s", err);
+        if (s.world.camera_line)
+            cr_assert(front_scene(&s));
+        int n;
+        struct vertex *w = scene_wireframe(&s, &n);
+        cr_assert_not_null(w);
+        /* each edge once: no two segments with the same snapped ends, every
+         * one from its smaller end, and as many as the distinct edges */
+        for (int i = 0; i < n; i++) {
+            cr_assert(lex_le(&w[2 * i], &w[2 * i + 1]), "%s: edge %d from its larger end", names[k], i);
+            for (int j = 0; j < i; j++)
+                cr_assert(!(snap_coord(w[2 * i].x, 8) == snap_coord(w[2 * j].x, 8) &&
+                            snap_coord(w[2 * i].y, 8) == snap_coord(w[2 * j].y, 8) &&
+                            snap_coord(w[2 * i + 1].x, 8) == snap_coord(w[2 * j + 1].x, 8) &&
+                            snap_coord(w[2 * i + 1].y, 8) == snap_coord(w[2 * j + 1].y, 8)),
+                          "%s: edges %d and %d are the same", names[k], j, i);
+        }
+        cr_assert_lt(n, 3 * s.ntris, "%s: %d triangles share edges, %d segments", names[k], s.ntris, n);
+        cr_assert_gt(n, s.ntris, "%s", names[k]);
+        free(w);
+        scene_free(&s);
+    }
 }

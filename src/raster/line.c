@@ -195,3 +195,23 @@ void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y)
             err += step, v--;
     }
 }
+
+/* --- drawing into a target ------------------------------------------------------ */
+
+struct line_plot {
+    const struct line_setup *l;
+    struct target *fb;
+};
+
+static void plot_shaded(void *ctx, int x, int y)
+{
+    const struct line_plot *p = ctx;
+    double z, rgb[3];
+    line_shade(p->l, x, y, &z, rgb);
+    target_write(p->fb, x, y, (float)z, pack_rgb(rgb[0], rgb[1], rgb[2]));
+}
+
+void line_draw(const struct line_setup *l, struct target *fb)
+{
+    line_walk(l, plot_shaded, &(struct line_plot){ l, fb });
+}

@@ -82,4 +82,9 @@ void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y)
 double line_param(const struct line_setup *l, int px, int py);
 void line_shade(const struct line_setup *l, int px, int py, double *z, double rgb[3]);
 
+/* Draw the walk's pixels into fb, each with its z and colour by
+ * line_shade, through target_write (counted, depth-tested: the nearer
+ * wins, an earlier line keeps a tie). */
+void line_draw(const struct line_setup *l, struct target *fb);
+
 #endif

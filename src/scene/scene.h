@@ -125,6 +125,15 @@ bool world_add(struct world *w, const struct world_tri *t);
 /* Append a line from v[0] to v[1], after the triangles there are so far. */
 bool scene_add_line(struct scene *s, const struct vertex v[2]);
 
+/* What lesson 00 draws of a scene (CONVENTIONS.md, "Lines"), in file order:
+ * its `line`s and the edges of its screen triangles (a 3-D scene's after
+ * the front end has made them), each edge AB, BC, CA in the order the
+ * triangle gives them and each edge that two triangles share once, from
+ * its lexicographically smaller snapped end (x, then y). Returns a fresh
+ * array of *n segments, ends v[2 i] and v[2 i + 1], to free (never NULL
+ * for an empty scene); NULL when out of memory. */
+struct vertex *scene_wireframe(const struct scene *s, int *n);
+
 /* The scene's image textures, numbered from 1 as triangles name them:
  * scene_texture(s, k) for k in 1..scene_texture_count(s), NULL otherwise. */
 int scene_texture_count(const struct scene *s);
