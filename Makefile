@@ -19,7 +19,8 @@ MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.pa
 TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
             $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
-LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
+# the first lesson, 01 (lesson 00, lines, is a warm-up before it)
+LESSON   ?= $(firstword $(subst -, ,$(firstword $(filter-out 00-%,$(LESSONS)))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
 # CFLAGS, LDFLAGS and LDLIBS are the user's (make CFLAGS=-O0 still builds);

@@ -637,3 +637,38 @@ Test(line_draw, wireframe_of_meshes_and_a_3d_scene)
         scene_free(&s);
     }
 }
+
+/* Ends at the limits of the coordinate range on the largest target, long
+ * side along either axis: the 64-bit budget of line.h, under the
+ * sanitizers too (make test SANITIZE=1). */
+Test(line_rule, walk_equals_the_reference_at_the_coordinate_limits)
+{
+    struct rng r = rng_for(3406);
+    for (int axis = 0; axis < 2; axis++) {
+        int w = axis ? 3 : TARGET_MAX, h = axis ? TARGET_MAX : 3;
+        uint8_t *ref = calloc((size_t)w * h, 1), *walk = calloc((size_t)w * h, 1);
+        cr_assert(ref && walk);
+        for (int i = 0; i < 24; i++) {
+            double lim = COORD_LIMIT - 1.0 / 256, ends[2] = { -COORD_LIMIT, lim };
+            double along0 = rng_chance(&r, 0.5) ? ends[rng_int(&r, 0, 1)] : rng_range(&r, -COORD_LIMIT, lim);
+            double along1 = rng_chance(&r, 0.5) ? ends[rng_int(&r, 0, 1)] : rng_range(&r, -COORD_LIMIT, lim);
+            double across0 = rng_int(&r, -2 * 256, 5 * 256) / 256.0, across1 = rng_int(&r, -2 * 256, 5 * 256) / 256.0;
+            if (i % 4 == 0)
+                across1 = rng_chance(&r, 0.5) ? ends[rng_int(&r, 0, 1)] : across0;   /* steep, or parallel */
+            struct vertex v[2] = { axis ? line_end(across0, along0, &r) : line_end(along0, across0, &r),
+                                   axis ? line_end(across1, along1, &r) : line_end(along1, across1, &r) };
+            struct line_setup l;
+            line_setup(&l, v, w, h);
+            line_reference(&l, add_pixel, &(struct mask_ctx){ ref, w });
+            line_walk(&l, add_pixel, &(struct mask_ctx){ walk, w });
+        }
+        size_t first = 0, lit = 0;
+        while (first < (size_t)w * h && ref[first] == walk[first])
+            lit += ref[first++];
+        cr_assert_eq(first, (size_t)w * h, "%d x %d, pixel (%zu, %zu): reference %d, walk %d", w, h,
+                     first % w, first / w, ref[first], walk[first]);
+        cr_assert_gt(lit, 10000, "%d x %d: only %zu pixels drawn", w, h, lit);
+        free(ref);
+        free(walk);
+    }
+}
