@@ -672,3 +672,216 @@ Test(line_rule, walk_equals_the_reference_at_the_coordinate_limits)
         free(walk);
     }
 }
+
+/* --- the usual ways, against the rule ---------------------------------------------
+ *
+ * What lesson 00 shows against the exact rule, each counted here: every one
+ * differs from it where the rule says it must not (a joint drawn twice or
+ * missed, a pixel lost far from the origin), and the rule does not. */
+
+/* The pixels of a path under `draw` (a line drawing into a mask). */
+typedef void (*mask_fn)(const struct vertex v[2], int w, int h, uint8_t *mask);
+
+/* Paths A -> B -> C with B on the 1/256 grid, inside a diamond (on its
+ * edges often): how many joints a way of drawing draws twice or misses
+ * (the rule: once, by B -> C), and how many pixels of the two segments
+ * differ from the rule's. */
+static void count_paths(mask_fn draw, int *twice, int *missed, int *differ)
+{
+    struct rng r = rng_for(3410);
+    *twice = *missed = *differ = 0;
+    for (int i = 0; i < 2000; i++) {
+        struct vertex v[3];
+        random_line(&r, i % 2 ? LK_TIES : LK_DIAMOND_EDGE, v);
+        v[2] = line_end(tie_coord(&r, TW), tie_coord(&r, TH), &r);
+        int32_t x[3], y[3];
+        for (int k = 0; k < 3; k++)
+            x[k] = snap_coord(v[k].x, 8), y[k] = snap_coord(v[k].y, 8);
+        int px, py;
+        if (!diamond_of(x[1], y[1], &px, &py) || px < 0 || px >= TW || py < 0 || py >= TH ||
+            oracle_in(x[0], y[0], px, py) || oracle_in(x[2], y[2], px, py))
+            continue;       /* a joint in a diamond on the target, alone in it */
+        uint8_t got[TW * TH] = { 0 }, want[TW * TH] = { 0 };
+        for (int k = 0; k < 2; k++) {
+            draw(v + k, TW, TH, got);
+            oracle_mask(v + k, TW, TH, want);
+        }
+        *twice += got[py * TW + px] > 1;
+        *missed += got[py * TW + px] == 0;
+        for (int p = 0; p < TW * TH; p++)
+            *differ += got[p] != want[p];
+    }
+}
+
+/* The crossing row of an x-major line at column px (or column of a
+ * y-major one at row px), rounded as Bresenham's classic form rounds it:
+ * the pixel nearest the line's point at the centre line, in double. */
+static int64_t nearest_minor(const struct line_setup *l, int64_t u)
+{
+    double au = l->x_major ? l->x[0] : l->y[0], av = l->x_major ? l->y[0] : l->x[0];
+    double du = (double)(l->x_major ? l->dx : l->dy), dv = (double)(l->x_major ? l->dy : l->dx);
+    double v = av + ((double)pixel_centre((int)u) - au) * dv / du;
+    return (int64_t)floor(v / SUBPIXEL_ONE);
+}
+
+/* Bresenham from the pixel of A to the pixel of B, both included: the
+ * textbook's loop, no end rule. */
+static void classic_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct line_setup l;
+    if (!line_setup(&l, v, w, h))
+        return;
+    int64_t a = floor_div(l.x_major ? l.x[0] : l.y[0], 256), b = floor_div(l.x_major ? l.x[1] : l.y[1], 256);
+    for (int64_t u = a;; u += a < b ? 1 : -1) {
+        int64_t m = nearest_minor(&l, u), x = l.x_major ? u : m, y = l.x_major ? m : u;
+        if (x >= 0 && x < w && y >= 0 && y < h)
+            mask[y * w + x]++;
+        if (u == b)
+            break;
+    }
+}
+
+/* The rule without the perturbation, on closed diamonds: drawn iff the
+ * segment meets the closed diamond and B is not strictly inside it. */
+static void closed_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct oracle_line o = oracle_snap(v);
+    if (o.ax == o.bx && o.ay == o.by)
+        return;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int64_t cx = 256 * (int64_t)x + 128, cy = 256 * (int64_t)y + 128;
+            /* the nearest point of the segment to the centre, in the diamond's
+             * metric, is at one of the segment's crossings of the diamond's
+             * axes or at an end: test those */
+            double best = 1e300;
+            double ts[6] = { 0, 1, 0, 1, 0, 1 };
+            int nt = 2;
+            double dx = (double)(o.bx - o.ax), dy = (double)(o.by - o.ay);
+            if (dx != 0)
+                ts[nt++] = (cx - o.ax) / dx;
+            if (dy != 0)
+                ts[nt++] = (cy - o.ay) / dy;
+            for (int k = 0; k < nt; k++) {
+                double t = ts[k] < 0 ? 0 : ts[k] > 1 ? 1 : ts[k];
+                double d = fabs(o.ax + t * dx - cx) + fabs(o.ay + t * dy - cy);
+                best = d < best ? d : best;
+            }
+            bool end_inside = llabs(o.bx - cx) + llabs(o.by - cy) < 128;
+            if (best <= 128 && !end_inside)
+                mask[y * w + x]++;
+        }
+}
+
+Test(line_exhibits, without_the_end_rule_a_joint_is_drawn_twice)
+{
+    int twice, missed, differ;
+    count_paths(reference_line_mask, &twice, &missed, &differ);
+    cr_assert_eq(twice + missed + differ, 0, "the rule: %d joints twice, %d missed, %d pixels apart "
+                 "from the oracle", twice, missed, differ);
+    count_paths(classic_mask, &twice, &missed, &differ);
+    cr_log_info("Bresenham from A's pixel to B's: %d joints twice, %d missed, %d pixels differ\n",
+                twice, missed, differ);
+    cr_assert_gt(twice, 300, "joints drawn twice: %d", twice);
+}
+
+Test(line_exhibits, closed_diamonds_draw_a_joint_on_a_corner_twice)
+{
+    int twice, missed, differ;
+    count_paths(closed_mask, &twice, &missed, &differ);
+    cr_log_info("closed diamonds, no perturbation: %d joints twice, %d missed, %d pixels differ\n",
+                twice, missed, differ);
+    cr_assert_gt(twice, 20, "joints drawn twice: %d", twice);
+}
+
+/* A DDA in single precision: the minor coordinate stepped by its slope in
+ * float, the pixel the rounded value falls in; the ends as the rule says
+ * (line_draws), so only the stepping differs from the walk. */
+static void dda_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    struct line_setup l;
+    if (!line_setup(&l, v, w, h))
+        return;
+    int64_t a = floor_div(l.x_major ? l.x[0] : l.y[0], 256), b = floor_div(l.x_major ? l.x[1] : l.y[1], 256);
+    int step = a < b ? 1 : -1;
+    float du = (float)(l.x_major ? l.dx : l.dy), dv = (float)(l.x_major ? l.dy : l.dx);
+    float slope = dv / du * (float)step;            /* minor pixels per major pixel */
+    float m = (float)((l.x_major ? l.y[0] : l.x[0]) / 256.0 +
+                      ((double)pixel_centre((int)a) - (l.x_major ? l.x[0] : l.y[0])) / 256.0 * slope * step);
+    for (int64_t u = a;; u += step) {
+        int64_t mm = (int64_t)floorf(m), x = l.x_major ? u : mm, y = l.x_major ? mm : u;
+        if (x >= 0 && x < w && y >= 0 && y < h && ((u != a && u != b) || line_draws(&l, (int)x, (int)y)))
+            mask[y * w + x]++;
+        if (u == b)
+            break;
+        m += slope;
+    }
+}
+
+Test(line_exhibits, float_stepping_loses_pixels_far_from_the_origin)
+{
+    enum { W = 256, H = 128 };
+    uint8_t *want = calloc(W * H, 1), *got = calloc(W * H, 1);
+    cr_assert(want && got);
+    struct rng r = rng_for(3411);
+    int near = 0, far = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < 200; i++) {
+            memset(want, 0, W * H);
+            memset(got, 0, W * H);
+            /* through the target; near: ends on it, far: ends 16,000 px away */
+            double cx = rng_range(&r, 0, W), cy = rng_range(&r, 0, H), a = rng_range(&r, 0, 6.283185307179586);
+            double d = pass ? 16000 : rng_range(&r, 20, 100);
+            struct vertex v[2] = { line_end(cx - d * cos(a), cy - d * sin(a), &r),
+                                   line_end(cx + d * cos(a), cy + d * sin(a), &r) };
+            reference_line_mask(v, W, H, want);
+            dda_mask(v, W, H, got);
+            for (int p = 0; p < W * H; p++)
+                *(pass ? &far : &near) += want[p] != got[p];
+        }
+    cr_log_info("float DDA: %d pixels differ near the origin, %d with ends 16,000 px away\n", near, far);
+    cr_assert_gt(far, 10 * (near + 10), "far %d, near %d", far, near);
+    free(want);
+    free(got);
+}
+
+/* A line as the rectangle of width 1 around it, two triangles under the
+ * top-left rule (how a triangle rasterizer draws a wide line). */
+static void quad_mask(const struct vertex v[2], int w, int h, uint8_t *mask)
+{
+    double dx = v[1].x - v[0].x, dy = v[1].y - v[0].y, len = sqrt(dx * dx + dy * dy);
+    if (len == 0)
+        return;
+    double nx = -dy / len * 0.5, ny = dx / len * 0.5;
+    struct vertex q[4] = { v[0], v[1], v[1], v[0] };
+    q[0].x += nx, q[0].y += ny, q[1].x += nx, q[1].y += ny;
+    q[2].x -= nx, q[2].y -= ny, q[3].x -= nx, q[3].y -= ny;
+    struct vertex t0[3] = { q[0], q[1], q[2] }, t1[3] = { q[0], q[2], q[3] };
+    struct tri_setup t;
+    uint8_t *m = calloc((size_t)w * h, 1);
+    cr_assert(m);
+    if (tri_setup(&t, t0, w, h))
+        reference_mask(&t, m);
+    if (tri_setup(&t, t1, w, h))
+        reference_mask(&t, m);
+    for (int p = 0; p < w * h; p++)
+        mask[p] += m[p];
+    free(m);
+}
+
+Test(line_exhibits, two_thin_triangles_are_not_the_diamond_rule)
+{
+    struct rng r = rng_for(3412);
+    int differ = 0, lit = 0;
+    for (int i = 0; i < 1000; i++) {
+        struct vertex v[2];
+        random_line(&r, LK_RANDOM, v);
+        uint8_t want[TW * TH] = { 0 }, got[TW * TH] = { 0 };
+        oracle_mask(v, TW, TH, want);
+        quad_mask(v, TW, TH, got);
+        for (int p = 0; p < TW * TH; p++)
+            differ += want[p] != got[p], lit += want[p];
+    }
+    cr_log_info("two triangles of width 1: %d of %d pixels differ\n", differ, lit);
+    cr_assert_gt(differ, lit / 50, "%d of %d differ", differ, lit);
+}
