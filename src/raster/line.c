@@ -157,7 +157,12 @@ void line_shade(const struct line_setup *l, int px, int py, double *z, double rg
  * y-major is the same with x and y exchanged; the moved line at y = cy has
  * x = (...) / dy + e - (dx / dy) e^2, whose e term is always +1: a crossing
  * on a column boundary goes right, and the bias is 0. */
-void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y), void *ctx)
+typedef void (*plot_fn)(void *ctx, int x, int y);
+
+/* Compiled into each caller with its plot (always_inline, plot a
+ * constant): line_draw's shading inlined in the loop, no call per pixel. */
+static inline __attribute__((always_inline)) void
+walk(const struct line_setup *l, plot_fn plot, void *ctx)
 {
     if (l->empty)
         return;
@@ -196,6 +201,11 @@ void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y)
     }
 }
 
+void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y), void *ctx)
+{
+    walk(l, plot, ctx);
+}
+
 /* --- drawing into a target ------------------------------------------------------ */
 
 struct line_plot {
@@ -213,5 +223,5 @@ static void plot_shaded(void *ctx, int x, int y)
 
 void line_draw(const struct line_setup *l, struct target *fb)
 {
-    line_walk(l, plot_shaded, &(struct line_plot){ l, fb });
+    walk(l, plot_shaded, &(struct line_plot){ l, fb });
 }
