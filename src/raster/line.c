@@ -32,6 +32,8 @@ bool line_setup(struct line_setup *l, const struct vertex v[2], int w, int h)
     l->dx = (int64_t)l->x[1] - l->x[0];
     l->dy = (int64_t)l->y[1] - l->y[0];
     l->x_major = abs64(l->dx) >= abs64(l->dy);
+    int64_t len2 = l->dx * l->dx + l->dy * l->dy;
+    l->inv_len2 = len2 ? 1.0 / (double)len2 : 0;
     l->target_w = w;
     l->target_h = h;
     /* The moved segment's x runs over [min x + e, max x + e]: a diamond of
@@ -106,26 +108,6 @@ void line_reference(const struct line_setup *l, void (*cover)(void *ctx, int x, 
         for (int x = l->minx; x <= l->maxx; x++)
             if (line_draws(l, x, y))
                 cover(ctx, x, y);
-}
-
-double line_param(const struct line_setup *l, int px, int py)
-{
-    int64_t len2 = l->dx * l->dx + l->dy * l->dy;
-    if (len2 == 0)
-        return 0;
-    int64_t dot = (pixel_centre(px) - l->x[0]) * l->dx + (pixel_centre(py) - l->y[0]) * l->dy;
-    double t = (double)dot / (double)len2;
-    return t < 0 ? 0 : t > 1 ? 1 : t;
-}
-
-void line_shade(const struct line_setup *l, int px, int py, double *z, double rgb[3])
-{
-    double t = line_param(l, px, py);
-    const struct vertex *a = &l->v[0], *b = &l->v[1];
-    *z = (1 - t) * a->z + t * b->z;
-    rgb[0] = (1 - t) * a->r + t * b->r;
-    rgb[1] = (1 - t) * a->g + t * b->g;
-    rgb[2] = (1 - t) * a->b + t * b->b;
 }
 
 /* --- the walk: one pixel per column (or row) in the middle, the rule at the ends ---

@@ -37,6 +37,7 @@ struct line_setup {
     int32_t x[2], y[2];         /* snapped, 1/256 pixel */
     int64_t dx, dy;             /* B - A, 1/256 pixel */
     bool x_major;               /* |dx| >= |dy|: one pixel per column in its middle */
+    double inv_len2;            /* 1 / |B - A|^2 (0 when A = B) */
     int target_w, target_h;
     /* the pixels whose diamond the moved segment may meet, clamped to the target */
     int minx, miny, maxx, maxy;
@@ -79,8 +80,24 @@ void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y)
 /* The position along the segment of pixel (px, py)'s centre c,
  * t = ((c - A).(B - A)) / |B - A|^2 on the snapped ends, clamped to [0, 1];
  * and z and colour there, (1 - t) a_A + t a_B (linear in the screen). */
-double line_param(const struct line_setup *l, int px, int py);
-void line_shade(const struct line_setup *l, int px, int py, double *z, double rgb[3]);
+static inline double line_param(const struct line_setup *l, int px, int py)
+{
+    /* the dot product exact (below 2^48), one rounding in the product */
+    int64_t dot = (pixel_centre(px) - l->x[0]) * l->dx + (pixel_centre(py) - l->y[0]) * l->dy;
+    double t = (double)dot * l->inv_len2;
+    return t < 0 ? 0 : t > 1 ? 1 : t;
+}
+
+static inline void line_shade(const struct line_setup *l, int px, int py, double *z, double rgb[3])
+{
+    double t = line_param(l, px, py);
+    const struct vertex *a = &l->v[0], *b = &l->v[1];
+    *z = (1 - t) * a->z + t * b->z;
+    rgb[0] = (1 - t) * a->r + t * b->r;
+    rgb[1] = (1 - t) * a->g + t * b->g;
+    rgb[2] = (1 - t) * a->b + t * b->b;
+}
+
 
 /* Draw the walk's pixels into fb, each with its z and colour by
  * line_shade, through target_write (counted, depth-tested: the nearer
