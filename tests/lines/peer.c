@@ -17,7 +17,9 @@
  * (an exhibit: llvmpipe decides the diamond in float, and its own FIXME in
  * lp_setup_line.c says so) and the time of each, interleaved run by run
  * (FACTS.md: only ratios taken in one run mean anything), median and
- * minimum of the runs.
+ * minimum of the runs. First, CONVENTIONS' examples drawn both ways (where
+ * a segment runs along pixel boundaries, llvmpipe takes the row above and
+ * the column to the left: the other perturbation).
  */
 #define _DEFAULT_SOURCE   /* setenv */
 #include <math.h>
@@ -181,6 +183,68 @@ static void to_gl(struct gl_vertex *g, const struct vertex *v)
     g->rgba[0] = unorm8(v->r), g->rgba[1] = unorm8(v->g), g->rgba[2] = unorm8(v->b), g->rgba[3] = 255;
 }
 
+/* llvmpipe's pixels of one segment, y down, into mask (W x H). */
+static void gl_line(const struct vertex v[2], uint8_t *stencil, uint8_t *mask)
+{
+    struct gl_vertex gv[2];
+    to_gl(&gv[0], &v[0]);
+    to_gl(&gv[1], &v[1]);
+    glVertexPointer(4, GL_FLOAT, sizeof *gv, &gv[0].pos);
+    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof *gv, &gv[0].rgba);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
+    glClearStencil(0);
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glDrawArrays(GL_LINES, 0, 2);
+    glReadPixels(0, 0, W, H, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+    glDisable(GL_STENCIL_TEST);
+    for (int y = 0; y < H; y++)
+        memcpy(mask + (size_t)y * W, stencil + (size_t)(H - 1 - y) * W, W);
+}
+
+static void mask_pixel(void *ctx, int x, int y)
+{
+    ((uint8_t *)ctx)[(size_t)y * W + x]++;
+}
+
+/* CONVENTIONS' examples, both ways: the pixels of the first rows and
+ * columns, '#' drawn, as the exact rule and llvmpipe draw them. */
+static void probe_examples(uint8_t *stencil)
+{
+    static const struct { const char *what; double x0, y0, x1, y1; } ex[] = {
+        { "centre of pixel 0 to centre of pixel 5, row 1", 0.5, 1.5, 5.5, 1.5 },
+        { "horizontal on y = 2", 0.25, 2, 5.25, 2 },
+        { "vertical on x = 2", 2, 0.25, 2, 4.25 },
+        { "45 degrees through diamonds' corners", 1, 1, 5, 5 },
+        { "45 degrees up through diamonds' corners", 1, 5, 5, 1 },
+    };
+    uint8_t *gl = malloc((size_t)W * H), *exact = malloc((size_t)W * H);
+    printf("CONVENTIONS' examples (exact rule | llvmpipe), rows 0..5, columns 0..7:\n\n");
+    for (size_t k = 0; k < sizeof ex / sizeof ex[0]; k++) {
+        struct vertex v[2] = { end(ex[k].x0, ex[k].y0), end(ex[k].x1, ex[k].y1) };
+        gl_line(v, stencil, gl);
+        memset(exact, 0, (size_t)W * H);
+        struct line_setup l;
+        line_setup(&l, v, W, H);
+        line_walk(&l, mask_pixel, exact);
+        printf("    %s, (%g, %g) to (%g, %g):\n", ex[k].what, ex[k].x0, ex[k].y0, ex[k].x1, ex[k].y1);
+        for (int y = 0; y < 6; y++) {
+            printf("        ");
+            for (int x = 0; x < 8; x++)
+                putchar(exact[(size_t)y * W + x] ? '#' : '.');
+            printf("  |  ");
+            for (int x = 0; x < 8; x++)
+                putchar(gl[(size_t)y * W + x] ? '#' : '.');
+            putchar('\n');
+        }
+    }
+    putchar('\n');
+    free(gl);
+    free(exact);
+}
+
 int main(void)
 {
     setenv("GALLIUM_DRIVER", "llvmpipe", 1);
@@ -208,6 +272,9 @@ int main(void)
     glDisable(GL_LINE_SMOOTH);
     printf("%s, %s; %d x %d, one thread each, %d runs interleaved\n\n",
            (const char *)glGetString(GL_VERSION), (const char *)glGetString(GL_RENDERER), W, H, RUNS);
+
+    probe_examples(stencil);
+    rng_state = 0x1e5cafe;          /* the same scenes whatever the probe drew */
     printf("| scene | segments | pixels (exact) | llvmpipe differs | exact ms (median, min) | "
            "llvmpipe ms (median, min) | ratio |\n| --- | --- | --- | --- | --- | --- | --- |\n");
 
