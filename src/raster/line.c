@@ -132,7 +132,9 @@ void line_reference(const struct line_setup *l, void (*cover)(void *ctx, int x, 
  * the e term decides: it moves the crossing up (the row above) iff dy / dx
  * > 0, else down (dy = 0: e^2 moves it down). Hence bias = 1 iff dx dy > 0,
  * and row = floor((n - bias) / (256 |dx|)). Bresenham's error term is the
- * remainder, err = n - bias - row 256 |dx| in [0, 256 |dx|): one column on
+ * remainder, err = n - bias - row 256 |dx| in [0, 256 |dx|) (err / |dx| is
+ * how far, in 1/256 pixel, the crossing lies below the row's top: the
+ * error term in sub-pixels, kept whole by the factor |dx|). One column on
  * (256 units of x in the walk's direction) adds 256 dy to n, and the row
  * moves by at most one, as the error leaves [0, 256 |dx|).
  *
