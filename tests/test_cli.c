@@ -543,6 +543,10 @@ Test(cli, help_and_version_exit_0_on_stdout, .fini = remove_live_dirs)
             if (i == 0)
                 cr_assert(strstr(r.out, "--dump-coverage") && strstr(r.out, "--scene"),
                           "%s --help does not describe the options", p.name[k]);
+            const struct lesson *l = lesson_of(p.name[k]);
+            if (i == 0 && l && !l->lines)
+                cr_assert(strstr(r.out, "\nLines: a scene line 'line ") && strstr(r.out, "ignores it"),
+                          "%s --help does not say that it ignores lines:\n%s", p.name[k], r.out);
             result_free(&r);
         }
     }
