@@ -195,11 +195,23 @@ void line_walk(const struct line_setup *l, void (*plot)(void *ctx, int x, int y)
 struct line_plot {
     const struct line_setup *l;
     struct target *fb;
+    ptrdiff_t ahead;    /* PREFETCH_STEPS steps on along the line, in pixels of the target */
 };
+
+/* A long line visits a new row (a new cache line of colour and depth) at
+ * every step of a y-major walk: asking for the pixel a few steps on while
+ * this one is shaded hides most of the wait for memory. */
+#define PREFETCH_STEPS 8
 
 static void plot_shaded(void *ctx, int x, int y)
 {
     const struct line_plot *p = ctx;
+    size_t n = (size_t)p->fb->w * (size_t)p->fb->h;
+    size_t next = (size_t)y * (size_t)p->fb->w + (size_t)x + (size_t)p->ahead;   /* wraps: unsigned */
+    if (next < n) {
+        __builtin_prefetch(p->fb->depth + next, 1);
+        __builtin_prefetch(p->fb->color + next, 1);
+    }
     double z, rgb[3];
     line_shade(p->l, x, y, &z, rgb);
     target_write(p->fb, x, y, (float)z, pack_rgb(rgb[0], rgb[1], rgb[2]));
@@ -207,5 +219,10 @@ static void plot_shaded(void *ctx, int x, int y)
 
 void line_draw(const struct line_setup *l, struct target *fb)
 {
-    walk(l, plot_shaded, &(struct line_plot){ l, fb });
+    /* PREFETCH_STEPS steps on: along the major axis, and the minor's share */
+    int64_t du = l->x_major ? l->dx : l->dy, dv = l->x_major ? l->dy : l->dx;
+    int64_t su = du > 0 ? 1 : -1, dminor = du ? PREFETCH_STEPS * dv / (du * su) : 0;
+    ptrdiff_t ahead = l->x_major ? (ptrdiff_t)(PREFETCH_STEPS * su + dminor * fb->w)
+                                 : (ptrdiff_t)(PREFETCH_STEPS * su * fb->w + dminor);
+    walk(l, plot_shaded, &(struct line_plot){ l, fb, ahead });
 }
