@@ -1,7 +1,7 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
 #          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
-#          make skeletons (lessons/*/exercise.c from the answers)
+#          make bench-lines (lines beside llvmpipe) | make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
 ifeq ($(MAKELEVEL),0)             # build on every core unless told (make -j1); sub-makes share the jobs
@@ -19,7 +19,8 @@ MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.pa
 TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
             $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o)
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
-LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
+# the first lesson, 01 (lesson 00, lines, is a warm-up before it)
+LESSON   ?= $(firstword $(subst -, ,$(firstword $(filter-out 00-%,$(LESSONS)))))
 nn        = $(firstword $(subst -, ,$(notdir $(patsubst %/,%,$(dir $1)))))
 
 # CFLAGS, LDFLAGS and LDLIBS are the user's (make CFLAGS=-O0 still builds);
@@ -54,7 +55,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
+.PHONY: all run test figures bench bench-lines soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -99,6 +100,12 @@ $(B)/obj/tests/bench/%.o: TS_CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
 $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)): $(B)/osmesa.flag
 $(B)/tristep-bench: $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/bench/*.c)) $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	$(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
+
+# Lines beside llvmpipe's GL_LINES (tests/lines/peer.c): make bench-lines.
+$(B)/obj/tests/lines/peer.o: TS_CFLAGS += $(if $(OSMESA),-DTRISTEP_OSMESA)
+$(B)/obj/tests/lines/peer.o: $(B)/osmesa.flag
+$(B)/lines-peer: $(B)/obj/tests/lines/peer.o $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) $(OSMESA) -o $@
+bench-lines: deps-bench ; @$(MAKE) --no-print-directory $(B)/lines-peer && $(B)/lines-peer
 
 # The search for lesson 06's walk-order cracks (tests/search/cracks.c).
 $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a ; $(LD_ALL) $^ $(LIBS) -o $@
@@ -222,7 +229,7 @@ grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/lib
 	  GRADE_LIBS='$(LIBS)' sh src/exercise/grade.sh
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/lines-peer $(B)/tsan-tiles $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus

@@ -16,7 +16,7 @@
 
 #define TRISTEP_LAYERS \
     "util",    /* writing files all or nothing */ \
-    "raster",  /* snapping, triangle setup, the fill rule, the target */ \
+    "raster",  /* snapping, triangle setup, the fill rule, the target, lines' diamond rule */ \
     "scene",   /* scene files (2-D and 3-D), OBJ files, the built-in scenes */ \
     "trace",   /* the narration: events, counters, NARRATE */ \
     "front",   /* the 3-D front end: 3-D scene -> screen triangles, narrated */ \

@@ -252,6 +252,10 @@ struct lesson {
      * one sentence for --help, or NULL: in its vertex colour, the image
      * unread (every lesson before texture mapping) */
     const char *texturing;
+    /* How it draws a scene's `line`s, one sentence for --help, or NULL:
+     * it reads and checks them and draws the triangles alone (every lesson
+     * but lesson 00) */
+    const char *lines;
 
     struct lesson_exercise exercise;    /* lessons/NN-name/exercise.c */
 };

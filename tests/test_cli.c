@@ -278,6 +278,12 @@ static const struct bad_scene bad_scenes[] = {
     { "texture_coordinate_huge_overflowed_checker_square", "size 8 8\ntexture checker 4\n"
       "tri 1 1 1 1 1 1 1e300 0  6 1 1 1 1 1 0 0  1 6 1 1 1 1 0 1\n", 0, 3 },
     { "t below -1e6", "size 8 8\ntri 1 1 1 1 1 1 0 0  6 1 1 1 1 1 0 -1000001  1 6 1 1 1 1 0 1\n", 0, 2 },
+    { "line with 11 numbers", "size 8 8\nline 1 1 1 1 1 1  6 1 1 1 1\n", 0, 2 },
+    { "line with 13 numbers", "size 8 8\nline 1 1 1 1 1 1  6 1 1 1 1 1 1\n", 0, 2 },
+    { "line before size", "line 1 1 1 1 1 1  6 1 1 1 1 1\nsize 8 8\n", 0, 1 },
+    { "line end at x = 16384", "size 8 8\nline 1 1 1 1 1 1  16384 1 1 1 1 1\n", 0, 2 },
+    { "line with z = 0", "size 8 8\ntri " TRI_OK "\nline 1 1 0 1 1 1  6 1 1 1 1 1\n", 0, 3 },
+    { "line colour nan", "size 8 8\nline 1 1 1 1 nan 1  6 1 1 1 1 1\n", 0, 2 },
     { "error after good triangles", "size 8 8\ntri " TRI_OK "\ntri " TRI_OK "\n\ntri " TRI_OK " 7\n", 0, 5 },
 };
 #define N_BAD_SCENES (sizeof bad_scenes / sizeof bad_scenes[0])
@@ -311,6 +317,7 @@ Test(cli, malformed_scenes_in_process)
                   "'%s' was accepted", b->name);
         cr_assert_eq(s.ntris, 0, "%s: the scene is left empty", b->name);
         cr_assert_null(s.tris, "%s: the scene is left empty", b->name);
+        cr_assert(s.nlines == 0 && !s.lines, "%s: the scene is left without lines", b->name);
         char line[600];
         snprintf(line, sizeof line, "%s\n", err);
         expect_located_message(line, "bad.scene", b->line, b->name);
@@ -536,6 +543,10 @@ Test(cli, help_and_version_exit_0_on_stdout, .fini = remove_live_dirs)
             if (i == 0)
                 cr_assert(strstr(r.out, "--dump-coverage") && strstr(r.out, "--scene"),
                           "%s --help does not describe the options", p.name[k]);
+            const struct lesson *l = lesson_of(p.name[k]);
+            if (i == 0 && l && !l->lines)
+                cr_assert(strstr(r.out, "\nLines: a scene line 'line ") && strstr(r.out, "ignores it"),
+                          "%s --help does not say that it ignores lines:\n%s", p.name[k], r.out);
             result_free(&r);
         }
     }
@@ -759,6 +770,106 @@ Test(cli, dump_coverage_equals_the_reference_byte_for_byte, .timeout = 180, .fin
 
 /* Regression: --subpixel-bits 0 was read as "the default" and snapped to 8
  * bits. Every precision must match the reference snapped the same way. */
+/* Scene text `text` with a `line` statement after every line that stands
+ * after `size` (the first one at the top of the screen's corner, the others
+ * across it, through pixel centres and corners, one of zero length, one
+ * far off screen): lessons 01 to 09 read them and draw the triangles alone. */
+static char *with_lines(const char *text)
+{
+    static const char *const lines[] = {
+        "line 0 0 1  1 0 0   63.5 40.25 1  0 1 0\n",
+        "line 2.5 2.5 0.5  1 1 1   2.5 2.5 0.5  1 1 1\n",
+        "line -16384 -3 1e-6  0 0 1   16383.99 7 1e6  1 1 0\n",
+        "line 10 1 0.001  1 1 1   10 30 0.001  0 0 0\n",
+    };
+    size_t n = strlen(text), cap = 2 * n + 4096, len = 0;
+    char *out = malloc(cap);
+    cr_assert_not_null(out);
+    bool sized = false;
+    int k = 0;
+    for (const char *c = text; *c;) {
+        const char *nl = strchr(c, '\n');
+        size_t m = nl ? (size_t)(nl - c) + 1 : strlen(c);
+        cr_assert_lt(len + m + 200, cap);
+        memcpy(out + len, c, m);
+        len += m;
+        if (!nl)
+            out[len++] = '\n';
+        sized = sized || strncmp(c, "size", 4) == 0;
+        if (sized) {
+            const char *l = lines[k++ % 4];
+            memcpy(out + len, l, strlen(l));
+            len += strlen(l);
+        }
+        c += m;
+    }
+    out[len] = '\0';
+    return out;
+}
+
+/* Run program on scene file `scene` (its name under d->work), dumping
+ * coverage and image; the bytes of both, their names saved in *pgm, *png. */
+static void dump_both(const char *program, const char *scene, const struct dirs *d,
+                      char **pgm, size_t *npgm, char **png, size_t *npng)
+{
+    char spath[300], cov[300], img[300];
+    snprintf(spath, sizeof spath, "%s/%s", d->work, scene);
+    snprintf(cov, sizeof cov, "%s/out.pgm", d->work);
+    snprintf(img, sizeof img, "%s/out.png", d->work);
+    char *argv[] = { (char *)program, "--scene", spath, "--dump-coverage", cov, "--dump-image", img, NULL };
+    struct result r = run(argv, d->scratch);
+    cr_assert_eq(r.status, 0, "%s --scene %s: exit %d (stderr: %s)", program, spath, r.status, r.err);
+    result_free(&r);
+    *pgm = slurp(cov, npgm);
+    *png = slurp(img, npng);
+    cr_assert(*pgm && *png, "%s --scene %s: no output", program, spath);
+    unlink(cov);
+    unlink(img);
+}
+
+Test(cli, line_statements_change_no_pixel_of_lessons_01_to_09, .timeout = 120, .fini = remove_live_dirs)
+{
+    struct programs p;
+    find_programs(&p);
+    static struct dirs d;
+    dirs_make(&d);
+    int tested = 0;
+    for (int k = 0; k < p.n; k++) {
+        const struct lesson *l = lesson_of(p.name[k]);
+        cr_assert_not_null(l, "program %s has no lesson", p.name[k]);
+        if (l->lines)
+            continue;       /* the lesson that draws lines */
+        /* the lesson's own built-in scene (3-D from lesson 06 on), a 2-D
+         * one under an image texture and one of triangles crossing in depth */
+        const char *names[] = { l->builtin_scene, "texture-close", "overlap" };
+        for (int i = 0; i < 3; i++) {
+            const struct builtin_scene *b = builtin_find(names[i]);
+            cr_assert_not_null(b, "no built-in scene %s", names[i]);
+            char *text = with_lines(b->text);
+            cr_assert_not_null(strstr(text, "\nline "));
+            char plain[300], lined[300];
+            snprintf(plain, sizeof plain, "%s/plain.scene", d.work);
+            snprintf(lined, sizeof lined, "%s/lines.scene", d.work);
+            write_file(plain, b->text, strlen(b->text));
+            write_file(lined, text, strlen(text));
+            char *pgm[2], *png[2];
+            size_t npgm[2], npng[2];
+            dump_both(p.path[k], "plain.scene", &d, &pgm[0], &npgm[0], &png[0], &npng[0]);
+            dump_both(p.path[k], "lines.scene", &d, &pgm[1], &npgm[1], &png[1], &npng[1]);
+            cr_assert(npgm[0] == npgm[1] && memcmp(pgm[0], pgm[1], npgm[0]) == 0,
+                      "%s, builtin:%s: the coverage changed with line statements", p.name[k], names[i]);
+            cr_assert(npng[0] == npng[1] && memcmp(png[0], png[1], npng[0]) == 0,
+                      "%s, builtin:%s: the image changed with line statements", p.name[k], names[i]);
+            for (int j = 0; j < 2; j++)
+                free(pgm[j]), free(png[j]);
+            free(text);
+            tested++;
+        }
+    }
+    cr_assert_geq(tested, 27, "lessons 01 to 09, three scenes each");
+    dirs_remove(&d);
+}
+
 Test(cli, subpixel_bits_0_was_read_as_8, .timeout = 60, .fini = remove_live_dirs)
 {
     struct programs p;

@@ -180,8 +180,12 @@ static void random_scene(struct rng *r, struct scene *s)
             if (!(v[k].z > 0))
                 v[k].z = 1;
         }
+        if (rng_chance(r, 0.3))     /* a line here, between the triangles */
+            cr_assert(scene_add_line(s, v));
         cr_assert(scene_add(s, v));
     }
+    if (rng_chance(r, 0.3))
+        cr_assert(scene_add_line(s, (struct vertex[2]){ test_vertex(0.5, 0.5), test_vertex(-7, 3) }));
 }
 
 static char *write_to_string(const struct scene *s, size_t *len)
@@ -227,10 +231,54 @@ Test(scene, write_then_parse_gives_identical_values)
                     cr_assert(x[f] == y[f], "case %d, triangle %d, vertex %d, %c: wrote %.17g, read %.17g\n%s",
                               i, t, k, "xyzrgbst"[f], x[f], y[f], text);
             }
+        cr_assert(a.nlines == b.nlines, "case %d: %d vs %d lines", i, a.nlines, b.nlines);
+        for (int l = 0; l < a.nlines; l++) {
+            cr_assert(a.lines[l].after == b.lines[l].after, "case %d, line %d: after %d triangles, "
+                      "read back after %d", i, l, a.lines[l].after, b.lines[l].after);
+            for (int k = 0; k < 2; k++) {
+                const struct vertex *u = &a.lines[l].v[k], *v = &b.lines[l].v[k];
+                const double x[6] = { u->x, u->y, u->z, u->r, u->g, u->b };
+                const double y[6] = { v->x, v->y, v->z, v->r, v->g, v->b };
+                for (int f = 0; f < 6; f++)
+                    cr_assert(x[f] == y[f], "case %d, line %d, end %d, %c: wrote %.17g, read %.17g",
+                              i, l, k, "xyzrgb"[f], x[f], y[f]);
+            }
+        }
         free(text);
         scene_free(&a);
         scene_free(&b);
     }
+}
+
+Test(scene, line_statements_in_file_order)
+{
+    struct scene s = parse_ok(
+        "size 64 48\n"
+        "line 0.5 1 2  1 0 0   -16384 16383.5 1e6  0 0.5 1\n"
+        "tri  10.5 4 1   1 0 0    50 20.25 2   0 1 0    20 40 1.5   0 0 1\n"
+        "line 3 3 1  1 1 1   3 3 1  0 0 0   # zero length: read, draws nothing\n"
+        "line 1 2 3  0 0 0   4 5 6  1 1 1\n");
+    cr_assert_eq(s.ntris, 1, "a line is no triangle");
+    cr_assert_eq(s.nlines, 3);
+    expect_vertex(&s.lines[0].v[0], (double[8]){ 0.5, 1, 2, 1, 0, 0, 0, 0 }, "line 1 A");
+    expect_vertex(&s.lines[0].v[1], (double[8]){ -16384, 16383.5, 1e6, 0, 0.5, 1, 0, 0 }, "line 1 B");
+    expect_vertex(&s.lines[2].v[1], (double[8]){ 4, 5, 6, 1, 1, 1, 0, 0 }, "line 3 B");
+    cr_expect_eq(s.lines[0].after, 0, "the first line comes before the triangle");
+    cr_expect_eq(s.lines[1].after, 1);
+    cr_expect_eq(s.lines[2].after, 1);
+    struct scene c;
+    cr_assert(scene_copy(&c, &s));
+    cr_assert(c.nlines == 3 && c.lines != s.lines && memcmp(c.lines, s.lines, 3 * sizeof *c.lines) == 0,
+              "a copy has lines of its own, the same");
+    scene_free(&c);
+    scene_free(&s);
+    /* in a 3-D scene, a line stands among the world triangles */
+    s = parse_ok("size 64 48\ncamera 0 0 5  0 0 0  0 1 0  60 0.1 100\n"
+                 "tri3 0 0 0 1 1 1  1 0 0 1 1 1  0 1 0 1 1 1\n"
+                 "line 1 2 3  0 0 0   4 5 6  1 1 1\n");
+    cr_assert_eq(s.nlines, 1);
+    cr_expect_eq(s.lines[0].after, 1);
+    scene_free(&s);
 }
 
 /* --- reading numbers: the same doubles as strtod, bit for bit ---------------------- */

@@ -76,6 +76,10 @@ static void usage(const struct lesson *l, FILE *out)
         "'texture checker N' darkens the checker's dark squares, as every program does.\n",
         l->texturing ? l->texturing : "in its vertex colour (the image is read, and checked, but not drawn)");
     fprintf(out,
+        "\nLines: a scene line 'line x0 y0 z0 r0 g0 b0  x1 y1 z1 r1 g1 b1' is a segment;\n"
+        "this program %s.\n",
+        l->lines ? l->lines : "reads and checks it, then ignores it: it draws the triangles alone");
+    fprintf(out,
         "\nExit status: 0 success, 1 failure while running, 2 bad command line or input.\n");
 }
 

@@ -122,6 +122,33 @@ static bool in_unit(double v)
     return v >= 0.0 && v <= 1.0;
 }
 
+/* One vertex of a tri or an end of a line, d[0..per) = x y z r g b [s t],
+ * checked against the ranges of CONVENTIONS.md; `which` names it in
+ * messages ("vertex 2", "end 1"). */
+static bool check_vertex(struct parser *p, const char *which, const double *d, int per,
+                         struct vertex *v)
+{
+    static const char *const names = "xyzrgbst";
+    for (int c = 0; c < 2; c++)
+        if (!(d[c] >= -COORD_LIMIT && d[c] < COORD_LIMIT))
+            return fail(p, "%s: %c = %g is outside [-%d, %d)", which, names[c], d[c],
+                        COORD_LIMIT, COORD_LIMIT);
+    if (!(d[2] > 0))
+        return fail(p, "%s: z = %g must be positive (view-space depth)", which, d[2]);
+    if (!(d[2] >= SCENE_Z_MIN && d[2] <= SCENE_Z_MAX))
+        return fail(p, "%s: z = %g is outside [%g, %g]", which, d[2], SCENE_Z_MIN, SCENE_Z_MAX);
+    for (int c = 3; c < 6; c++)
+        if (!in_unit(d[c]))
+            return fail(p, "%s: %c = %g is outside [0, 1]", which, names[c], d[c]);
+    for (int c = 6; c < per; c++)
+        if (!(fabs(d[c]) <= SCENE_ST_MAX))
+            return fail(p, "%s: %c = %g is outside [-%g, %g]", which, names[c], d[c],
+                        SCENE_ST_MAX, SCENE_ST_MAX);
+    *v = (struct vertex){ .x = d[0], .y = d[1], .z = d[2], .r = d[3], .g = d[4], .b = d[5],
+                          .s = per == 8 ? d[6] : 0, .t = per == 8 ? d[7] : 0 };
+    return true;
+}
+
 static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
 {
     if (n != 18 && n != 24)
@@ -134,33 +161,53 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
             return false;
 
     struct vertex v[3];
-    static const char *const names = "xyzrgbst";
     for (int i = 0; i < 3; i++) {
-        const double *d = num + i * per;
-        for (int c = 0; c < 2; c++)
-            if (!(d[c] >= -COORD_LIMIT && d[c] < COORD_LIMIT))
-                return fail(p, "vertex %d: %c = %g is outside [-%d, %d)",
-                            i + 1, names[c], d[c], COORD_LIMIT, COORD_LIMIT);
-        if (!(d[2] > 0))
-            return fail(p, "vertex %d: z = %g must be positive (view-space depth)", i + 1, d[2]);
-        if (!(d[2] >= SCENE_Z_MIN && d[2] <= SCENE_Z_MAX))
-            return fail(p, "vertex %d: z = %g is outside [%g, %g]", i + 1, d[2], SCENE_Z_MIN,
-                        SCENE_Z_MAX);
-        for (int c = 3; c < 6; c++)
-            if (!in_unit(d[c]))
-                return fail(p, "vertex %d: %c = %g is outside [0, 1]", i + 1, names[c], d[c]);
-        for (int c = 6; c < per; c++)
-            if (!(fabs(d[c]) <= SCENE_ST_MAX))
-                return fail(p, "vertex %d: %c = %g is outside [-%g, %g]", i + 1, names[c], d[c],
-                            SCENE_ST_MAX, SCENE_ST_MAX);
-        v[i] = (struct vertex){ .x = d[0], .y = d[1], .z = d[2],
-                                .r = d[3], .g = d[4], .b = d[5],
-                                .s = per == 8 ? d[6] : 0, .t = per == 8 ? d[7] : 0 };
+        char which[16];
+        snprintf(which, sizeof which, "vertex %d", i + 1);
+        if (!check_vertex(p, which, num + i * per, per, &v[i]))
+            return false;
     }
     if (per == 8)
         s->has_st = true;
     if (!scene_add_textured(s, v, per == 8 ? p->texture : 0))
         return fail(p, "out of memory after %d triangles", s->ntris);
+    return true;
+}
+
+/* `line x0 y0 z0 r0 g0 b0  x1 y1 z1 r1 g1 b1` (CONVENTIONS.md, "Lines"). */
+static bool parse_lineseg(struct parser *p, struct scene *s, char **tok, int n)
+{
+    if (n != 12)
+        return fail(p, "'line' needs 12 numbers (x y z r g b for each end), got %d", n);
+    double num[12];
+    for (int i = 0; i < n; i++)
+        if (!parse_number(p, tok[i], &num[i]))
+            return false;
+    struct vertex v[2];
+    if (!check_vertex(p, "end 1", num, 6, &v[0]) || !check_vertex(p, "end 2", num + 6, 6, &v[1]))
+        return false;
+    if (!scene_add_line(s, v))
+        return fail(p, "out of memory after %d lines", s->nlines);
+    return true;
+}
+
+bool scene_add_line(struct scene *s, const struct vertex v[2])
+{
+    if (s->nlines == s->lines_cap) {
+        if (s->lines_cap > INT_MAX / 2)
+            return false;
+        int cap = s->lines_cap ? s->lines_cap * 2 : 16;
+        struct scene_line *l = realloc(s->lines, (size_t)cap * sizeof *l);
+        if (!l)
+            return false;
+        s->lines = l;
+        s->lines_cap = cap;
+    }
+    struct scene_line *l = &s->lines[s->nlines++];
+    memset(l, 0, sizeof *l);
+    memcpy(l->v, v, 2 * sizeof *v);
+    /* where it stands among the triangles, in file order */
+    l->after = s->world.camera_line ? s->world.ntris : s->ntris;
     return true;
 }
 
@@ -234,9 +281,14 @@ static bool parse_line(struct parser *p, struct scene *s, char **tok, int n,
                         s->world.camera_line);
         return parse_tri(p, s, tok + 1, n - 1);
     }
+    if (strcmp(kw, "line") == 0) {
+        if (!*size_line)
+            return fail(p, "'line' before 'size' (the size must come first)");
+        return parse_lineseg(p, s, tok + 1, n - 1);
+    }
     if (scene3_keyword(kw))
         return scene3_line(p, s, tok, n);
-    return fail(p, "unknown keyword '%.40s' (expected size, background, texture, tri, "
+    return fail(p, "unknown keyword '%.40s' (expected size, background, texture, tri, line, "
                    "or camera, cull, tri3, obj)", kw);
 }
 
@@ -434,9 +486,23 @@ static void put_numbers(FILE *out, const double *v, int n)
         put_number(out, v[i]);
 }
 
+/* The lines that stand before triangle `tri` of the file, from *next on. */
+static void write_lines(const struct scene *s, FILE *out, int *next, int tri)
+{
+    for (; *next < s->nlines && s->lines[*next].after <= tri; ++*next) {
+        fputs("line", out);
+        for (int k = 0; k < 2; k++) {
+            const struct vertex *v = &s->lines[*next].v[k];
+            fputs(" ", out);
+            put_numbers(out, (const double[]){ v->x, v->y, v->z, v->r, v->g, v->b }, 6);
+        }
+        fputc('\n', out);
+    }
+}
+
 /* A 3-D scene as its camera, culling and world triangles (an `obj` line's
  * triangles written out as tri3 lines: the file stands alone). */
-static bool write_world(const struct scene *s, FILE *out, int current)
+static bool write_world(const struct scene *s, FILE *out, int current, int *line)
 {
     const struct world *w = &s->world;
     static const char *const culls[] = { "none", "back", "front" };
@@ -450,6 +516,7 @@ static bool write_world(const struct scene *s, FILE *out, int current)
     if (w->cull != CULL_NONE)
         fprintf(out, "cull %s\n", culls[w->cull]);
     for (int i = 0; i < w->ntris; i++) {
+        write_lines(s, out, line, i);
         int per = scene_write_texture(s, out, &current, w->tris[i].texture);
         fputs("tri3", out);
         for (int k = 0; k < 3; k++) {
@@ -461,6 +528,7 @@ static bool write_world(const struct scene *s, FILE *out, int current)
         }
         fputc('\n', out);
     }
+    write_lines(s, out, line, INT_MAX);
     return !ferror(out);
 }
 
@@ -471,11 +539,12 @@ bool scene_write(const struct scene *s, FILE *out)
     for (int i = 0; i < 3; i++)
         put_number(out, s->background[i]);
     fputc('\n', out);
-    int current;
+    int current, line = 0;
     scene_write_textures(s, out, &current);
     if (s->world.camera_line)
-        return write_world(s, out, current);
+        return write_world(s, out, current, &line);
     for (int i = 0; i < s->ntris; i++) {
+        write_lines(s, out, &line, i);
         int per = scene_write_texture(s, out, &current, s->tris[i].texture);
         fputs("tri", out);
         for (int k = 0; k < 3; k++) {
@@ -487,6 +556,7 @@ bool scene_write(const struct scene *s, FILE *out)
         }
         fputc('\n', out);
     }
+    write_lines(s, out, &line, INT_MAX);
     return !ferror(out);
 }
 
@@ -494,6 +564,7 @@ void scene_free(struct scene *s)
 {
     scene_textures_release(s);
     free(s->tris);
+    free(s->lines);
     free(s->world.tris);
     free(s->world.from);
     memset(s, 0, sizeof *s);
@@ -504,6 +575,8 @@ bool scene_copy(struct scene *dst, const struct scene *src)
     *dst = *src;
     dst->tris = NULL;
     dst->ntris = dst->cap = 0;
+    dst->lines = NULL;
+    dst->nlines = dst->lines_cap = 0;
     dst->world.tris = NULL;
     dst->world.from = NULL;
     dst->world.ntris = dst->world.cap = 0;
@@ -514,6 +587,13 @@ bool scene_copy(struct scene *dst, const struct scene *src)
     for (int i = 0; i < src->world.ntris; i++)
         if (!world_add(&dst->world, &src->world.tris[i]))
             goto oom;
+    if (src->nlines) {
+        dst->lines = malloc((size_t)src->nlines * sizeof *dst->lines);
+        if (!dst->lines)
+            goto oom;
+        memcpy(dst->lines, src->lines, (size_t)src->nlines * sizeof *dst->lines);
+        dst->nlines = dst->lines_cap = src->nlines;
+    }
     if (src->world.from) {
         dst->world.from = malloc((size_t)(src->ntris ? src->ntris : 1) * sizeof *dst->world.from);
         if (!dst->world.from)

@@ -14,6 +14,9 @@
  * which applies to the tri lines with 24 numbers (tri3 lines with 24, obj
  * lines) that follow it, until the next texture line.
  *
+ * Lines (lesson 00 draws them; lessons 01 to 09 read and ignore them):
+ *     line  x0 y0 z0 r0 g0 b0   x1 y1 z1 r1 g1 b1    a segment from end 1 to end 2
+ *
  * 3-D scenes (lesson 06 onward, read by scene3.c and obj.c): instead of `tri`,
  *     camera  0 1 5   0 0 0   0 1 0   60  0.1 100   eye, target, up, fovy, near, far
  *     cull none                                      none (default), back or front
@@ -44,6 +47,14 @@ struct scene_tri {
     struct vertex v[3];
     int texture;                       /* 0: no image (the checker if the scene has one);
                                         * k > 0: scene_texture(s, k) */
+};
+
+/* A `line` (CONVENTIONS.md, "Lines"): from v[0] (A, the start) to v[1] (B). */
+struct scene_line {
+    struct vertex v[2];
+    /* how many triangles of the file (tri, or a 3-D scene's world
+     * triangles) come before it: the file's order of lines and triangles */
+    int after;
 };
 
 /* --- 3-D scenes (CONVENTIONS.md, "3-D scenes") ----------------------------- */
@@ -85,6 +96,8 @@ struct scene {
     bool has_st;              /* some triangle gave texture coordinates */
     int ntris, cap;
     struct scene_tri *tris;   /* screen space; in a 3-D scene, what the front end made */
+    int nlines, lines_cap;
+    struct scene_line *lines; /* its `line`s, in file order (lesson 00 draws them) */
     struct world world;       /* a 3-D scene's camera and triangles (world.camera_line > 0) */
     struct scene_textures *textures;  /* its image textures, shared by its copies; NULL: none */
 };
@@ -109,6 +122,17 @@ bool scene_add(struct scene *s, const struct vertex v[3]);
 /* The same for a triangle under image texture k (0: none). */
 bool scene_add_textured(struct scene *s, const struct vertex v[3], int texture);
 bool world_add(struct world *w, const struct world_tri *t);
+/* Append a line from v[0] to v[1], after the triangles there are so far. */
+bool scene_add_line(struct scene *s, const struct vertex v[2]);
+
+/* What lesson 00 draws of a scene (CONVENTIONS.md, "Lines"), in file order:
+ * its `line`s and the edges of its screen triangles (a 3-D scene's after
+ * the front end has made them), each edge AB, BC, CA in the order the
+ * triangle gives them and each edge that two triangles share once, from
+ * its lexicographically smaller snapped end (x, then y). Returns a fresh
+ * array of *n segments, ends v[2 i] and v[2 i + 1], to free (never NULL
+ * for an empty scene); NULL when out of memory. */
+struct vertex *scene_wireframe(const struct scene *s, int *n);
 
 /* The scene's image textures, numbered from 1 as triangles name them:
  * scene_texture(s, k) for k in 1..scene_texture_count(s), NULL otherwise. */

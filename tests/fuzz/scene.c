@@ -1,4 +1,5 @@
-/* scene.c - fuzz harness: scene text -> scene_parse (fuzz.h). */
+/* scene.c - fuzz harness: scene text -> scene_parse (fuzz.h), and what
+ * lesson 00 draws of an accepted one (its lines and triangle edges). */
 #define _POSIX_C_SOURCE 200809L   /* open_memstream */
 
 #include <math.h>
@@ -8,6 +9,7 @@
 
 #include "front/front.h"
 #include "fuzz.h"
+#include "raster/line.h"
 #include "scene/scene.h"
 
 static bool unit(double v)
@@ -38,6 +40,19 @@ static void check_ranges(const struct scene *s)
             if (!(fabs(v->s) <= SCENE_ST_MAX && fabs(v->t) <= SCENE_ST_MAX))
                 fuzz_fail("triangle %d: accepted texture coordinates %g %g", i, v->s, v->t);
         }
+    if (s->nlines < 0 || s->nlines > s->lines_cap || (s->nlines && !s->lines))
+        fuzz_fail("inconsistent line list");
+    for (int i = 0; i < s->nlines; i++) {
+        const struct scene_line *l = &s->lines[i];
+        if (l->after < 0 || (i && l->after < l[-1].after))
+            fuzz_fail("line %d: after %d triangles", i, l->after);
+        for (int k = 0; k < 2; k++) {
+            const struct vertex *v = &l->v[k];
+            if (!(v->x >= -COORD_LIMIT && v->x < COORD_LIMIT && v->y >= -COORD_LIMIT && v->y < COORD_LIMIT)
+                || !(v->z >= SCENE_Z_MIN && v->z <= SCENE_Z_MAX) || !unit(v->r) || !unit(v->g) || !unit(v->b))
+                fuzz_fail("line %d: accepted end %d (%g, %g, %g)", i, k, v->x, v->y, v->z);
+        }
+    }
     for (int i = 0; i < s->ntris; i++)
         if (s->tris[i].texture < 0 || s->tris[i].texture > scene_texture_count(s))
             fuzz_fail("triangle %d: texture %d of %d", i, s->tris[i].texture, scene_texture_count(s));
@@ -130,6 +145,12 @@ static void check_round_trip(const struct scene *s)
     for (int i = 0; i < s->ntris && !w->camera_line; i++)
         if (!same_screen_tri(s, &back, i))
             fuzz_fail("triangle %d reads back different", i);
+    if (back.nlines != s->nlines)
+        fuzz_fail("the written scene reads back %d lines, not %d", back.nlines, s->nlines);
+    for (int i = 0; i < s->nlines; i++)
+        if (back.lines[i].after != s->lines[i].after || !same_vertex(back.lines[i].v[0], s->lines[i].v[0], false)
+            || !same_vertex(back.lines[i].v[1], s->lines[i].v[1], false))
+            fuzz_fail("line %d reads back different", i);
     scene_free(&back);
     free(text);
 }
@@ -164,20 +185,49 @@ static void check_world(struct scene *s)
     }
 }
 
+static void count_pixel(void *ctx, int x, int y)
+{
+    (void)x, (void)y;
+    ++*(long *)ctx;
+}
+
+/* What lesson 00 draws of it, on a target of at most 64 x 64: the walk
+ * and the reference draw the same number of pixels of every segment (the
+ * sanitizers watching the arithmetic). */
+static void check_lines(const struct scene *s)
+{
+    int n;
+    struct vertex *v = scene_wireframe(s, &n);
+    if (!v)
+        return;     /* out of memory */
+    int w = s->w < 64 ? s->w : 64, h = s->h < 64 ? s->h : 64;
+    for (int i = 0; i < n && i < 64; i++) {
+        struct line_setup l;
+        line_setup(&l, v + 2 * i, w, h);
+        long walked = 0, decided = 0;
+        line_walk(&l, count_pixel, &walked);
+        line_reference(&l, count_pixel, &decided);
+        if (walked != decided)
+            fuzz_fail("segment %d: the walk draws %ld pixels, the rule %ld", i, walked, decided);
+    }
+    free(v);
+}
+
 int fuzz_scene(const uint8_t *data, size_t size)
 {
     struct scene s;
     char err[512];
     if (!scene_parse(&s, "fuzz.scene", (const char *)data, size, err, sizeof err)) {
         fuzz_check_message(err, "fuzz.scene");
-        if (s.ntris != 0 || s.tris)
-            fuzz_fail("a rejected scene keeps triangles");
+        if (s.ntris != 0 || s.tris || s.nlines != 0 || s.lines)
+            fuzz_fail("a rejected scene keeps triangles or lines");
         return 0;
     }
     if (s.world.camera_line)
         check_world(&s);
     check_ranges(&s);
     check_round_trip(&s);
+    check_lines(&s);
     scene_free(&s);
     return 0;
 }

@@ -9,7 +9,10 @@
  *     slivers, centres on edges, off-screen, degenerate), at full precision
  *     and at lesson 03's fewer sub-pixel bits, lesson 05 at every block size;
  *   - jittered grid meshes whose triangles share edges: every pixel centre
- *     inside the mesh's rectangle covered exactly once, nothing outside.
+ *     inside the mesh's rectangle covered exactly once, nothing outside;
+ *   - lines (src/raster/line.c): the walk against the rule decided pixel by
+ *     pixel, on random segments with ends on the 1/256 grid, often on pixel
+ *     centres and boundaries.
  * Colours are not compared (SIMD reciprocals differ between CPUs by design);
  * coverage is integer arithmetic and must agree everywhere.
  *
@@ -22,6 +25,7 @@
 #include <string.h>
 
 #include "../testlib.h"
+#include "raster/line.h"
 
 #define W 48
 #define H 40
@@ -172,6 +176,33 @@ static void meshes(const struct test_variant *tv, int nv, struct target *fb, uin
     }
 }
 
+static void count_line_pixel(void *ctx, int x, int y)
+{
+    ((uint8_t *)ctx)[y * W + x]++;
+}
+
+static void lines(uint8_t *walked, uint8_t *decided)
+{
+    struct rng r = rng_for(3420);
+    for (int i = 0; i < 2000; i++) {
+        struct vertex v[2];
+        for (int k = 0; k < 2; k++) {
+            double x = rng_int(&r, -4 * 256, (W + 4) * 256) / 256.0, y = rng_int(&r, -4 * 256, (H + 4) * 256) / 256.0;
+            if (rng_chance(&r, 0.4))
+                x = floor(x) + 0.5 * rng_int(&r, 0, 1), y = floor(y) + 0.5 * rng_int(&r, 0, 1);
+            v[k] = test_vertex(x, y);
+        }
+        struct line_setup l;
+        line_setup(&l, v, W, H);
+        memset(walked, 0, (size_t)W * H);
+        memset(decided, 0, (size_t)W * H);
+        line_walk(&l, count_line_pixel, walked);
+        line_reference(&l, count_line_pixel, decided);
+        verdict(memcmp(walked, decided, (size_t)W * H) == 0, "%s: segment %d of %d walks other pixels\n",
+                "lines", i, 2000);
+    }
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 1) {
@@ -190,6 +221,13 @@ int main(int argc, char **argv)
            (unsigned long long)test_seed());
     random_triangles(tv, nv, &fb, buf);
     meshes(tv, nv, &fb, buf);
+    uint8_t *buf2 = malloc((size_t)W * H);
+    if (!buf2) {
+        fprintf(stderr, "exact: out of memory\n");
+        return 1;
+    }
+    lines(buf, buf2);
+    free(buf2);
     target_free(&fb);
     free(buf);
     printf("%ld passed, %ld failed\n", passed, failed);
