@@ -529,14 +529,17 @@ static double l06_no_guard_missing(void) { return l06_room_not_once("no-guard-32
 
 /* The explorer's count of wrong colours at the end of the exhibit ndc24 on
  * builtin:depth-pair. */
-static double l06_ndc24_wrong(void)
+static double l06_wrong(const char *scene, const char *variant)
 {
     const struct lesson_variant *v;
-    struct scene s = load06("depth-pair", "ndc24", &v);
-    double n = explorer_wrong_colour(&lesson_06, &s, "depth-pair", v);
+    struct scene s = load06(scene, variant, &v);
+    double n = explorer_wrong_colour(&lesson_06, &s, scene, v);
     scene_free(&s);
     return n;
 }
+static double l06_ndc24_wrong(void) { return l06_wrong("depth-pair", "ndc24"); }
+/* ... and of no-guard-32 on builtin:room */
+static double l06_no_guard_wrong(void) { return l06_wrong("room", "no-guard-32"); }
 
 /* Lesson 08's exercise 4: the pixels of builtin:samples where a triangle
  * covers a sample at N = 4 but not the centre (where centroid shading
@@ -686,6 +689,7 @@ static const struct key keys[] = {
     { "l06.depth-pair.pixels", l06_pair_pixels, NULL },
     { "l06.project-first.wrong", l06_project_first, NULL },
     { "l06.no-guard-32.missing", l06_no_guard_missing, NULL },
+    { "l06.no-guard-32.wrong", l06_no_guard_wrong, NULL },
     { "l06.ndc24.wrong", l06_ndc24_wrong, NULL },
     { "l06.cracks.found", NULL, "tests/test_lesson06.c" },
     { "l06.cracks.first-seed", NULL, "tests/test_lesson06.c" },
