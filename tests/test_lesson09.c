@@ -1,5 +1,5 @@
 /* test_lesson09.c - lesson 09 (texture mapping) against the independent
- * reference sampler (tests/texref.c, written from CONVENTIONS alone):
+ * reference sampler (tests/texref.c, written from lessons/CONVENTIONS.md alone):
  * coverage exact and colours within 2 levels on random textured 2-D and
  * 3-D scenes and the built-in 3-D ones, every filter, both wraps; the fast
  * twin draws the narrated lesson's bytes; helper pixels are evaluated and

@@ -1,4 +1,4 @@
-/* test_print.c - figures for print (CONVENTIONS.md, "Figures for print"):
+/* test_print.c - figures for print (lessons/CONVENTIONS.md, "Figures for print"):
  * --theme dark|light and --figure-part all|canvas give a valid file for
  * every lesson, every view and every format, the same bytes every time; the
  * light theme is white paper with dark ink, the canvas part is the pixel

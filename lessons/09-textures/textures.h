@@ -8,7 +8,7 @@
  *                   them, narrated; the descriptor and its variants
  *   quads_sse.c     the fast twin: a quad is four SSE lanes
  *
- * The rules are CONVENTIONS.md's "Textures" (src/scene/texture.h holds the
+ * The rules are lessons/CONVENTIONS.md's "Textures" (src/scene/texture.h holds the
  * image, its pyramid and texel addressing).
  *
  * The stages (struct tex_stages) are what an exercise swaps: the lesson's

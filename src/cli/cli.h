@@ -1,5 +1,5 @@
 /* cli.h - the program every lesson becomes: the options they all share
- * (CONVENTIONS.md), the headless modes, the explorer window. */
+ * (lessons/CONVENTIONS.md), the headless modes, the explorer window. */
 #ifndef TRISTEP_CLI_H
 #define TRISTEP_CLI_H
 

@@ -29,7 +29,7 @@ enum step_unit {
 
 enum numbers_mode { NUMBERS_AUTO, NUMBERS_ALWAYS, NUMBERS_OFF, NUMBERS_MODE_COUNT };
 
-/* Figures for print (CONVENTIONS.md): the colours, and how much of the view.
+/* Figures for print (lessons/CONVENTIONS.md): the colours, and how much of the view.
  * THEME_DARK is the screen's; THEME_LIGHT draws for paper (dark ink on
  * white). PART_CANVAS is the pixel grid alone, without the panel and the
  * scrub bar. */

@@ -1,4 +1,4 @@
-/* scene.h - scene files (CONVENTIONS.md): parse, write, built-in scenes.
+/* scene.h - scene files (lessons/CONVENTIONS.md): parse, write, built-in scenes.
  *
  *     # comment to end of line; blank lines are ignored
  *     size 64 48
@@ -33,7 +33,7 @@
 #include "texture.h"
 
 /* Ranges every value of a scene is checked against where it is read (beyond
- * CONVENTIONS.md's coordinates and colours): they keep every quantity a
+ * lessons/CONVENTIONS.md's coordinates and colours): they keep every quantity a
  * lesson derives (1/z, z, colours over z, checker squares) finite and
  * representable in the floats and integers it uses. */
 #define SCENE_Z_MIN 1e-6        /* z in [SCENE_Z_MIN, SCENE_Z_MAX] */
@@ -46,7 +46,7 @@ struct scene_tri {
                                         * k > 0: scene_texture(s, k) */
 };
 
-/* --- 3-D scenes (CONVENTIONS.md, "3-D scenes") ----------------------------- */
+/* --- 3-D scenes (lessons/CONVENTIONS.md, "3-D scenes") ----------------------------- */
 
 #define WORLD_LIMIT 1e6     /* |world coordinate| <= 10^6 */
 
