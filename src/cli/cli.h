@@ -26,6 +26,7 @@ struct cli_options {
     double scale;                   /* --scale F: interface scale, 0 = 1 */
     enum theme theme;               /* --theme dark|light (figures for print) */
     enum figure_part part;          /* --figure-part all|canvas */
+    enum paper paper;               /* --paper a4|letter (PDF figures) */
     const char *keys;               /* --keys FILE: scripted explorer input */
     struct raster_params params;
 };

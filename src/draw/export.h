@@ -12,6 +12,11 @@
 /* Write the current frame (w x h) to FILE.png, .svg or .pdf, all or nothing. */
 bool explorer_export(struct explorer *ex, const char *path, int w, int h,
                      char *err, size_t errlen);
+/* The same; a PDF on a page of paper (A4 or Letter, landscape for a wide
+ * view), the view fitted within margins and its cell numbers legible in
+ * print (at least 6 pt, over the edges with a halo, or left out). */
+bool explorer_export_paper(struct explorer *ex, const char *path, int w, int h, enum paper paper,
+                           char *err, size_t errlen);
 
 /* PNG of the colour buffer. */
 bool write_color_png(FILE *out, const struct target *fb);
