@@ -373,6 +373,13 @@ Test(print, light_cells_and_edges_stay_apart_in_grey_and_for_a_deuteranope)
     uint32_t cells[] = { p->canvas, p->untested, p->covered, p->outside };
     static const char *const cell_names[] = { "page", "not tested", "covered", "outside" };
     expect_apart("cells", cells, cell_names, 4, GREY_CELLS, GREY_PAGE, DEUTERANOPE_CELLS);
+    uint32_t sides[] = { p->canvas, p->fail_one, p->covered, p->fail_two };  /* the edges view */
+    static const char *const side_names[] = { "page", "outside one edge", "inside", "outside two" };
+    expect_apart("edge cells", sides, side_names, 4, GREY_CELLS, GREY_PAGE, DEUTERANOPE_CELLS);
+    uint32_t blocks[] = { p->canvas, p->block_empty, p->partial_inside, p->partial_outside, p->block_full };
+    static const char *const block_names[] = { "page", "empty block", "partial block, inside",
+                                               "partial block, outside", "full block" };
+    expect_apart("blocks", blocks, block_names, 5, GREY_CELLS, GREY_PAGE, DEUTERANOPE_CELLS);
     uint32_t edges[] = { p->canvas, p->edge[0], p->edge[1], p->edge[2] };
     static const char *const edge_names[] = { "page", "edge 0", "edge 1", "edge 2" };
     expect_apart("edges", edges, edge_names, 4, GREY_EDGES, GREY_EDGE_PAGE, DEUTERANOPE_EDGES);
@@ -382,4 +389,63 @@ Test(print, light_cells_and_edges_stay_apart_in_grey_and_for_a_deuteranope)
     double a[3], b[3];
     seen(0x9fd89f, false, a), seen(0xeab0b7, false, b);
     cr_expect_lt(fabs(a[0] - b[0]), GREY_CELLS, "the measure does not see what it should");
+}
+
+/* --- pages of paper -------------------------------------------------------------------- */
+
+/* The page of a PDF: its MediaBox, as cairo writes it (uncompressed). */
+static bool media_box(const char *path, double *w, double *h)
+{
+    size_t len = 0;
+    char *pdf = slurp(path, &len);
+    if (!pdf)
+        return false;
+    const char *m = NULL;         /* the file holds NULs: search all of it */
+    for (size_t i = 0; !m && i + 11 <= len; i++)
+        if (memcmp(pdf + i, "/MediaBox [", 11) == 0)
+            m = pdf + i;
+    double x0, y0;
+    bool ok = m && sscanf(m, "/MediaBox [ %lf %lf %lf %lf", &x0, &y0, w, h) == 4 && x0 == 0 && y0 == 0;
+    free(pdf);
+    return ok;
+}
+
+Test(print, paper_puts_a_pdf_figure_on_an_a4_or_letter_page, .timeout = 120)
+{
+    char dir[] = "/tmp/tristep-paper-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    static const struct { const char *paper, *size; double w, h; } pages[] = {
+        { "a4", "1280x800", 842, 595 },        /* a wide view: the page in landscape */
+        { "letter", "1280x800", 792, 612 },
+        { "a4", "600x900", 595, 842 },         /* a tall one: in portrait */
+        { "letter", "600x900", 612, 792 },
+        { NULL, "1280x800", 1280, 800 },       /* no --paper: the view's own size */
+    };
+    for (size_t i = 0; i < sizeof pages / sizeof pages[0]; i++) {
+        char path[512], args[1024];
+        snprintf(path, sizeof path, "%s/f%zu.pdf", dir, i);
+        snprintf(args, sizeof args, "--figure %s --view edges --step 300 --size %s --theme light%s%s",
+                 path, pages[i].size, pages[i].paper ? " --paper " : "", pages[i].paper ? pages[i].paper : "");
+        cr_assert_eq(run_program("02-barycentric", args), 0, "%s", args);
+        double w = 0, h = 0;
+        cr_assert(media_box(path, &w, &h), "%s: no MediaBox", path);
+        cr_expect(w == pages[i].w && h == pages[i].h, "%s: page %g x %g pt, want %g x %g", args, w, h,
+                  pages[i].w, pages[i].h);
+        unlink(path);
+    }
+    /* a page is for a PDF; a bad name is a usage error; neither writes */
+    const char *bad[][2] = { { "f.png", "--paper a4" }, { "f.svg", "--paper letter" },
+                             { "f.pdf", "--paper a3" }, { "f.pdf", "--paper A4" },
+                             { "f.pdf", "--paper" } };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char path[512], args[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, bad[i][0]);
+        snprintf(args, sizeof args, "--figure %s %s", path, bad[i][1]);
+        cr_expect_eq(run_program("02-barycentric", args), 2, "%s", args);
+        cr_expect(access(path, F_OK) != 0, "%s wrote %s", args, path);
+        unlink(path);
+    }
+    cr_expect_eq(run_program("02-barycentric", "--paper a4 --dump-image /dev/null"), 2,
+                 "--paper without a PDF figure");
+    rmdir(dir);
 }
