@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "draw/paint.h"
+#include "draw/export.h"
 #include "draw/painter.h"
 #include "testlib.h"
 
@@ -448,4 +449,63 @@ Test(print, paper_puts_a_pdf_figure_on_an_a4_or_letter_page, .timeout = 120)
     cr_expect_eq(run_program("02-barycentric", "--paper a4 --dump-image /dev/null"), 2,
                  "--paper without a PDF figure");
     rmdir(dir);
+}
+
+/* The page of lesson 02's edges view on A4 (1440 x 900, the figure of
+ * figures/list) drawn at 8 pixels a point: the height of the tallest
+ * glyph of black ink in it (the cell numbers' digits; the edges, labels
+ * and grid are in colours or grey), in points, or 0 without any. */
+extern const struct lesson lesson_02;
+
+static double tallest_black_glyph_pt(double zoom)
+{
+    char why[256];
+    cr_assert(explorer_fonts(why, sizeof why), "%s", why);
+    struct scene s;
+    cr_assert(scene_builtin(&s, "triangle", why, sizeof why), "%s", why);
+    struct raster_params prm = default_params();
+    struct explorer_desc d = { .lesson = &lesson_02, .scene = &s, .scene_name = "builtin:triangle",
+                               .params = &prm, .step = 300, .zoom = zoom, .theme = THEME_LIGHT,
+                               .part = PART_CANVAS };
+    struct explorer ex;
+    cr_assert(explorer_init(&ex, &d, why, sizeof why), "%s", why);
+    cr_assert(explorer_set_view_name(&ex, "edges"));
+    enum { PX_PER_PT = 8 };
+    double pw, ph;
+    paper_page_size(PAPER_A4, 1440, 900, &pw, &ph);
+    cr_assert(pw == 842 && ph == 595, "A4 landscape is %g x %g pt", pw, ph);
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)pw * PX_PER_PT,
+                                                      (int)ph * PX_PER_PT);
+    cairo_t *cr = cairo_create(img);
+    cairo_set_source_rgb(cr, 1, 1, 1);      /* the paper */
+    cairo_paint(cr);
+    cairo_scale(cr, PX_PER_PT, PX_PER_PT);
+    explorer_paint_page(&ex, cr, 1440, 900, PAPER_A4);
+    cairo_destroy(cr);
+    cairo_surface_flush(img);
+    const unsigned char *px = cairo_image_surface_get_data(img);
+    int w = cairo_image_surface_get_width(img), h = cairo_image_surface_get_height(img);
+    int stride = cairo_image_surface_get_stride(img), tallest = 0;
+    for (int x = 0; x < w; x++)
+        for (int y = 0, run = 0; y < h; y++) {
+            uint32_t c = *(const uint32_t *)(px + (size_t)y * (size_t)stride + (size_t)x * 4);
+            bool ink = (c >> 16 & 255) < 40 && (c >> 8 & 255) < 40 && (c & 255) < 40;
+            run = ink ? run + 1 : 0;
+            tallest = run > tallest ? run : tallest;
+        }
+    cairo_surface_destroy(img);
+    explorer_free(&ex);
+    return (double)tallest / PX_PER_PT;
+}
+
+/* On paper the numbers in cells are at least 6 pt (a digit, 0.73 em of
+ * DejaVu Sans Mono, at least 4.3 pt tall), or left out where the cells are
+ * too small to hold them at that size. */
+Test(print, paper_numbers_are_six_points_or_none, .timeout = 60)
+{
+    double big = tallest_black_glyph_pt(48), small = tallest_black_glyph_pt(32);
+    cr_log_info("digits %.2f pt tall at zoom 48, %.2f pt at zoom 32", big, small);
+    cr_expect_geq(big, 6 * 0.7, "at zoom 48 the cell numbers print %.2f pt tall", big);
+    cr_expect_lt(big, 6 * 1.5, "at zoom 48 black ink %.2f pt tall: not digits", big);
+    cr_expect_eq(small, 0, "at zoom 32 the cells hold numbers %.2f pt tall, below 6 pt", small);
 }

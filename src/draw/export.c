@@ -39,16 +39,37 @@ static const double paper_size[PAPER_COUNT][2] = { { 0, 0 }, { 595, 842 }, { 612
 #define PAPER_TEXT_MIN_PT 6.0
 
 /* Where the view of w x h goes on the page: its scale and offset. */
-static void paper_fit(const struct export_job *job, double *pw, double *ph, double *s, double *x,
+static void paper_fit(enum paper paper, int w, int h, double *pw, double *ph, double *s, double *x,
                       double *y)
 {
-    *pw = paper_size[job->paper][0], *ph = paper_size[job->paper][1];
-    if (job->w > job->h) {
+    *pw = paper_size[paper][0], *ph = paper_size[paper][1];
+    if (w > h) {
         double t = *pw;
         *pw = *ph, *ph = t;
     }
-    *s = fmin((*pw - 2 * PAPER_MARGIN) / job->w, (*ph - 2 * PAPER_MARGIN) / job->h);
-    *x = (*pw - job->w * *s) / 2, *y = (*ph - job->h * *s) / 2;
+    *s = fmin((*pw - 2 * PAPER_MARGIN) / w, (*ph - 2 * PAPER_MARGIN) / h);
+    *x = (*pw - w * *s) / 2, *y = (*ph - h * *s) / 2;
+}
+
+void paper_page_size(enum paper paper, int w, int h, double *pw, double *ph)
+{
+    double s, x, y;
+    paper_fit(paper, w, h, pw, ph, &s, &x, &y);
+}
+
+void explorer_paint_page(struct explorer *ex, cairo_t *cr, int w, int h, enum paper paper)
+{
+    double pw, ph, s, x, y;
+    paper_fit(paper, w, h, &pw, &ph, &s, &x, &y);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, s, s);
+    cairo_rectangle(cr, 0, 0, w, h);
+    cairo_clip(cr);
+    ex->text_min = PAPER_TEXT_MIN_PT / s;
+    explorer_paint(ex, cr, w, h);
+    ex->text_min = 0;
+    cairo_restore(cr);
 }
 
 static bool write_figure(FILE *out, void *ctx)
@@ -61,26 +82,19 @@ static bool write_figure(FILE *out, void *ctx)
     } else if (has_suffix(job->path, ".svg")) {
         surface = cairo_svg_surface_create_for_stream(to_file, out, job->w, job->h);
     } else {
-        double pw = job->w, ph = job->h, s = 1, x = 0, y = 0;
+        double pw = job->w, ph = job->h;
         if (job->paper != PAPER_NONE)
-            paper_fit(job, &pw, &ph, &s, &x, &y);
+            paper_page_size(job->paper, job->w, job->h, &pw, &ph);
         surface = cairo_pdf_surface_create_for_stream(to_file, out, pw, ph);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, FIGURE_DATE);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, FIGURE_DATE);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "tristep");
     }
     cairo_t *cr = cairo_create(surface);
-    if (job->paper != PAPER_NONE && !png) {
-        double pw, ph, s, x, y;
-        paper_fit(job, &pw, &ph, &s, &x, &y);
-        cairo_translate(cr, x, y);
-        cairo_scale(cr, s, s);
-        cairo_rectangle(cr, 0, 0, job->w, job->h);
-        cairo_clip(cr);
-        job->ex->text_min = PAPER_TEXT_MIN_PT / s;
-    }
-    explorer_paint(job->ex, cr, job->w, job->h);
-    job->ex->text_min = 0;
+    if (job->paper != PAPER_NONE && !png)
+        explorer_paint_page(job->ex, cr, job->w, job->h, job->paper);
+    else
+        explorer_paint(job->ex, cr, job->w, job->h);
     cairo_status_t st = cairo_status(cr);
     cairo_destroy(cr);
     if (st == CAIRO_STATUS_SUCCESS && png)
