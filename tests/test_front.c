@@ -1,4 +1,4 @@
-/* test_front.c - the 3-D front end (CONVENTIONS.md, "3-D scenes"), with
+/* test_front.c - the 3-D front end (lessons/CONVENTIONS.md, "3-D scenes"), with
  * random cameras:
  *
  *   - a triangle that needs no clipping covers exactly the pixels of the 2-D
@@ -227,7 +227,7 @@ static void add_round(struct rng *r, struct scene *s, const double centre[3], do
 
 /* --- coverage of a projected scene ---------------------------------------------------- */
 
-/* Pixels next to a fold, kept out of the checks (CONVENTIONS.md: snapping
+/* Pixels next to a fold, kept out of the checks (lessons/CONVENTIONS.md: snapping
  * the new vertices of a clipped polygon whose vertices are nearly in line
  * can fold it). A world triangle's fan folds when its drawn triangles do not
  * all face the same way; every pixel within one pixel of such a fan is

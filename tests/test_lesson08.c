@@ -1,5 +1,5 @@
 /* test_lesson08.c - lesson 08's claims: per-sample coverage is exact for 1,
- * 4 and 8 samples (against a reference written here from CONVENTIONS.md's
+ * 4 and 8 samples (against a reference written here from lessons/CONVENTIONS.md's
  * table, with samples exactly on edges), a watertight mesh puts exactly N
  * samples in every pixel, the resolved colours agree with a reference
  * resolve within 2 levels, and the exhibits (jaggies at one sample, a
@@ -32,7 +32,7 @@ static void expect_quoted(const char *path, const char *key, double got)
               quoted, key, got);
 }
 
-/* CONVENTIONS.md, "Samples": positions in 1/256 pixel from the top-left
+/* lessons/CONVENTIONS.md, "Samples": positions in 1/256 pixel from the top-left
  * corner, typed in again here (not taken from the code under test). */
 static const int pos1[1][2] = { { 128, 128 } };
 static const int pos4[4][2] = { { 96, 32 }, { 224, 96 }, { 32, 160 }, { 160, 224 } };
@@ -60,7 +60,7 @@ static int64_t cross(const struct tri_setup *t, int a, int b, int64_t px, int64_
     return ((int64_t)t->x[b] - t->x[a]) * (py - t->y[a]) - (px - t->x[a]) * ((int64_t)t->y[b] - t->y[a]);
 }
 
-/* The top-left rule as CONVENTIONS.md words it: a top edge is horizontal
+/* The top-left rule as lessons/CONVENTIONS.md words it: a top edge is horizontal
  * with the triangle below (walked to +x in this orientation), a left edge
  * has the interior at larger x (walked upwards, y decreasing). */
 static bool top_left(const struct tri_setup *t, int a, int b)

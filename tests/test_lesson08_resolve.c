@@ -4,7 +4,7 @@
  * The box resolve (the mean of a pixel's own samples) is test_lesson08.c's.
  * Here the tent variant: its picture is the tent filter of the samples it
  * stored, against a reference written from the filter's definition and
- * CONVENTIONS.md's sample positions (typed in again); it changes the edges
+ * lessons/CONVENTIONS.md's sample positions (typed in again); it changes the edges
  * and leaves the insides of triangles within a level of the box's; the
  * count of pixels it changes is the one the lesson's text quotes. And the
  * light theme, where the scene is drawn on the page: every pixel is the
@@ -23,7 +23,7 @@ extern const struct lesson lesson_08;
 
 #define README "lessons/08-multisampling/README.md"
 
-/* CONVENTIONS.md, "Samples" (1/256 pixel from the pixel's top-left corner). */
+/* lessons/CONVENTIONS.md, "Samples" (1/256 pixel from the pixel's top-left corner). */
 static const int pos4[4][2] = { { 96, 32 }, { 224, 96 }, { 32, 160 }, { 160, 224 } };
 static const int pos8[8][2] = { { 144, 80 }, { 112, 176 }, { 208, 144 }, { 80, 48 },
                                 { 48, 208 }, { 16, 112 }, { 176, 240 }, { 240, 16 } };

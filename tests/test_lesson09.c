@@ -1,5 +1,5 @@
 /* test_lesson09.c - lesson 09 (texture mapping) against the independent
- * reference sampler (tests/texref.c, written from CONVENTIONS alone):
+ * reference sampler (tests/texref.c, written from lessons/CONVENTIONS.md alone):
  * coverage exact and colours within 2 levels on random textured 2-D and
  * 3-D scenes and the built-in 3-D ones, every filter, both wraps; the fast
  * twin draws the narrated lesson's bytes; helper pixels are evaluated and
@@ -332,5 +332,36 @@ Test(lesson09, swapped_stages_are_the_ones_drawn)
     cr_expect_eq(grey, covered, "every covered pixel grey: %d of %d", grey, covered);
     cr_expect_gt(covered, 100);
     target_free(&fb);
+    scene_free(&s);
+}
+
+/* --affine (lesson 04's option) textures lesson 09 affinely too: every
+ * variant, the fast twin included, draws the affine exhibit's bytes, which
+ * differ from the perspective-correct picture. */
+Test(lesson09, affine_option_draws_the_affine_exhibit, .timeout = 60)
+{
+    struct scene s;
+    char err[256];
+    cr_assert(scene_builtin(&s, "texture-floor", err, sizeof err), "%s", err);
+    cr_assert(front_scene(&s));
+    struct raster_params p = params_for(FILTER_TRILINEAR, 16);
+    struct target exhibit, plain;
+    draw(&exhibit, &s, lesson_variant(&lesson_09, "affine"), &p);
+    draw(&plain, &s, &lesson_09.variants[0], &p);
+    size_t n = (size_t)s.w * s.h;
+    cr_expect(memcmp(exhibit.color, plain.color, n * sizeof *plain.color) != 0,
+              "the affine exhibit draws the perspective-correct picture");
+    p.knob[P_AFFINE] = 1;
+    const struct lesson_variant *with[] = { &lesson_09.variants[0], lesson_variant(&lesson_09, "quads-sse"),
+                                            &lesson_09_fast.variants[1] };
+    for (size_t i = 0; i < sizeof with / sizeof with[0]; i++) {
+        struct target a;
+        draw(&a, &s, with[i], &p);
+        cr_expect(memcmp(a.color, exhibit.color, n * sizeof *a.color) == 0,
+                  "--affine with variant %s is not the affine exhibit", with[i]->name);
+        target_free(&a);
+    }
+    target_free(&exhibit);
+    target_free(&plain);
     scene_free(&s);
 }

@@ -4,7 +4,7 @@
  *
  * The ideal colour of a pixel is the mean of the texture over the pixel's
  * square: the box filter that every filter of the lesson approximates. The
- * independent reference (texref.h, written from CONVENTIONS.md alone)
+ * independent reference (texref.h, written from lessons/CONVENTIONS.md alone)
  * computes it by brute force: 16 x 16 samples per pixel, each with its own
  * perspective-correct (s, t) and the level-0 texel under it (the image as a
  * mosaic of texels). The numbers the lesson's text and answer key quote,

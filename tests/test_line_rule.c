@@ -1,4 +1,4 @@
-/* test_line_rule.c - lines (CONVENTIONS.md, "Lines"): the diamond-exit
+/* test_line_rule.c - lines (lessons/CONVENTIONS.md, "Lines"): the diamond-exit
  * rule with the perturbation delta = (e, e^2), held three ways.
  *
  * - An oracle written from CONVENTIONS alone, by another method than the

@@ -97,7 +97,7 @@ static void check_mesh(const struct mesh *m, const uint8_t *expected, const char
 /* Counter-clockwise on screen (y down): listed as a grid cell's corners are. */
 static bool positive(const struct vertex *a, const struct vertex *b, const struct vertex *c)
 {
-    /* snapped as CONVENTIONS says: to nearest 1/256, ties to even */
+    /* snapped as lessons/CONVENTIONS.md says: to nearest 1/256, ties to even */
     double ax = nearbyint(a->x * 256), ay = nearbyint(a->y * 256);
     double bx = nearbyint(b->x * 256), by = nearbyint(b->y * 256);
     double cx = nearbyint(c->x * 256), cy = nearbyint(c->y * 256);

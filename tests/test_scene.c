@@ -1,4 +1,4 @@
-/* test_scene.c - the scene parser and writer (CONVENTIONS.md, scene files).
+/* test_scene.c - the scene parser and writer (lessons/CONVENTIONS.md, scene files).
  * Malformed scenes are tested in test_cli.c, in-process and through every
  * lesson program. */
 #define _POSIX_C_SOURCE 200809L   /* mkstemp, fdopen */

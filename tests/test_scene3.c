@@ -1,4 +1,4 @@
-/* test_scene3.c - reading 3-D scenes and OBJ files (CONVENTIONS.md, "3-D
+/* test_scene3.c - reading 3-D scenes and OBJ files (lessons/CONVENTIONS.md, "3-D
  * scenes"): every keyword and every OBJ form read to the right values, and
  * every kind of bad input refused with FILE:LINE (the scene's, or the OBJ
  * file's own) and nothing left in the scene. The same bad input through the

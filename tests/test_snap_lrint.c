@@ -1,5 +1,5 @@
 /* test_snap_lrint.c - snap_coord() rounds without calling lrint(); it must
- * still be lrint(ldexp(v, bits)) on every input, as CONVENTIONS.md defines
+ * still be lrint(ldexp(v, bits)) on every input, as lessons/CONVENTIONS.md defines
  * snapping: for every precision, on ties, just beside ties, across the whole
  * coordinate range and at its ends. */
 #include <criterion/criterion.h>

@@ -1,5 +1,5 @@
 /* test_texref.c - the independent reference sampler (texref.c) on cases
- * whose answers are computed by hand from CONVENTIONS.md "Textures": a
+ * whose answers are computed by hand from lessons/CONVENTIONS.md "Textures": a
  * 2 x 2 texture, a constant one, a magnified checker, the level chosen at
  * known rho, the trilinear mix, anisotropic taps, helper pixels and the
  * horizon. Lesson 09 is checked against this reference. */

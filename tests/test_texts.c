@@ -18,8 +18,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "testlib.h"
+#include "util/file.h"
 #include "explore/explorer.h"
 #include "explore/replay.h"
 
@@ -529,14 +531,17 @@ static double l06_no_guard_missing(void) { return l06_room_not_once("no-guard-32
 
 /* The explorer's count of wrong colours at the end of the exhibit ndc24 on
  * builtin:depth-pair. */
-static double l06_ndc24_wrong(void)
+static double l06_wrong(const char *scene, const char *variant)
 {
     const struct lesson_variant *v;
-    struct scene s = load06("depth-pair", "ndc24", &v);
-    double n = explorer_wrong_colour(&lesson_06, &s, "depth-pair", v);
+    struct scene s = load06(scene, variant, &v);
+    double n = explorer_wrong_colour(&lesson_06, &s, scene, v);
     scene_free(&s);
     return n;
 }
+static double l06_ndc24_wrong(void) { return l06_wrong("depth-pair", "ndc24"); }
+/* ... and of no-guard-32 on builtin:room */
+static double l06_no_guard_wrong(void) { return l06_wrong("room", "no-guard-32"); }
 
 /* Lesson 08's exercise 4: the pixels of builtin:samples where a triangle
  * covers a sample at N = 4 but not the centre (where centroid shading
@@ -686,6 +691,7 @@ static const struct key keys[] = {
     { "l06.depth-pair.pixels", l06_pair_pixels, NULL },
     { "l06.project-first.wrong", l06_project_first, NULL },
     { "l06.no-guard-32.missing", l06_no_guard_missing, NULL },
+    { "l06.no-guard-32.wrong", l06_no_guard_wrong, NULL },
     { "l06.ndc24.wrong", l06_ndc24_wrong, NULL },
     { "l06.cracks.found", NULL, "tests/test_lesson06.c" },
     { "l06.cracks.first-seed", NULL, "tests/test_lesson06.c" },
@@ -993,4 +999,181 @@ Test(texts, lessons_06_to_09_keep_to_their_length)
                       limits[i].most);
         cr_expect_gt(n, 500, "%s: only %ld words read", limits[i].path, n);
     }
+}
+
+/* --- every file a text names is in the repository -------------------------------------- */
+
+/* A whole file, or NULL; the caller frees it. */
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 1 << 16, n = 0;
+    char *s = malloc(cap);
+    for (size_t got; s && (got = fread(s + n, 1, cap - n - 1, f)) > 0;) {
+        n += got;
+        if (n + 1 == cap)
+            s = realloc(s, cap *= 2);
+    }
+    fclose(f);
+    if (s)
+        s[n] = '\0';
+    return s;
+}
+
+static bool is_path_char(char c)
+{
+    return isalnum((unsigned char)c) || c == '_' || c == '.' || c == '-' || c == '/';
+}
+
+/* A path written as a pattern rather than a file: lessons/NN-name,
+ * figures/NAME, tests/%s.c, a star for any lesson, src/... */
+static bool is_pattern(const char *p)
+{
+    if (strstr(p, "NN") || strchr(p, '%') || strchr(p, '*') || strstr(p, "..."))
+        return true;
+    for (const char *c = p; *c;) {          /* a component in capitals: a placeholder */
+        size_t n = strcspn(c, "/");
+        bool caps = n > 1;
+        for (size_t i = 0; i < n; i++)
+            caps = caps && (isupper((unsigned char)c[i]) || c[i] == '_');
+        if (caps)
+            return true;
+        c += n + (c[n] == '/');
+    }
+    return false;
+}
+
+/* The names of the Markdown links and pictures in a text (relative to its
+ * folder), the repository paths (src/, lessons/, tests/, figures/) in a
+ * text or a source file, and the capitalised Markdown files it names
+ * (CONVENTIONS.md, BENCH.md): each must be in the repository, so that no
+ * text sends a student to a file that is not there. Paths of other
+ * projects (Mesa's src/gallium/...) are named after "Mesa" or "llvmpipe". */
+Test(texts, every_file_a_text_or_comment_names_is_in_the_repository)
+{
+    FILE *ls = popen("git ls-files -co --exclude-standard 2>/dev/null", "r");
+    cr_assert_not_null(ls);
+    static char names[4096][160];
+    int nfiles = 0;
+    while (nfiles < 4096 && fgets(names[nfiles], sizeof names[0], ls)) {
+        names[nfiles][strcspn(names[nfiles], "\n")] = '\0';
+        nfiles++;
+    }
+    pclose(ls);
+    cr_assert_gt(nfiles, 100, "git ls-files listed %d files: not a git checkout?", nfiles);
+    static const char *const exempt[] = {
+        "tests/test_texts.c",       /* this test's own examples */
+        "tests/test_layers.c",      /* made-up folders are what it tests */
+    };
+    int links = 0, paths = 0, named = 0;
+    for (int f = 0; f < nfiles; f++) {
+        const char *name = names[f];
+        bool md = has_suffix(name, ".md");
+        bool source = has_suffix(name, ".c") || has_suffix(name, ".h") || has_suffix(name, ".sh")
+                      || has_suffix(name, ".dict") || strcmp(name, "Makefile") == 0
+                      || strcmp(name, "figures/list") == 0;
+        for (size_t e = 0; e < sizeof exempt / sizeof exempt[0]; e++)
+            source = source && strcmp(name, exempt[e]) != 0;
+        if (!md && !source)
+            continue;
+        char *text = slurp(name);
+        if (!text)
+            continue;               /* listed but deleted in the work tree */
+        char dir[sizeof names[0]];
+        memcpy(dir, name, strlen(name) + 1);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            slash[1] = '\0';
+        else
+            dir[0] = '\0';
+        for (const char *p = text; md && *p; p++) {
+            const char *target = NULL;
+            size_t n = 0;
+            if (p[0] == ']' && p[1] == '(') {
+                target = p + 2;
+                n = strcspn(target, ") \n#");
+            } else if (strncmp(p, "src=\"", 5) == 0) {
+                target = p + 5;
+                n = strcspn(target, "\"#");
+            } else if (strncmp(p, "`../", 4) == 0) {    /* a relative path named in code */
+                target = p + 1;
+                n = strcspn(target, "`#");
+            }
+            if (!target || n == 0 || memchr(target, ':', n))
+                continue;           /* no link, an anchor alone, or a URL */
+            char path[512];
+            snprintf(path, sizeof path, "%s%.*s", dir, (int)n, target);
+            cr_expect(exists(path) || access(path, F_OK) == 0, "%s links %.*s, which does not exist",
+                      name, (int)n, target);
+            links++;
+        }
+        static const char *const roots[] = { "src/", "lessons/", "tests/", "figures/" };
+        for (const char *p = text; *p; p++) {
+            if (p > text && is_path_char(p[-1]))
+                continue;
+            bool root = false;
+            for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++)
+                root = root || strncmp(p, roots[r], strlen(roots[r])) == 0;
+            if (!root)
+                continue;
+            size_t n = 0;
+            while (is_path_char(p[n]))
+                n++;
+            while (n > 0 && strchr("./-", p[n - 1]))
+                n--;                /* the sentence's full stop, a folder's slash */
+            char path[512];
+            snprintf(path, sizeof path, "%.*s", (int)n, p);
+            size_t back = (size_t)(p - text) < 80 ? (size_t)(p - text) : 80;
+            char before[96];
+            snprintf(before, sizeof before, "%.*s", (int)back, p - back);
+            if (is_pattern(path) || strstr(before, "Mesa") || strstr(before, "llvmpipe"))
+                continue;
+            cr_expect(access(path, F_OK) == 0, "%s names %s, which is not in the repository", name, path);
+            paths++;
+        }
+        for (const char *p = strstr(text, ".md"); p; p = strstr(p + 1, ".md")) {
+            const char *b = p;
+            while (b > text && (isupper((unsigned char)b[-1]) || b[-1] == '_'))
+                b--;
+            if (p - b < 2 || (b > text && is_path_char(b[-1])) || isalnum((unsigned char)p[3]))
+                continue;           /* not a bare capitalised name: lessons/README.md, x.mdx */
+            char base[64];
+            snprintf(base, sizeof base, "/%.*s.md", (int)(p - b), b);
+            bool found = false;
+            for (int g = 0; g < nfiles && !found; g++)
+                found = strcmp(names[g], base + 1) == 0 || has_suffix(names[g], base);
+            cr_expect(found, "%s names %s, which is not in the repository", name, base + 1);
+            named++;
+        }
+        free(text);
+    }
+    cr_log_info("%d links, %d paths, %d file names checked", links, paths, named);
+    cr_expect_gt(links, 50, "only %d links found", links);
+    cr_expect_gt(paths, 50, "only %d paths found", paths);
+    cr_expect_gt(named, 20, "only %d capitalised file names found", named);
+}
+
+/* The course's conventions page is in the repository, holds the sections
+ * the texts and comments name, and every lesson text links it. */
+Test(texts, every_lesson_links_the_conventions_page)
+{
+    const char *page = test_read_text("lessons/CONVENTIONS.md");
+    static const char *const sections[] = { "## Screen space", "## Snapping", "## The fill rule",
+                                            "## Scene files", "## 3-D scenes", "## Samples",
+                                            "## Textures", "## Lines", "## Exercises",
+                                            "## Figures for print" };
+    for (size_t i = 0; i < sizeof sections / sizeof sections[0]; i++)
+        cr_expect(strstr(page, sections[i]) != NULL, "lessons/CONVENTIONS.md has no \"%s\"", sections[i]);
+    for (int i = 0; all_lessons[i]; i++) {
+        char path[160];
+        snprintf(path, sizeof path, "lessons/%s/README.md", all_lessons[i]->id);
+        cr_expect(strstr(test_read_text(path), "](../CONVENTIONS.md)") != NULL,
+                  "%s does not link ../CONVENTIONS.md", path);
+    }
+    cr_expect(strstr(test_read_text("lessons/README.md"), "](CONVENTIONS.md)") != NULL,
+              "the course page does not link CONVENTIONS.md");
+    cr_expect(strstr(test_read_text("README.md"), "](lessons/CONVENTIONS.md)") != NULL,
+              "README.md does not link lessons/CONVENTIONS.md");
 }

@@ -1,4 +1,4 @@
-/* test_texture.c - image textures (CONVENTIONS.md, "Textures"): the pyramid
+/* test_texture.c - image textures (lessons/CONVENTIONS.md, "Textures"): the pyramid
  * against a hand-computed example and against the independent reference's
  * (texref.c), texel addressing, the texture lines of 2-D and 3-D scenes,
  * OBJ texture coordinates, (s, t) through the front end's clipping, and

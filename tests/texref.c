@@ -1,5 +1,5 @@
 /* texref.c - the independent reference for textured pixels (texref.h),
- * each rule of CONVENTIONS.md "Textures" written out where it is used. */
+ * each rule of lessons/CONVENTIONS.md "Textures" written out where it is used. */
 #include "texref.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 /* texref.h - an independent reference for textured pixels, written from
- * CONVENTIONS.md ("Textures") alone: it shares no code with src/ (its own
+ * lessons/CONVENTIONS.md ("Textures") alone: it shares no code with src/ (its own
  * pyramid, wrap, coverage, interpolation, derivatives, level of detail and
  * five filters), so that lesson 09's pictures can be checked against it,
  * within 2 levels per channel, as the conventions say.
@@ -111,7 +111,7 @@ void texref_ideal_free(struct texref_ideal *id);
 /* How a lesson's picture compares with the reference's: the pixels whose
  * coverage count differs, and the covered pixels whose colour differs by
  * more than `levels` in a channel (the first of them in *x, *y, -1 when
- * none). CONVENTIONS allows 2 levels. */
+ * none). lessons/CONVENTIONS.md allows 2 levels. */
 struct texref_diff {
     long coverage, colour;
     int x, y;

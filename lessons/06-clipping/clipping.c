@@ -3,7 +3,7 @@
  *
  * What it shows: the stage every real pipeline runs before the rasterizers of
  * lessons 01-05. A 3-D scene gives world-space triangles and a camera
- * (CONVENTIONS.md, "3-D scenes"); the screen triangles the rasterizer needs
+ * (lessons/CONVENTIONS.md, "3-D scenes"); the screen triangles the rasterizer needs
  * are made in six steps, front_pipeline() of src/front/front.c, which every
  * program runs on every 3-D scene and this lesson runs again, narrated:
  *

@@ -301,7 +301,7 @@ static void resolve(const struct run *r, int x, int y, const struct fragment *f,
 }
 
 /* Write the outcome: the samples, the resolved pixel, and the count of
- * covered samples (saturating, CONVENTIONS.md "Samples"). */
+ * covered samples (saturating, lessons/CONVENTIONS.md "Samples"). */
 static void store(const struct run *r, int x, int y, unsigned mask, const struct outcome *o)
 {
     int n = r->pt.n;

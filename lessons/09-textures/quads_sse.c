@@ -353,6 +353,10 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr)
 {
+    if (p->knob[P_AFFINE]) {    /* the exhibit is the lesson's own loop, not a fast path */
+        textures_rasterize(t, p, fb, tr, &tex_stages_lesson, (struct tex_options){ .affine = true });
+        return;
+    }
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;

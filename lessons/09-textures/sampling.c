@@ -1,6 +1,6 @@
 /* Lesson 09's texture unit: from (s, t) and a quad's derivatives to a
  * filtered texel, in small pieces an exercise can swap (struct tex_stages,
- * textures.h). The rules are CONVENTIONS.md's "Textures":
+ * textures.h). The rules are lessons/CONVENTIONS.md's "Textures":
  *
  *     texel (i, j) of level k covers [i, i+1) x [j, j+1) in texels,
  *     u = s W_k, v = t H_k; its centre is (i + 1/2, j + 1/2)
@@ -15,8 +15,8 @@
  *
  *     level of detail: rho = the longer of (du/dx, dv/dx) and (du/dy,
  *     dv/dy) in level-0 texels, lambda = log2(rho); trilinear mixes the
- *     bilinear taps of levels floor(lambda) and floor(lambda) + 1 by
- *     frac(lambda); aniso spreads n trilinear taps along the longer
+ *     bilinear values of levels floor(lambda) and floor(lambda) + 1 by
+ *     frac(lambda); aniso spreads n trilinear probes along the longer
  *     derivative and takes a finer level, log2(P_max / n).
  *
  * Colours are floats in 0..255 (a texel's 8-bit channels are exact in a
@@ -102,7 +102,7 @@ static void trilinear_used(const struct texture *tex, double lambda, struct tex_
     u->mix = (float)(lambda - u->level0);
 }
 
-/* Anisotropic: n trilinear taps along the longer derivative, averaged. */
+/* Anisotropic: n trilinear probes along the longer derivative, averaged. */
 static struct texel_rgb aniso(const struct texture *tex, int max_aniso, double s, double t,
                               const struct tex_deriv *d, const struct tex_stages *st,
                               struct tex_used *used)

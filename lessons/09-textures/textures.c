@@ -2,8 +2,9 @@
  * filtering.
  *
  * Built on lesson 05's blocks: the box is cut into 8 x 8 blocks, each
- * classified by its corners (empty, full, partial); a block that is not
- * empty is walked in 2 x 2 quads, as GPUs walk a triangle:
+ * tested for emptiness by its corners; a block that is not empty, full or
+ * partial, is walked in 2 x 2 quads, as GPUs walk a triangle, every pixel
+ * tested:
  *
  *        x0   x0+1                  the quad of pixel (x, y) is the one
  *      +----+----+                  whose top-left pixel is (x & ~1, y & ~1)
@@ -261,6 +262,7 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
+    o.affine = o.affine || p->knob[P_AFFINE];
     struct run r = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .st = st, .o = o,
                      .filter = o.no_mipmaps ? FILTER_BILINEAR : tex_filter_of(p),
                      .max_aniso = tex_max_aniso_of(p), .inv_area2 = 1.0 / (double)t->area2 };
@@ -364,7 +366,11 @@ const struct lesson lesson_09 = {
                        .help = "texture filter: nearest, bilinear, mip-bilinear, trilinear, aniso" },
         [P_MAX_ANISO] = { .option = "max-aniso", .arg = "N", .name = "max aniso", .key = ']',
                           .key_down = '[', .min = 1, .max = 16, .def = MAX_ANISO_DEFAULT,
-                          .help = "most taps of the aniso filter (1..16)" },
+                          .help = "most probes of the aniso filter (1..16)" },
+        [P_AFFINE] = { .option = "affine", .name = "texturing",
+                       .help = "texture affinely, not perspective-correct (lesson 04's exhibit)",
+                       .words = (const char *const[]){ "perspective", "affine" },
+                       .key = 'p', .min = 0, .max = 1 },
         { 0 } },
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_VALUE_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){

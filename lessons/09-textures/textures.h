@@ -8,7 +8,7 @@
  *                   them, narrated; the descriptor and its variants
  *   quads_sse.c     the fast twin: a quad is four SSE lanes
  *
- * The rules are CONVENTIONS.md's "Textures" (src/scene/texture.h holds the
+ * The rules are lessons/CONVENTIONS.md's "Textures" (src/scene/texture.h holds the
  * image, its pyramid and texel addressing).
  *
  * The stages (struct tex_stages) are what an exercise swaps: the lesson's
@@ -54,7 +54,10 @@
  * default" (trilinear), as for every lesson's rows. */
 enum tex_filter { FILTER_NEAREST = 1, FILTER_BILINEAR, FILTER_MIP_BILINEAR, FILTER_TRILINEAR,
                   FILTER_ANISO };
-enum { P_FILTER, P_MAX_ANISO };     /* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO] */
+/* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO], and
+ * p->knob[P_AFFINE], --affine as in lesson 04 (every variant then takes
+ * the affine exhibit's (s, t)) */
+enum { P_FILTER, P_MAX_ANISO, P_AFFINE };
 #define MAX_ANISO_DEFAULT 16
 
 /* The filter and the aniso limit a run's params ask for (defaults for 0). */

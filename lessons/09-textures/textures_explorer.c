@@ -12,7 +12,7 @@
  * the derivatives, rho, lambda, the levels and their weights. All of it
  * from the events told so far (run_place.told), so it follows the step
  * both ways; the taps follow from the told (u, v), levels and mix by the
- * rules of CONVENTIONS.md "Textures". */
+ * rules of lessons/CONVENTIONS.md "Textures". */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -4,7 +4,7 @@
 
 #include "explore/explorer.h"
 
-/* Exit statuses of the programs (CONVENTIONS.md). */
+/* Exit statuses of the programs (lessons/CONVENTIONS.md). */
 enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
 
 /* What the window opens on: zero-initialise and set what you need. */

@@ -50,6 +50,7 @@ static void usage(const struct lesson *l, FILE *out)
         "  --zoom PX               screen pixels per scene pixel (default: fit)\n"
         "  --scale F               interface scale for text and panels (default 1)\n"
         "  --theme dark|light      colours: dark for the screen (default), light for paper\n"
+        "  --paper a4|letter       a PDF figure on a page of paper, its cell numbers 6 pt or more\n"
         "  --figure-part all|canvas  the whole view, or the pixel grid alone (no panel, no bar)\n",
         l->id, l->title, l->builtin_scene);
     const struct lesson_param *rows[PARAM_OPTIONS_MAX];
@@ -115,7 +116,7 @@ static bool parse_positive(const char *s, double max, double *out)
 
 enum {
     OPT_SCENE = 256, OPT_VARIANT, OPT_DUMP_COVERAGE, OPT_DUMP_IMAGE, OPT_FIGURE, OPT_STEP,
-    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_KEYS, OPT_LIST_SCENES,
+    OPT_VIEW, OPT_SIZE, OPT_ZOOM, OPT_SCALE, OPT_THEME, OPT_PART, OPT_PAPER, OPT_KEYS, OPT_LIST_SCENES,
     OPT_HELP, OPT_VERSION,
     OPT_PARAM,      /* OPT_PARAM + i: the i-th option of the lessons' parameter tables */
 };
@@ -133,6 +134,7 @@ static const struct option long_options[] = {
     { "scale", required_argument, NULL, OPT_SCALE },
     { "theme", required_argument, NULL, OPT_THEME },
     { "figure-part", required_argument, NULL, OPT_PART },
+    { "paper", required_argument, NULL, OPT_PAPER },
     { "keys", required_argument, NULL, OPT_KEYS },
     { "list-scenes", no_argument, NULL, OPT_LIST_SCENES },
     { "help", no_argument, NULL, OPT_HELP },
@@ -252,6 +254,10 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
             if (!figure_part_from_name(optarg, &o->part))
                 return bad_usage(l, "--figure-part '%s': expected all or canvas", optarg);
             break;
+        case OPT_PAPER:
+            if (!paper_from_name(optarg, &o->paper))
+                return bad_usage(l, "--paper '%s': expected a4 or letter", optarg);
+            break;
         case OPT_KEYS: o->keys = optarg; break;
         case OPT_LIST_SCENES:
             for (int i = 0; i < builtin_scene_count; i++)
@@ -279,6 +285,9 @@ static int parse_options(const struct lesson *l, int argc, char **argv, struct c
     }
     if (optind < argc)
         return bad_usage(l, "unexpected argument '%s' (scenes are given with --scene)", argv[optind]);
+    if (o->paper != PAPER_NONE && !(o->figure && has_suffix(o->figure, ".pdf")))
+        return bad_usage(l, "--paper '%s': a page is for a PDF figure (--figure FILE.pdf)",
+                         o->paper == PAPER_A4 ? "a4" : "letter");
     return -1;
 }
 
@@ -363,7 +372,7 @@ static int figure_export(const struct lesson *l, const struct cli_options *o, st
         explorer_set_view_name(&ex, o->view);
     int w = o->width ? o->width : 1280, h = o->height ? o->height : 800;
     status = EXIT_OK;
-    if (!explorer_export(&ex, o->figure, w, h, err, sizeof err)) {
+    if (!explorer_export_paper(&ex, o->figure, w, h, o->paper, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         status = EXIT_RUN;
     }

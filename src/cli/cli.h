@@ -1,5 +1,5 @@
 /* cli.h - the program every lesson becomes: the options they all share
- * (CONVENTIONS.md), the headless modes, the explorer window. */
+ * (lessons/CONVENTIONS.md), the headless modes, the explorer window. */
 #ifndef TRISTEP_CLI_H
 #define TRISTEP_CLI_H
 
@@ -26,6 +26,7 @@ struct cli_options {
     double scale;                   /* --scale F: interface scale, 0 = 1 */
     enum theme theme;               /* --theme dark|light (figures for print) */
     enum figure_part part;          /* --figure-part all|canvas */
+    enum paper paper;               /* --paper a4|letter (PDF figures) */
     const char *keys;               /* --keys FILE: scripted explorer input */
     struct raster_params params;
 };

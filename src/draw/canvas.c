@@ -68,14 +68,18 @@ static void paint_cells(struct painter *p, int x0, int y0, int x1, int y1)
 }
 
 /* The font size of the numbers in cells, or 0 when they are not shown:
- * the widest label is about 5 characters of 0.6 em. */
+ * the widest label is about 5 characters of 0.6 em. On paper (text_min)
+ * they are at least text_min, or left out when the cell cannot hold them. */
 static double numbers_size(const struct painter *p)
 {
     const struct explorer *ex = p->ex;
     if (ex->numbers == NUMBERS_OFF)
         return 0;
     int lines = view_lines(ex);
-    double size = fmin(fmin(p->L.zoom * 0.86 / (lines * 1.2), p->L.zoom * 0.86 / (5.2 * 0.602)), 13 * p->s);
+    double fits = fmin(p->L.zoom * 0.86 / (lines * 1.2), p->L.zoom * 0.86 / (5.2 * 0.602));
+    if (ex->text_min > 0)
+        return fits < ex->text_min ? 0 : fmin(fits, fmax(13 * p->s, ex->text_min));
+    double size = fmin(fits, 13 * p->s);
     return size < (ex->numbers == NUMBERS_ALWAYS ? 3.0 : 7.0) ? 0 : size;
 }
 
@@ -363,6 +367,13 @@ static void paint_numbers(struct painter *p, int x0, int y0, int x1, int y1)
             }
         }
     for (int k = 0; k < 2; k++) {
+        if (ink[k].n && ex->text_min > 0) {     /* on paper, over the edges: a halo first */
+            set_rgba(cr, k ? 0x000000 : 0xffffff, 0.85);
+            cairo_glyph_path(cr, ink[k].g, ink[k].n);
+            cairo_set_line_width(cr, size * 0.3);
+            cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+            cairo_stroke(cr);
+        }
         if (ink[k].n) {
             set_rgba(cr, k ? 0xffffff : 0x000000, 0.92);
             cairo_show_glyphs(cr, ink[k].g, ink[k].n);
@@ -391,7 +402,8 @@ void paint_canvas(struct painter *p)
         paint_cells(p, x0, y0, x1, y1);
         paint_grid(p, x0, y0, x1, y1);
         paint_exhibit(p, x0, y0, x1, y1);
-        paint_numbers(p, x0, y0, x1, y1);
+        if (!(ex->text_min > 0))
+            paint_numbers(p, x0, y0, x1, y1);
     }
     /* the target's border */
     cairo_set_line_width(cr, 1);
@@ -401,6 +413,8 @@ void paint_canvas(struct painter *p)
     paint_current(p);
     paint_triangle(p);
     paint_overlay(p);
+    if (ex->text_min > 0 && x0 < x1 && y0 < y1)
+        paint_numbers(p, x0, y0, x1, y1);     /* on paper: over the edges, legible */
     if (ex->message[0]) {
         double h = 24 * p->s;
         double tw = text_width(p, ex->message, 12);

@@ -4,6 +4,7 @@
 
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
+#include <math.h>
 #include <string.h>
 
 #include "paint.h"
@@ -23,7 +24,53 @@ struct export_job {
     struct explorer *ex;
     const char *path;
     int w, h;
+    enum paper paper;
 };
+
+/* Pages in points: A4 (210 x 297 mm) and US Letter (8.5 x 11 in), turned
+ * to landscape for a view wider than tall; the view is fitted inside a
+ * margin of half an inch, centred. */
+static const double paper_size[PAPER_COUNT][2] = { { 0, 0 }, { 595, 842 }, { 612, 792 } };
+#define PAPER_MARGIN 36.0
+/* The smallest cell number on paper, in points: 6 pt is the usual floor of
+ * a printed figure's labels (journals ask for 6 to 8 pt), and DejaVu Sans
+ * Mono's digits are still clear at it. A cell too small to hold its numbers
+ * at that size shows none on paper. */
+#define PAPER_TEXT_MIN_PT 6.0
+
+/* Where the view of w x h goes on the page: its scale and offset. */
+static void paper_fit(enum paper paper, int w, int h, double *pw, double *ph, double *s, double *x,
+                      double *y)
+{
+    *pw = paper_size[paper][0], *ph = paper_size[paper][1];
+    if (w > h) {
+        double t = *pw;
+        *pw = *ph, *ph = t;
+    }
+    *s = fmin((*pw - 2 * PAPER_MARGIN) / w, (*ph - 2 * PAPER_MARGIN) / h);
+    *x = (*pw - w * *s) / 2, *y = (*ph - h * *s) / 2;
+}
+
+void paper_page_size(enum paper paper, int w, int h, double *pw, double *ph)
+{
+    double s, x, y;
+    paper_fit(paper, w, h, pw, ph, &s, &x, &y);
+}
+
+void explorer_paint_page(struct explorer *ex, cairo_t *cr, int w, int h, enum paper paper)
+{
+    double pw, ph, s, x, y;
+    paper_fit(paper, w, h, &pw, &ph, &s, &x, &y);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, s, s);
+    cairo_rectangle(cr, 0, 0, w, h);
+    cairo_clip(cr);
+    ex->text_min = PAPER_TEXT_MIN_PT / s;
+    explorer_paint(ex, cr, w, h);
+    ex->text_min = 0;
+    cairo_restore(cr);
+}
 
 static bool write_figure(FILE *out, void *ctx)
 {
@@ -35,13 +82,19 @@ static bool write_figure(FILE *out, void *ctx)
     } else if (has_suffix(job->path, ".svg")) {
         surface = cairo_svg_surface_create_for_stream(to_file, out, job->w, job->h);
     } else {
-        surface = cairo_pdf_surface_create_for_stream(to_file, out, job->w, job->h);
+        double pw = job->w, ph = job->h;
+        if (job->paper != PAPER_NONE)
+            paper_page_size(job->paper, job->w, job->h, &pw, &ph);
+        surface = cairo_pdf_surface_create_for_stream(to_file, out, pw, ph);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, FIGURE_DATE);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, FIGURE_DATE);
         cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "tristep");
     }
     cairo_t *cr = cairo_create(surface);
-    explorer_paint(job->ex, cr, job->w, job->h);
+    if (job->paper != PAPER_NONE && !png)
+        explorer_paint_page(job->ex, cr, job->w, job->h, job->paper);
+    else
+        explorer_paint(job->ex, cr, job->w, job->h);
     cairo_status_t st = cairo_status(cr);
     cairo_destroy(cr);
     if (st == CAIRO_STATUS_SUCCESS && png)
@@ -53,10 +106,16 @@ static bool write_figure(FILE *out, void *ctx)
     return st == CAIRO_STATUS_SUCCESS;
 }
 
+bool explorer_export_paper(struct explorer *ex, const char *path, int w, int h, enum paper paper,
+                           char *err, size_t errlen)
+{
+    struct export_job job = { ex, path, w, h, has_suffix(path, ".pdf") ? paper : PAPER_NONE };
+    return write_file_atomic(path, write_figure, &job, err, errlen);
+}
+
 bool explorer_export(struct explorer *ex, const char *path, int w, int h, char *err, size_t errlen)
 {
-    struct export_job job = { ex, path, w, h };
-    return write_file_atomic(path, write_figure, &job, err, errlen);
+    return explorer_export_paper(ex, path, w, h, PAPER_NONE, err, errlen);
 }
 
 bool write_color_png(FILE *out, const struct target *fb)

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 /* Only DejaVu, with fixed rendering settings: a user's own fontconfig
- * setup must not change a figure (FACTS.md). Written to a temporary file
+ * setup must not change a figure. Written to a temporary file
  * because FONTCONFIG_FILE names a file. */
 static const char fonts_conf[] =
     "<?xml version=\"1.0\"?>\n"

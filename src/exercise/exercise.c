@@ -160,7 +160,7 @@ static double depth_at(const struct tri_setup *t, int64_t sx, int64_t sy, bool p
     return perspective ? 1.0 / z : z;
 }
 
-/* The exact rule at n > 1 samples (CONVENTIONS.md, "Samples"): each sample
+/* The exact rule at n > 1 samples (lessons/CONVENTIONS.md, "Samples"): each sample
  * of sample_pattern(n) decided by reference_point_covered, its depth exact
  * at the sample, the colour the pixel centre's (one colour per pixel, as
  * MSAA shades); each covered sample depth-tested, the pixel resolved to the

@@ -1,5 +1,5 @@
 /* exercise.h - a student's rasterizer run as a lesson variant, and the
- * checks of `make check` (CONVENTIONS.md, "Exercises").
+ * checks of `make check` (lessons/CONVENTIONS.md, "Exercises").
  *
  * The student's file defines exercise_rasterize(), compiled with
  * student.h in front of it. Here it becomes a variant of the lesson

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
-/* --- 3-D scenes for lesson 06's clipper (CONVENTIONS.md, "3-D scenes") ------- */
+/* --- 3-D scenes for lesson 06's clipper (lessons/CONVENTIONS.md, "3-D scenes") ------- */
 
 static void world_start(struct scene *s, int w, int h, struct camera cam, enum cull cull)
 {

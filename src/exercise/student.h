@@ -22,7 +22,7 @@
 
 #include "lesson.h"
 
-/* The whole rasterizer a FILE defines (CONVENTIONS.md, "Exercises"). */
+/* The whole rasterizer a FILE defines (lessons/CONVENTIONS.md, "Exercises"). */
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr);
 

@@ -29,18 +29,23 @@ enum step_unit {
 
 enum numbers_mode { NUMBERS_AUTO, NUMBERS_ALWAYS, NUMBERS_OFF, NUMBERS_MODE_COUNT };
 
-/* Figures for print (CONVENTIONS.md): the colours, and how much of the view.
+/* Figures for print (lessons/CONVENTIONS.md): the colours, and how much of the view.
  * THEME_DARK is the screen's; THEME_LIGHT draws for paper (dark ink on
  * white). PART_CANVAS is the pixel grid alone, without the panel and the
  * scrub bar. */
 enum theme { THEME_DARK, THEME_LIGHT, THEME_COUNT };
 enum figure_part { PART_ALL, PART_CANVAS, PART_COUNT };
+/* --paper: a PDF figure on a page of paper (src/draw/export.c), or at its
+ * own size in points (PAPER_NONE). */
+enum paper { PAPER_NONE, PAPER_A4, PAPER_LETTER, PAPER_COUNT };
 
 /* "dark", "light" / "all", "canvas"; the parsers return false on anything else. */
 const char *theme_name(enum theme t);
 bool theme_from_name(const char *name, enum theme *out);
 const char *figure_part_name(enum figure_part f);
 bool figure_part_from_name(const char *name, enum figure_part *out);
+/* "a4", "letter" (PAPER_NONE has no name: no --paper) */
+bool paper_from_name(const char *name, enum paper *out);
 
 /* What the current triangle's narration said about one pixel so far. */
 enum cell_flags {
@@ -156,6 +161,9 @@ struct explorer {
     enum theme theme;               /* change it with explorer_set_theme */
     double own_background[3];       /* the scene's background (scene.background is the page's on paper) */
     enum figure_part part;          /* PART_CANVAS: the grid fills the frame, no panel, no bar */
+    /* printing: the numbers in cells at least this many frame units high, or
+     * left out, and drawn over the edges with a halo (0: on screen) */
+    double text_min;
     bool pinned;
     int pin_x, pin_y;
     bool help;

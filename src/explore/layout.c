@@ -8,6 +8,7 @@
 
 static const char *const theme_names[THEME_COUNT] = { "dark", "light" };
 static const char *const part_names[PART_COUNT] = { "all", "canvas" };
+static const char *const paper_names[PAPER_COUNT] = { "", "a4", "letter" };
 
 /* The index of `name` in names[0..n), or -1. */
 static int name_index(const char *const *names, int n, const char *name)
@@ -41,6 +42,14 @@ void theme_background(struct explorer *ex, enum theme t)
 const char *figure_part_name(enum figure_part f)
 {
     return f >= 0 && f < PART_COUNT ? part_names[f] : "?";
+}
+
+bool paper_from_name(const char *name, enum paper *out)
+{
+    int i = name_index(paper_names + 1, PAPER_COUNT - 1, name);
+    if (i >= 0)
+        *out = (enum paper)(i + 1);
+    return i >= 0;
 }
 
 bool figure_part_from_name(const char *name, enum figure_part *out)

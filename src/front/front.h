@@ -1,5 +1,5 @@
 /* front.h - the 3-D front end: the world triangles of a 3-D scene become the
- * screen-space triangles every lesson rasterizes (CONVENTIONS.md, "3-D scenes").
+ * screen-space triangles every lesson rasterizes (lessons/CONVENTIONS.md, "3-D scenes").
  *
  *   world --look-at--> view --clip d >= near, d <= far--> --project--> screen
  *         --guard band (only what reaches beyond [-16384, 16384))--> --fan, cull--> 2-D triangles

@@ -1,4 +1,4 @@
-/* line.h - aliased lines of width 1, decided exactly (CONVENTIONS.md,
+/* line.h - aliased lines of width 1, decided exactly (lessons/CONVENTIONS.md,
  * "Lines"): GL's diamond-exit rule (GL 4.6 section 14.5.1) with its "in
  * principle, perturb the endpoints by a tiny amount" made concrete.
  *

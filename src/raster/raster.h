@@ -1,7 +1,7 @@
 /* raster.h - the exact core every lesson shares: fixed point, triangle setup,
  * the top-left fill rule, the render target and the reference rasterizer.
  *
- * Screen space (CONVENTIONS.md): pixels, origin top-left, x right, y DOWN.
+ * Screen space (lessons/CONVENTIONS.md): pixels, origin top-left, x right, y DOWN.
  * Pixel (px, py) covers [px, px+1) x [py, py+1); its centre decides coverage.
  */
 #ifndef TRISTEP_RASTER_H
@@ -196,7 +196,7 @@ struct target {
 /* --- samples (lesson 08) --------------------------------------------------- */
 
 /* Sample positions inside pixel (px, py), in 1/256 pixel from its top-left
- * corner: the standard patterns of Direct3D and Vulkan (CONVENTIONS.md,
+ * corner: the standard patterns of Direct3D and Vulkan (lessons/CONVENTIONS.md,
  * "Samples"). A sample is decided exactly like a pixel centre: the edge
  * value at (256 px + x, 256 py + y), the top-left rule. */
 #define SAMPLES_MAX 8

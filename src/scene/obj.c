@@ -1,4 +1,4 @@
-/* obj.c - the small part of Wavefront OBJ a 3-D scene reads (CONVENTIONS.md):
+/* obj.c - the small part of Wavefront OBJ a 3-D scene reads (lessons/CONVENTIONS.md):
  *
  *     v 1.0 2.0 -0.5          a vertex (more numbers, w or a colour, are ignored)
  *     vt 0.25 0.75            texture coordinates u v (w ignored; v is 0 if absent):

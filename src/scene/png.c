@@ -1,4 +1,4 @@
-/* png.c - a PNG texture read through cairo (CONVENTIONS.md, "Textures").
+/* png.c - a PNG texture read through cairo (lessons/CONVENTIONS.md, "Textures").
  *
  * Before cairo decodes anything, the file's signature and its IHDR chunk
  * (the first 33 bytes) are read here: a size that is not a power of two in

@@ -123,7 +123,7 @@ static bool in_unit(double v)
 }
 
 /* One vertex of a tri or an end of a line, d[0..per) = x y z r g b [s t],
- * checked against the ranges of CONVENTIONS.md; `which` names it in
+ * checked against the ranges of lessons/CONVENTIONS.md; `which` names it in
  * messages ("vertex 2", "end 1"). */
 static bool check_vertex(struct parser *p, const char *which, const double *d, int per,
                          struct vertex *v)
@@ -174,7 +174,7 @@ static bool parse_tri(struct parser *p, struct scene *s, char **tok, int n)
     return true;
 }
 
-/* `line x0 y0 z0 r0 g0 b0  x1 y1 z1 r1 g1 b1` (CONVENTIONS.md, "Lines"). */
+/* `line x0 y0 z0 r0 g0 b0  x1 y1 z1 r1 g1 b1` (lessons/CONVENTIONS.md, "Lines"). */
 static bool parse_lineseg(struct parser *p, struct scene *s, char **tok, int n)
 {
     if (n != 12)

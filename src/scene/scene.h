@@ -1,4 +1,4 @@
-/* scene.h - scene files (CONVENTIONS.md): parse, write, built-in scenes.
+/* scene.h - scene files (lessons/CONVENTIONS.md): parse, write, built-in scenes.
  *
  *     # comment to end of line; blank lines are ignored
  *     size 64 48
@@ -36,7 +36,7 @@
 #include "texture.h"
 
 /* Ranges every value of a scene is checked against where it is read (beyond
- * CONVENTIONS.md's coordinates and colours): they keep every quantity a
+ * lessons/CONVENTIONS.md's coordinates and colours): they keep every quantity a
  * lesson derives (1/z, z, colours over z, checker squares) finite and
  * representable in the floats and integers it uses. */
 #define SCENE_Z_MIN 1e-6        /* z in [SCENE_Z_MIN, SCENE_Z_MAX] */
@@ -49,7 +49,7 @@ struct scene_tri {
                                         * k > 0: scene_texture(s, k) */
 };
 
-/* A `line` (CONVENTIONS.md, "Lines"): from v[0] (A, the start) to v[1] (B). */
+/* A `line` (lessons/CONVENTIONS.md, "Lines"): from v[0] (A, the start) to v[1] (B). */
 struct scene_line {
     struct vertex v[2];
     /* how many triangles of the file (tri, or a 3-D scene's world
@@ -57,7 +57,7 @@ struct scene_line {
     int after;
 };
 
-/* --- 3-D scenes (CONVENTIONS.md, "3-D scenes") ----------------------------- */
+/* --- 3-D scenes (lessons/CONVENTIONS.md, "3-D scenes") --------------------- */
 
 #define WORLD_LIMIT 1e6     /* |world coordinate| <= 10^6 */
 
@@ -125,7 +125,7 @@ bool world_add(struct world *w, const struct world_tri *t);
 /* Append a line from v[0] to v[1], after the triangles there are so far. */
 bool scene_add_line(struct scene *s, const struct vertex v[2]);
 
-/* What lesson 00 draws of a scene (CONVENTIONS.md, "Lines"), in file order:
+/* What lesson 00 draws of a scene (lessons/CONVENTIONS.md, "Lines"), in file order:
  * its `line`s and the edges of its screen triangles (a 3-D scene's after
  * the front end has made them), each edge AB, BC, CA in the order the
  * triangle gives them and each edge that two triangles share once, from

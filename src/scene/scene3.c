@@ -1,4 +1,4 @@
-/* scene3.c - the lines of a 3-D scene (CONVENTIONS.md, "3-D scenes"):
+/* scene3.c - the lines of a 3-D scene (lessons/CONVENTIONS.md, "3-D scenes"):
  *
  *     camera  0 1 5   0 0 0   0 1 0   60  0.1 100   eye, target, up, fovy, near, far
  *     cull none                                      none (default), back or front

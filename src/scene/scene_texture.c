@@ -1,4 +1,4 @@
-/* scene_texture.c - the image texture lines of a scene (CONVENTIONS.md, "Textures"):
+/* scene_texture.c - the image texture lines of a scene (lessons/CONVENTIONS.md, "Textures"):
  *
  *     texture checker 8                    the procedural checker (every lesson)
  *     texture floor.png                    a PNG beside the scene, repeat

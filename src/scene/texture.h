@@ -1,4 +1,4 @@
-/* texture.h - image textures and their mip-map pyramids (CONVENTIONS.md,
+/* texture.h - image textures and their mip-map pyramids (lessons/CONVENTIONS.md,
  * "Textures"), as a scene names them:
  *
  *     texture FILE.png [repeat|clamp]      a PNG beside the scene, read through cairo

@@ -1,6 +1,6 @@
 /* agree.c - how two pictures compare: coverage counts pixel by pixel, and
  * colours by agreement where a reference covers pixels, the bench's measure
- * of lesson 09 against llvmpipe on textured scenes (CONVENTIONS.md: real
+ * of lesson 09 against llvmpipe on textured scenes (lessons/CONVENTIONS.md: real
  * samplers differ from the reference by design, so they are compared by
  * agreement, never held to equality). */
 #include "bench.h"

@@ -1129,7 +1129,7 @@ int main(int argc, char **argv)
 
     /* Interleaved, round after round: every row runs once per scene in each
      * round, so that a slow phase of the shared machine hits every program
-     * alike (FACTS.md). llvmpipe runs in a child process per round (it reads
+     * alike. llvmpipe runs in a child process per round (it reads
      * its thread count once per process), with its own warm-up. */
     uint8_t *peer_cov[NSCENES] = { NULL }, *peer_cov4[NSCENES] = { NULL };
     bool have_peer = false;

@@ -16,8 +16,8 @@
  *   peak RSS     getrusage's ru_maxrss of the child at the end
  *
  * Times are wall-clock; the CPU time of the first frame and of the slowest
- * step are reported beside them because these machines are shared
- * (FACTS.md): a busy machine stretches the wall-clock times.
+ * step are reported beside them because a machine may be shared: a busy
+ * machine stretches the wall-clock times.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>

@@ -3,7 +3,7 @@
  *
  * Same scenes, same state as the lessons: Gouraud colour, depth test LESS
  * with depth write, RGBA8 colour. Three things make llvmpipe decide exactly
- * the pixels our top-left rule decides (FACTS.md):
+ * the pixels our top-left rule decides:
  *
  *  - glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE): llvmpipe applies
  *    the top-left rule with y growing down its surface's rows;
@@ -32,7 +32,7 @@
  * OSMesa's buffer by a blit, draw and blit timed together, as an application
  * does MSAA. Its samples are the standard 4x pattern in GL's window space,
  * y up (GL_SAMPLE_POSITION says so); through the flip above they sit in the
- * scene at (x, 256 - y), the pattern of CONVENTIONS.md upside down, and
+ * scene at (x, 256 - y), the pattern of lessons/CONVENTIONS.md upside down, and
  * they are reported (peer_sample_pos) for the bench to check them against
  * the exact rule at those points. Coverage: each sample alone
  * (glSampleMaski), every triangle adding 4 levels of red there without a
@@ -41,7 +41,7 @@
  * what lesson 08's --dump-coverage counts.
  *
  * A scene with image textures (the bench's textured scenes) is drawn as
- * CONVENTIONS.md "Textures" says, in GL's words: each texture's level 0 as
+ * lessons/CONVENTIONS.md "Textures" says, in GL's words: each texture's level 0 as
  * its image rows come (row 0, t = 0, first: GL's t runs along the rows as
  * they are given, so no flip), its levels made by glGenerateMipmap,
  * GL_LINEAR_MIPMAP_LINEAR and GL_LINEAR, GL_REPEAT or GL_CLAMP_TO_EDGE as

@@ -12,7 +12,7 @@
  * llvmpipe's (0 differing pixels for every exact variant); colour against
  * llvmpipe's, as agreement: of the pixels the reference covers, the share
  * within 2 and within 8 levels in every channel. Real samplers differ from
- * CONVENTIONS.md's rule by design (llvmpipe's quads take the derivatives at
+ * lessons/CONVENTIONS.md's rule by design (llvmpipe's quads take the derivatives at
  * GL's bottom-left pixel, its mip-maps round their own way, its log2 is
  * approximate), so agreement is reported, never asserted.
  */

@@ -17,7 +17,7 @@ static bool unit(double v)
     return v >= 0 && v <= 1;
 }
 
-/* What every accepted scene holds (CONVENTIONS.md, "Scene files"). */
+/* What every accepted scene holds (lessons/CONVENTIONS.md, "Scene files"). */
 static void check_ranges(const struct scene *s)
 {
     if (s->w < 1 || s->w > TARGET_MAX || s->h < 1 || s->h > TARGET_MAX)
@@ -155,7 +155,7 @@ static void check_round_trip(const struct scene *s)
     free(text);
 }
 
-/* A 3-D scene's world: camera as CONVENTIONS.md requires, world points
+/* A 3-D scene's world: camera as lessons/CONVENTIONS.md requires, world points
  * within 10^6, colours in [0, 1]; what the front end makes of it, screen
  * triangles inside the guard band at depths in [near, far]. */
 static void check_world(struct scene *s)
