@@ -2,7 +2,7 @@
  *
  * The exact diamond-exit rule (src/raster/line.c: the walk, colour and z
  * by t, the depth test) and llvmpipe's GL_LINES through OSMesa draw the
- * same scenes at 1920 x 1080, one thread each (LP_NUM_THREADS=0, FACTS.md):
+ * same scenes at 1920 x 1080, one thread each (llvmpipe with LP_NUM_THREADS=0):
  *
  *  - 3,000 random segments, ends on the 1/256 grid in and around the screen;
  *  - a tie-heavy scene: ends and paths on pixel centres, pixel corners and
@@ -16,7 +16,7 @@
  * stencil increment. It prints, per scene, the pixels where the two differ
  * (an exhibit: llvmpipe decides the diamond in float, and its own FIXME in
  * lp_setup_line.c says so) and the time of each, interleaved run by run
- * (FACTS.md: only ratios taken in one run mean anything), median and
+ * (only ratios taken in one run mean anything on a shared machine), median and
  * minimum of the runs. First, CONVENTIONS' examples drawn both ways (where
  * a segment runs along pixel boundaries, llvmpipe takes the row above and
  * the column to the left: the other perturbation).
