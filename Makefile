@@ -226,7 +226,7 @@ $(B)/exercise-variants.c: Makefile $(wildcard lessons/*/) | $(FIRST)
 $(B)/obj/exercise-variants.o: $(B)/exercise-variants.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
-	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file$(if $(VARIANT), (lesson $(LESSON)'s graded variants: $(patsubst $(EX_LESSON)/exercise-%.c,%,$(wildcard $(EX_LESSON)/exercise-*.c)))"; exit 2; }
+	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file$(if $(VARIANT),; lesson $(LESSON)'s graded variants: $(or $(patsubst $(EX_LESSON)/exercise-%.c,%,$(wildcard $(EX_LESSON)/exercise-*.c)),none))"; exit 2; }
 	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a

@@ -315,7 +315,7 @@ void explain(const struct checker *C, FILE *out, const struct verdict *v,
             fprintf(out, "      its centre lies exactly on edge %s (F = 0), a %s edge: the %s rule %s\n",
                     edge_names[k], top ? "top" : left ? "left" : t.I[k] == 0 ? "bottom" : "right",
                     rule == FILL_BOTTOM_RIGHT ? "bottom-right" : "top-left",
-                    edge_owns(rule, t.I[k], t.J[k]) ? "covers it" : "leaves it to the triangle on the other side");
+                    reference_edge_owns(rule, t.I[k], t.J[k]) ? "covers it" : "leaves it to the triangle on the other side");
         }
     }
     const struct lesson *l = C->l;

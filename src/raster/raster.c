@@ -257,6 +257,17 @@ static int64_t cross_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int64_t 
     return ((int64_t)x1 - x0) * (py - y0) - (px - x0) * ((int64_t)y1 - y0);
 }
 
+/* The bottom-right rule is the top-left rule of the edge walked the other
+ * way: (I, J) becomes (-I, -J), so a right edge (I < 0) reads as left and
+ * a bottom edge (I == 0, J < 0) as top. It is the top-left rule turned
+ * half way round the screen, and keeps meshes watertight for the same
+ * reason: a shared edge is walked one way by each of its two triangles, so
+ * exactly one of them owns it under either rule. */
+bool reference_edge_owns(enum fill_convention rule, int64_t I, int64_t J)
+{
+    return rule == FILL_BOTTOM_RIGHT ? is_top_left(-I, -J) : is_top_left(I, J);
+}
+
 bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy)
 {
     return reference_point_covered_rule(t, FILL_TOP_LEFT, sx, sy);
@@ -271,7 +282,7 @@ bool reference_point_covered_rule(const struct tri_setup *t, enum fill_conventio
     for (int k = 0; k < 3; k++) {
         int a = k, b = (k + 1) % 3;
         int64_t f = cross_at(X[a], Y[a], X[b], Y[b], sx, sy);
-        bool on_edge_ok = f == 0 && edge_owns(rule, (int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
+        bool on_edge_ok = f == 0 && reference_edge_owns(rule, (int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
         if (!(f > 0 || on_edge_ok))
             return false;
     }

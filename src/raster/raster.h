@@ -96,32 +96,13 @@ static inline bool is_top_left(int64_t I, int64_t J)
 }
 
 /* Which edges own the centres exactly on them. Every lesson, the
- * explorer and the bench use the top-left rule; the bottom-right rule, its
- * mirror image through the triangle's centre, is a graded exercise's
- * convention (lessons/02-barycentric/exercise-bottom-right.c), which the
- * reference decides as exactly:
- *
- *     bottom edge: exactly horizontal, the triangle above it (J < 0)
- *      right edge: on the triangle's right side, the interior to its
- *                  left (-x): walking the edge it goes DOWN (I < 0)
- *
- * Every edge of a triangle that is not top or left is bottom or right, and
- * a shared edge is walked one way by each of its two triangles, so either
- * rule gives a centre on it to exactly one of them. */
+ * explorer and the bench use the top-left rule; the bottom-right rule, a
+ * graded exercise's convention (lessons/02-barycentric/exercise-bottom-right.c),
+ * is the reference's too, decided as exactly (reference_point_covered_rule
+ * and reference_coverage_rule below): a centre exactly on an edge is
+ * covered when that edge is a bottom edge (exactly horizontal, the
+ * triangle above it) or a right edge (the interior to its left). */
 enum fill_convention { FILL_TOP_LEFT, FILL_BOTTOM_RIGHT };
-
-static inline bool is_bottom_right(int64_t I, int64_t J)
-{
-    bool right = I < 0;             /* Ay < By: the edge goes down */
-    bool bottom = I == 0 && J < 0;  /* horizontal, walked to the left */
-    return right || bottom;
-}
-
-/* Does an edge (I, J) own the centres on it under the rule? */
-static inline bool edge_owns(enum fill_convention rule, int64_t I, int64_t J)
-{
-    return rule == FILL_BOTTOM_RIGHT ? is_bottom_right(I, J) : is_top_left(I, J);
-}
 
 /* Floor and ceiling of a / b for b > 0, also for negative a (C's division
  * truncates toward 0: -3 / 2 is -1, floor_div(-3, 2) is -2). */
@@ -326,6 +307,10 @@ bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy);
 /* The same under either fill rule (reference_point_covered: FILL_TOP_LEFT). */
 bool reference_point_covered_rule(const struct tri_setup *t, enum fill_convention rule,
                                   int64_t sx, int64_t sy);
+
+/* Does the edge with coefficients (I, J), of a triangle set up as above,
+ * own the centres on it under the rule? */
+bool reference_edge_owns(enum fill_convention rule, int64_t I, int64_t J);
 
 /* The exact area of pixel (px, py) that t covers, in square pixels (0..1):
  * the snapped triangle clipped against the pixel's square, in double
