@@ -10,6 +10,12 @@ ifeq ($(MAKELEVEL),0)             # build on every core unless told (make -j1); 
 MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 2)
 endif
 LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
+# The worked answers are here, or not (a student kit, make student-kit):
+# without them the test files that need them are left out of the build by
+# name, and so are the blocks "#if !TRISTEP_NO_ANSWERS" of the others.
+ANSWERS_HERE := $(if $(wildcard lessons/*/answer.c),1)
+NEED_ANSWERS := tests/test_exercise.c tests/test_grade.c tests/test_variants.c tests/test_kit.c
+TESTS_SRC := $(filter-out $(if $(ANSWERS_HERE),,$(NEED_ANSWERS)),$(wildcard tests/*.c))
 BUILD    ?= build
 B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
 PROGRAMS := $(LESSONS:%=$(B)/%)
@@ -19,7 +25,7 @@ VAR_SRC  := $(wildcard lessons/*/exercise-*.c lessons/*/answer-*.c)
 LES_SRC  := $(filter-out $(EX_SRC) $(VAR_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
 MUTATIONS:= $(patsubst tests/mutations/%.patch,%,$(wildcard tests/mutations/*.patch))
-TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard tests/*.c) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
+TEST_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(TESTS_SRC) tests/bench/bigscene.c tests/bench/agree.c tests/bench/scenes.c) $(B)/obj/lessons.o $(B)/obj/exercises.o $(EX_SRC:%.c=$(B)/obj/%.o) \
             $(B)/obj/mutations.o $(MUTATIONS:%=$(B)/mutations/%.o) $(VAR_SRC:%.c=$(B)/obj/%.o) $(B)/obj/exercise-variants.o
 ALL_LES  := $(LES_SRC:%.c=$(B)/obj/%.o) $(patsubst %.c,$(B)/fast/%.o,$(filter-out $(EXP_SRC),$(LES_SRC)))
 LESSON   ?= $(firstword $(subst -, ,$(firstword $(LESSONS))))
@@ -164,8 +170,10 @@ $(B)/exercises.c: Makefile $(wildcard lessons/*/) $(EX_SRC) | $(FIRST)
 	  if grep -q '^void exercise_clip(' $$f; then printf 'void exercise_%s_%s_clip(struct poly *, const struct poly *, const struct plane *);\n' $$n $$(basename $$f .c); fi; done >> $@
 	@printf 'const struct exercise_code all_exercises[] = {\n' >> $@
 	@for d in $(sort $(dir $(EX_SRC))); do n=$$(basename $$d | cut -c1-2); \
-	  if grep -q '^void exercise_clip(' $${d}exercise.c; then c="exercise_$${n}_exercise_clip, exercise_$${n}_answer_clip"; else c="NULL, NULL"; fi; \
-	  printf '    { "%s", exercise_%s_exercise, exercise_%s_answer, %s },\n' $$n $$n $$n "$$c"; done >> $@
+	  a=NULL; [ -f $${d}answer.c ] && a=exercise_$${n}_answer; \
+	  if grep -q '^void exercise_clip(' $${d}exercise.c; then c="exercise_$${n}_exercise_clip, $${a}_clip"; else c="NULL, NULL"; fi; \
+	  [ $$a = NULL ] && c=$$(echo "$$c" | sed 's/NULL_clip/NULL/'); \
+	  printf '    { "%s", exercise_%s_exercise, %s, %s },\n' $$n $$n $$a "$$c"; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercises.o: $(B)/exercises.c | $(FIRST) ; $(CC_ALL) -c $< -o $@
 # The skeletons: lessons/NN-name/exercise.c made from the worked answer
@@ -250,9 +258,21 @@ grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/lib
 	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
 	  GRADE_LIBS='$(LIBS)' GRADE_VARIANT='$(VARIANT)' sh src/exercise/grade.sh
 
+# A student kit: this tree without what gives the answers away (src/kit.sh
+# says what), in KIT; make run, exercise, check and test work there.
+KIT      ?= $(B)/student-kit
+student-kit: ; @sh src/kit.sh write '$(KIT)' $(NEED_ANSWERS)
+# Without the answers the tests are compiled with TRISTEP_NO_ANSWERS, again
+# when the answers come or go (answers.flag); the rest of the build, and
+# cc.flag, do not change.
+$(B)/answers.flag: FORCE | $(B)/config.mk ; @echo '$(ANSWERS_HERE)' | cmp -s - $@ || echo '$(ANSWERS_HERE)' > $@
+$(B)/obj/tests/%.o: tests/%.c $(B)/cc.flag $(B)/answers.flag | $(FIRST)
+	@mkdir -p $(@D) && $(CC_ALL) $(if $(ANSWERS_HERE),,-DTRISTEP_NO_ANSWERS) -DTRISTEP_NARRATE -c $< -o $@
+
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
+	$(if $(ANSWERS_HERE),,@sh src/kit.sh left-out $(NEED_ANSWERS))
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 $(BUILD)/sanitize/fuzz-replay tests/fuzz/corpus
 	@$(MAKE) --no-print-directory aarch64 simde-test
