@@ -2,7 +2,7 @@
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
 #          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
 #          (check, exercise and grade take VARIANT=name: a lesson's graded variant, lessons/README.md)
-#          make student-kit [KIT=folder] (the course without its answers, to hand out)
+#          make student-kit [KIT=folder] (the course without its answers, to hand out) | make student-kit-test
 #          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
@@ -63,7 +63,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons student-kit FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons student-kit student-kit-test FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -262,6 +262,21 @@ grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/lib
 # says what), in KIT; make run, exercise, check and test work there.
 KIT      ?= $(B)/student-kit
 student-kit: ; @sh src/kit.sh write '$(KIT)' $(NEED_ANSWERS)
+# The long version of tests/test_kit.c: a whole kit built from nothing in
+# $(KT)/kit, outside this tree; make check there on every lesson's worked
+# answer and graded variant's, brought in from outside it (each passes),
+# and on the kit's skeletons (each fails); then the kit's own make test.
+KT       ?= $(or $(TMPDIR),/tmp)/tristep-kit-test
+student-kit-test:
+	@rm -rf $(KT) && $(MAKE) --no-print-directory student-kit KIT=$(KT)/kit
+	@for a in $(wildcard lessons/*/answer.c lessons/*/answer-*.c); do n=$$(basename $$(dirname $$a) | cut -c1-2); \
+	  v=$$(basename $$a .c | sed -n 's/^answer-//p'); f=$(KT)/$$n$${v:+-$$v}.c; cp $$a $$f; \
+	  $(MAKE) -C $(KT)/kit --no-print-directory -s check LESSON=$$n $${v:+VARIANT=$$v} FILE=$$f > $$f.txt 2>&1 \
+	    || { cat $$f.txt; echo "student-kit-test: $$a fails in the kit"; exit 1; }; \
+	  ! $(MAKE) -C $(KT)/kit --no-print-directory -s check LESSON=$$n $${v:+VARIANT=$$v} > $$f.skeleton.txt 2>&1 \
+	    || { echo "student-kit-test: the kit's skeleton of $$a passes"; exit 1; }; \
+	  echo "student-kit-test: $$a passes in the kit, its skeleton fails"; done
+	$(MAKE) -C $(KT)/kit --no-print-directory test
 # Without the answers the tests are compiled with TRISTEP_NO_ANSWERS, again
 # when the answers come or go (answers.flag); the rest of the build, and
 # cc.flag, do not change.
