@@ -64,7 +64,7 @@ shift
 case $kit in
     ""|/) echo "make student-kit: KIT=$kit is not a folder to write" >&2; exit 2 ;;
 esac
-if [ -e "$kit" ] && [ -n "$(ls -A "$kit" 2>/dev/null)" ] && [ ! -f "$kit/.student-kit" ]; then
+if [ -e "$kit" ] && [ -n "$(ls -A "$kit" 2>/dev/null)" ] && [ ! -f "$kit/tests/left-out.txt" ]; then
     echo "make student-kit: $kit exists and is not a student kit; give an empty or new folder" >&2
     exit 2
 fi
@@ -101,7 +101,6 @@ for f in $(grep -l '^#if !TRISTEP_NO_ANSWERS$' $(grep '^tests/.*\.c$' "$tmp/keep
     touch -r "$f" "$kit/$f"
 done
 cp "$tmp/left" "$kit/tests/left-out.txt"
-echo "a student kit, written by make student-kit: no worked answers, no answer keys" > "$kit/.student-kit"
 echo "student kit in $kit: $(grep -c . "$tmp/keep") files; left out the worked answers" \
      "($(grep -c '^lessons/.*/answer' "$tmp/all" || true) files), the answer keys ($(grep -c '^lessons/.*/ANSWERS.md$' "$tmp/all" || true))," \
      "the mutation suite ($(grep -c '^tests/mutations/' "$tmp/all" || true) patches) and $(grep -c . "$tmp/left") tests (tests/left-out.txt)"
