@@ -41,20 +41,24 @@ blocks() {
     ' "$1"
 }
 
+# What was left out, counted: "N test files and M tests".
+counted() {
+    files=$(grep -c '(the whole file)' "$1" || true)
+    tests=$(grep -vc '(the whole file)' "$1" || true)
+    echo "$files test file$([ "$files" = 1 ] || echo s) and $tests test$([ "$tests" = 1 ] || echo s)"
+}
+
 if [ "$mode" = left-out ]; then
     list=tests/left-out.txt
-    if [ -f "$list" ]; then
-        n=$(grep -c . "$list")
-        echo "make test: $n tests left out, which need the answers this tree does not hold (lessons/*/answer.c, ANSWERS.md, tests/mutations/):"
-        sed 's/^/  /' "$list"
-    else
-        for f in "$@"; do echo "$f  (the whole file)"; done > "${TMPDIR:-/tmp}/tristep-left-out.$$"
-        for f in tests/*.c; do blocks "$f" | sed "s#^#$f: #"; done >> "${TMPDIR:-/tmp}/tristep-left-out.$$"
-        n=$(grep -c . "${TMPDIR:-/tmp}/tristep-left-out.$$" || true)
-        echo "make test: $n tests left out, which need the answers this tree does not hold (lessons/*/answer.c, ANSWERS.md, tests/mutations/):"
-        sed 's/^/  /' "${TMPDIR:-/tmp}/tristep-left-out.$$"
-        rm -f "${TMPDIR:-/tmp}/tristep-left-out.$$"
+    if [ ! -f "$list" ]; then   # the answers removed by hand: the same, found in the tree
+        list=$(mktemp "${TMPDIR:-/tmp}/tristep-left-out.XXXXXX")
+        trap 'rm -f "$list"' EXIT
+        for f in "$@"; do [ -f "$f" ] && echo "$f  (the whole file)"; done > "$list"
+        for f in tests/*.c; do blocks "$f" | sed "s#^#$f: #"; done >> "$list"
     fi
+    echo "make test left out $(counted "$list") (or parts of tests), which need the answers"
+    echo "this tree does not hold (lessons/*/answer.c, ANSWERS.md, tests/mutations/); none was run or counted:"
+    sed 's/^/  /' "$list"
     exit 0
 fi
 
@@ -103,4 +107,4 @@ done
 cp "$tmp/left" "$kit/tests/left-out.txt"
 echo "student kit in $kit: $(grep -c . "$tmp/keep") files; left out the worked answers" \
      "($(grep -c '^lessons/.*/answer' "$tmp/all" || true) files), the answer keys ($(grep -c '^lessons/.*/ANSWERS.md$' "$tmp/all" || true))," \
-     "the mutation suite ($(grep -c '^tests/mutations/' "$tmp/all" || true) patches) and $(grep -c . "$tmp/left") tests (tests/left-out.txt)"
+     "the mutation suite ($(grep -c '^tests/mutations/' "$tmp/all" || true) patches) and $(counted "$tmp/left") (tests/left-out.txt)"
