@@ -294,7 +294,10 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
                      const char *file)
 {
     static char what[300];
-    snprintf(what, sizeof what, "%s, against the exact rule", file);
+    if (current_variant)
+        snprintf(what, sizeof what, "%s, against the exact rule, variant %s", file, current_variant->name);
+    else
+        snprintf(what, sizeof what, "%s, against the exact rule", file);
     *out = *l;
     /* the exact picture: the shared rule's, or the lesson's own where the
      * student writes a part of its shading (lesson 09's sampler) */

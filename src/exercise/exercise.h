@@ -97,8 +97,9 @@ extern const struct lesson_variant exercise_variant;
 const struct lesson_variant *exercise_exact(bool perspective);
 
 /* The lesson the explorer shows for an exercise: l's descriptor with two
- * variants, the exact rule (variants[0], what the diff view compares with)
- * and the exercise (an exhibit of the student's making). */
+ * variants, the exact rule (variants[0], what the diff view compares with,
+ * under the graded variant in use) and the exercise (an exhibit of the
+ * student's making). */
 void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], const struct lesson *l,
                      const char *file);
 
