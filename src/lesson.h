@@ -173,6 +173,21 @@ struct cost_term {
 };
 #define COST_TERM(n, COST) { (n), #COST, COST }
 
+/* A graded variant of a lesson's exercise (VARIANT=NAME): the same idea
+ * under another pinned convention, whose answer the lesson's own source
+ * does not print. Its skeleton is lessons/NN-name/exercise-NAME.c, its
+ * worked answer answer-NAME.c; the check is the lesson's, every check held
+ * to the exact reference under the variant's convention. */
+struct exercise_variant {
+    const char *name;       /* "bottom-right": VARIANT=bottom-right */
+    const char *what;       /* one line: the convention */
+    enum fill_convention rule; /* the rule the reference decides coverage by */
+    /* the box walked from its bottom-right pixel: rows from the bottom up,
+     * each from its right end to its left; the check holds the order of the
+     * pixels the code tests and writes to it */
+    bool from_bottom_right;
+};
+
 /* What `make exercise` and `make check` need of a lesson (src/exercise/):
  * the rest comes from the descriptor itself (perspective, pseudocode). */
 struct lesson_exercise {
@@ -216,6 +231,8 @@ struct lesson_exercise {
      * TRACE_INSIDE unless beyond the horizon. The check holds that lambda to
      * log2(rho) of those derivatives, quad by quad */
     int lod_line;
+    /* its graded variants, ending with { 0 } (NULL: none) */
+    const struct exercise_variant *variants;
 };
 
 struct lesson {

@@ -57,6 +57,8 @@ struct run {
  * (NULL: the lesson's own). */
 static clip_fn use_clip;
 static front_fn use_front;
+/* The graded variant (VARIANT=) the next check() runs under, or NULL. */
+static const char *use_variant;
 
 /* Check fn as lesson l's exercise; the report is kept for messages. */
 static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
@@ -75,6 +77,10 @@ static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
     exercise_use(l, fn);
     exercise_use_clip(use_clip);
     exercise_use_front(use_front);
+    if (use_variant) {
+        cr_assert_not_null(exercise_variant_named(l, use_variant), "lesson %s has no variant %s", l->id, use_variant);
+        exercise_use_variant(exercise_variant_named(l, use_variant));
+    }
     clock_t t0 = clock();
     run->ok = exercise_check(l, &o, &run->r);
     run->seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
@@ -986,7 +992,8 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
  * that fails first is the one its patch names: at least 8 per lesson.
  *
  * A mistake of your own: copy lessons/NN-name/answer.c, make the mistake in
- * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch,
+ * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch
+ * (a graded variant V's answer-V.c: NN-V--what.patch, checked under V),
  * under a first line that says the mistake and a line "check: NAME" naming
  * the check that must fail first on it (make check on the copy says which). */
 Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
@@ -997,8 +1004,10 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
         cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
         struct run run;
         use_clip = m->clip;
+        use_variant = m->variant;
         check(&run, l, m->fn, NULL);
         use_clip = NULL;
+        use_variant = NULL;
         bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
         cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,
                   m->check, run.ok ? "all passed" : run.r.failed, run.report);

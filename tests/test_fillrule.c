@@ -283,3 +283,43 @@ Test(fillrule, vertices_on_centres_need_both_edges_top_left)
             target_free(&fb);
         }
 }
+
+/* The bottom-right rule (raster.h: lesson 02's graded variant) is the
+ * top-left rule turned half way round: turned 180 degrees about the middle
+ * of a W x H target, pixel (x, y) becomes pixel (W-1-x, H-1-y), a top edge
+ * a bottom edge and a left edge a right edge, and the snapped coordinates
+ * stay exact (W * 256 - x) while they stay inside the coordinate limit.
+ * Random triangles of every kind, ties included:
+ * the rules must differ on some centres, or the test saw no tie. */
+Test(fillrule, the_bottom_right_rule_is_the_top_left_rule_turned_half_way_round)
+{
+    enum { W = 48, H = 40 };
+    struct rng r = rng_for(4100);
+    long differ = 0;
+    for (int i = 0; i < 3000; i++) {
+        struct vertex v[3], turned[3];
+        random_tri(&r, (enum tri_category)(i % CAT_COUNT), W, H, v);
+        struct tri_setup t, u;
+        tri_setup(&t, v, W, H);
+        bool in_range = true;       /* turned, still inside the coordinate limit (else snapping clamps it) */
+        for (int k = 0; k < 3; k++) {
+            turned[k] = test_vertex(W - t.x[k] / (double)SUBPIXEL_ONE, H - t.y[k] / (double)SUBPIXEL_ONE);
+            in_range = in_range && turned[k].x < COORD_LIMIT && turned[k].y < COORD_LIMIT;
+        }
+        if (!in_range)
+            continue;
+        tri_setup(&u, turned, W, H);
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                bool br = reference_point_covered_rule(&t, FILL_BOTTOM_RIGHT, pixel_centre(x), pixel_centre(y));
+                bool tl = reference_point_covered(&u, pixel_centre(W - 1 - x), pixel_centre(H - 1 - y));
+                if (br != tl) {
+                    struct case_info info = { "bottom-right against top-left turned", test_seed(), (uint64_t)i, v, 3 };
+                    print_case(&info);
+                    cr_assert_fail("pixel (%d, %d): bottom-right %d, top-left turned half way %d", x, y, br, tl);
+                }
+                differ += br != reference_point_covered(&t, pixel_centre(x), pixel_centre(y));
+            }
+    }
+    cr_assert_gt(differ, 100, "the two rules differ on %ld centres only: too few ties", differ);
+}

@@ -395,6 +395,7 @@ Test(lesson06, the_numbers_of_the_text)
     scene_free(&s);
 }
 
+#if !TRISTEP_NO_ANSWERS
 /* lessons/06-clipping/ANSWERS.md */
 Test(lesson06, the_numbers_of_the_answers)
 {
@@ -420,6 +421,7 @@ Test(lesson06, the_numbers_of_the_answers)
     cr_expect(fabs(cut->rgb[0] - 0.0099) < 0.0005, "red = %.5f", cut->rgb[0]);
     cr_expect_eq((int)lrint((0.5 - cut->rgb[0]) * 255), 125);
 }
+#endif
 
 /* --- the walk order's cracks, found by the seeded search --------------------------- */
 

@@ -9,6 +9,7 @@
  */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -104,7 +105,7 @@ static bool positive(const struct vertex *a, const struct vertex *b, const struc
     return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax) > 0;
 }
 
-static bool grid_mesh(struct rng *r, struct mesh *m, uint8_t *expected)
+static bool grid_mesh(struct rng *r, struct mesh *m, uint8_t *expected, enum fill_convention rule)
 {
     /* the outline: a rectangle on the 1/256 grid, sometimes past the target */
     double x0 = outline_coord(r, -6, 20), y0 = outline_coord(r, -6, 16);
@@ -148,11 +149,14 @@ static bool grid_mesh(struct rng *r, struct mesh *m, uint8_t *expected)
             }
         }
 
-    /* inside: X0 <= centre < X1 and Y0 <= centre < Y1 (all on the grid, exact) */
+    /* inside: X0 <= centre < X1 and Y0 <= centre < Y1 (all on the grid,
+     * exact); under the bottom-right rule X0 < centre <= X1, Y0 < centre <= Y1 */
     for (int y = 0; y < MESH_H; y++)
         for (int x = 0; x < MESH_W; x++) {
             double cx = x + 0.5, cy = y + 0.5;
-            expected[y * MESH_W + x] = cx >= x0 && cx < x1 && cy >= y0 && cy < y1;
+            expected[y * MESH_W + x] = rule == FILL_BOTTOM_RIGHT
+                ? cx > x0 && cx <= x1 && cy > y0 && cy <= y1
+                : cx >= x0 && cx < x1 && cy >= y0 && cy < y1;
         }
     return true;
 }
@@ -164,7 +168,7 @@ Test(mesh, jittered_grids_cover_every_inner_centre_once)
     uint8_t expected[MESH_W * MESH_H];
     int redrawn = 0;
     for (int i = 0; i < 150; i++) {
-        if (!grid_mesh(&r, &m, expected)) {
+        if (!grid_mesh(&r, &m, expected, FILL_TOP_LEFT)) {
             redrawn++;
             i--;
             continue;
@@ -172,6 +176,97 @@ Test(mesh, jittered_grids_cover_every_inner_centre_once)
         check_mesh(&m, expected, "jittered grid", (uint64_t)i);
     }
     cr_assert_lt(redrawn, 150, "the jitter folds most meshes: %d redrawn", redrawn);
+}
+
+/* --- the bottom-right rule ---------------------------------------------------------- */
+
+/* The bottom-right rule (raster.h: lesson 02's graded variant) keeps meshes
+ * watertight too. No lesson draws by it; the reference decides alone, the
+ * rule its parameter. */
+static void count_pixel(void *ctx, int x, int y)
+{
+    uint8_t *n = ctx;
+    n[y * MESH_W + x]++;
+}
+
+static void reference_count(const struct vertex *v, int ntris, enum fill_convention rule, uint8_t *n)
+{
+    memset(n, 0, MESH_W * MESH_H);
+    for (int i = 0; i < ntris; i++) {
+        struct tri_setup t;
+        tri_setup(&t, &v[3 * i], MESH_W, MESH_H);
+        reference_coverage_rule(&t, rule, count_pixel, n);
+    }
+}
+
+Test(mesh, jittered_grids_cover_every_inner_centre_once_under_the_bottom_right_rule)
+{
+    struct rng r = rng_for(3001);
+    static struct mesh m;
+    uint8_t expected[MESH_W * MESH_H], got[MESH_W * MESH_H];
+    int redrawn = 0;
+    for (int i = 0; i < 150; i++) {
+        if (!grid_mesh(&r, &m, expected, FILL_BOTTOM_RIGHT)) {
+            redrawn++;
+            i--;
+            continue;
+        }
+        reference_count(m.v, m.ntris, FILL_BOTTOM_RIGHT, got);
+        struct case_info info = { "reference_coverage_rule, bottom-right, jittered grid", test_seed(),
+                                  (uint64_t)i, m.v, 3 * m.ntris };
+        cr_assert(coverage_equal(expected, got, MESH_W, MESH_H, &info));
+    }
+    cr_assert_lt(redrawn, 150, "the jitter folds most meshes: %d redrawn", redrawn);
+}
+
+/* A random triangle cut into three at a point inside it, on the 1/256
+ * grid: the three cover every centre the whole one covers exactly once,
+ * and nothing else, under either rule (each outer edge keeps its
+ * direction, so its owner; each inner edge is shared by two of them). */
+Test(mesh, random_triangles_cut_at_an_inner_point_cover_each_centre_once_under_either_rule)
+{
+    struct rng r = rng_for(3002);
+    int cut = 0;
+    for (int i = 0; i < 4000; i++) {
+        enum tri_category cat = (enum tri_category)(i % CAT_COUNT);
+        if (cat == CAT_DEGENERATE)
+            continue;
+        struct vertex v[3];
+        random_tri(&r, cat, MESH_W, MESH_H, v);
+        struct tri_setup t;
+        tri_setup(&t, v, MESH_W, MESH_H);
+        if (t.area2 == 0)
+            continue;
+        /* barycentric weights on a grid of 1/64, strictly inside */
+        int a = rng_int(&r, 1, 62), b = rng_int(&r, 1, 63 - a), c = 64 - a - b;
+        double px = (a * t.x[0] + b * t.x[1] + c * t.x[2]) / 64.0, py = (a * t.y[0] + b * t.y[1] + c * t.y[2]) / 64.0;
+        struct vertex p = test_vertex(round(px) / SUBPIXEL_ONE, round(py) / SUBPIXEL_ONE);
+        struct vertex S[3];     /* the vertices as snapped, in setup's order (the right way round) */
+        for (int k = 0; k < 3; k++)
+            S[k] = test_vertex(t.x[k] / (double)SUBPIXEL_ONE, t.y[k] / (double)SUBPIXEL_ONE);
+        struct vertex three[9] = { S[0], S[1], p, S[1], S[2], p, S[2], S[0], p };
+        /* the point must leave all three the triangle's way round, inside it */
+        bool inside = true;
+        for (int k = 0; k < 3; k++) {
+            struct tri_setup u;
+            tri_setup(&u, &three[3 * k], MESH_W, MESH_H);
+            inside = inside && u.area2 > 0 && !u.swapped;
+        }
+        if (!inside)
+            continue;
+        cut++;
+        for (int rule = FILL_TOP_LEFT; rule <= FILL_BOTTOM_RIGHT; rule++) {
+            uint8_t whole[MESH_W * MESH_H], parts[MESH_W * MESH_H];
+            reference_count(S, 1, (enum fill_convention)rule, whole);
+            reference_count(three, 3, (enum fill_convention)rule, parts);
+            char what[96];
+            snprintf(what, sizeof what, "%s triangle cut in three, the %s rule", tri_category_name(cat),
+                     rule == FILL_BOTTOM_RIGHT ? "bottom-right" : "top-left");
+            struct case_info info = { what, test_seed(), (uint64_t)i, three, 9 };
+            cr_assert(coverage_equal(whole, parts, MESH_W, MESH_H, &info));
+        }
+    }
+    cr_assert_gt(cut, 1000, "only %d triangles cut", cut);
 }
 
 /* --- fans around a shared vertex ------------------------------------------------- */

@@ -149,5 +149,11 @@ const struct lesson lesson_02 = {
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, BARYCENTRIC_COST), COST_TERM(6, INTERPOLATE_COST),
         COST_TERM(1, PACK_RGB_COST), { 0 } },
-    .exercise = { .write_line = L_DRAW },
+    .exercise = { .write_line = L_DRAW,
+                  /* graded: the idea of section 4 under the other rule, which this file does not print */
+                  .variants = (const struct exercise_variant[]){
+                      { .name = "bottom-right", .rule = FILL_BOTTOM_RIGHT,
+                        .what = "the bottom-right fill rule: a centre on an edge is covered when the edge "
+                                "is a bottom or a right edge" },
+                      { 0 } } },
 };

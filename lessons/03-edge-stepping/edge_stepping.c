@@ -323,5 +323,11 @@ const struct lesson lesson_03 = {
     .cost_tested = (const struct cost_term[]){
         COST_TERM(3, EDGE_STEP_COST), COST_TERM(NATTR, PLANE_STEP_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){ COST_TERM(1, PACK_SCALED_COST), { 0 } },
-    .exercise = { .write_line = L_RENDER, .no_pixel_mul = true },
+    .exercise = { .write_line = L_RENDER, .no_pixel_mul = true,
+                  /* graded: the stepping of section 2 the other way, which this file does not print */
+                  .variants = (const struct exercise_variant[]){
+                      { .name = "from-bottom-right", .rule = FILL_TOP_LEFT, .from_bottom_right = true,
+                        .what = "the box walked from its bottom-right pixel: rows from the bottom up, "
+                                "each from right to left, the same pixels covered" },
+                      { 0 } } },
 };

@@ -256,6 +256,9 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
         c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
                                 CK_COLOUR, gen_colour, false };
+    const struct exercise_variant *variant = exercise_current_variant();
+    if (variant && variant->from_bottom_right)
+        c[P->n++] = (struct check){ "walked from the bottom-right", CK_ORDER, gen_property, false };
     if (l->exercise.no_pixel_mul)
         c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
     if (l->exercise.full_blocks)
@@ -299,7 +302,11 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     if (!plan_checks(l, o, &P))
         return false;
     int n = P.n;
-    fprintf(out, "make check, lesson %s: %s\n", l->id, o->file);
+    const struct exercise_variant *variant = exercise_current_variant();
+    if (variant)
+        fprintf(out, "make check, lesson %s, variant %s (%s): %s\n", l->id, variant->name, variant->what, o->file);
+    else
+        fprintf(out, "make check, lesson %s: %s\n", l->id, o->file);
     clock_t t0 = clock();
     r->nchecks = n;
     bool ok = true;

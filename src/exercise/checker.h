@@ -28,12 +28,14 @@ struct guard {
 };
 extern struct guard *check_guard;     /* NULL unless guarded */
 
-enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
+/* CK_ORDER: the property is the order of the pixels tested and written (a
+ * graded variant's from_bottom_right) */
+enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL, CK_ORDER };
 
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_ORDER,
 };
 
 struct verdict {
@@ -47,6 +49,7 @@ struct verdict {
     int want_class, got_class;  /* WRONG_BLOCK_CLASS: enum block_class, the corners' and the narrated */
     int edge;                   /* ... an edge all four corners lie outside (want EMPTY), else -1 */
     uint64_t mul;               /* multiplications between two pixels */
+    int before_x, before_y;     /* WRONG_ORDER: the pixel tested or written before (x, y) */
     int samples;                /* samples per pixel it was drawn at (1: the pixel centre) */
     unsigned want_mask, got_mask;   /* WRONG_MASK: the samples holding a depth */
     /* a 3-D scene: tri is a world triangle; the screen triangles made of it */
@@ -78,6 +81,9 @@ struct checker {
     int last_x, last_y;
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
     bool both_ways;             /* lesson 06: clip every polygon walked both ways */
+    /* CK_ORDER: the last pixel tested or written */
+    bool order_any;
+    int order_x, order_y;
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;

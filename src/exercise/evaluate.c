@@ -101,6 +101,26 @@ static void watch_lod(struct checker *C, const struct trace_event *ev, struct ve
     (void)C;
 }
 
+/* The box walked from its bottom-right pixel (a graded variant's
+ * from_bottom_right): every pixel the code tests or writes comes after the
+ * one before it in that order, rows from the bottom up, each row from right
+ * to left (the same pixel again is its write after its test). */
+static void watch_order(struct checker *C, const struct trace_event *ev, struct verdict *v)
+{
+    if (ev->kind != TRACE_PIXEL_TEST && ev->kind != TRACE_PIXEL_WRITE)
+        return;
+    bool same = ev->x == C->order_x && ev->y == C->order_y;
+    bool after = ev->y < C->order_y || (ev->y == C->order_y && ev->x < C->order_x);
+    if (C->order_any && !same && !after) {
+        *v = (struct verdict){ .what = WRONG_ORDER, .x = ev->x, .y = ev->y,
+                               .before_x = C->order_x, .before_y = C->order_y };
+        return;
+    }
+    C->order_any = true;
+    C->order_x = ev->x;
+    C->order_y = ev->y;
+}
+
 /* The narration, watched for the lesson's property. */
 static void watch(void *ctx, const struct trace_event *ev)
 {
@@ -108,6 +128,10 @@ static void watch(void *ctx, const struct trace_event *ev)
     struct verdict *v = C->prop;
     if (v->what != WRONG_NONE)
         return;
+    if (C->kind == CK_ORDER) {
+        watch_order(C, ev, v);
+        return;
+    }
     if (C->l->exercise.lod_line > 0 && ev->kind == TRACE_STEP && ev->line == C->l->exercise.lod_line) {
         watch_lod(C, ev, v);
         return;
@@ -239,7 +263,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     C->mask = mask;
     C->evaluations++;
     const struct lesson_variant *exact = check_exact(C->l);
-    bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL;
+    bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL || C->kind == CK_ORDER;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
@@ -247,13 +271,14 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
-            reference_coverage(&t, mark, C);
+            reference_coverage_rule(&t, exercise_rule(), mark, C);
         }
         struct verdict prop = { .what = WRONG_NONE };
         struct trace tr = { .sink = property ? watch : NULL, .ctx = C };
         C->prop = &prop;
         C->t = &t;
         C->in_row = false;
+        C->order_any = false;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
         if (check_guard)

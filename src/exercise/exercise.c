@@ -17,12 +17,38 @@ static struct trace *current_tr;
 static struct exercise_fault fault;
 static struct texel_fault texel_fault;
 
+static const struct exercise_variant *current_variant;
+
 void exercise_use(const struct lesson *l, rasterize_fn fn)
 {
     current_lesson = l;
     current_fn = fn;
+    current_variant = NULL;
     exercise_use_clip(NULL);
     exercise_use_front(NULL);
+}
+
+void exercise_use_variant(const struct exercise_variant *v)
+{
+    current_variant = v;
+}
+
+const struct exercise_variant *exercise_current_variant(void)
+{
+    return current_variant;
+}
+
+enum fill_convention exercise_rule(void)
+{
+    return current_variant ? current_variant->rule : FILL_TOP_LEFT;
+}
+
+const struct exercise_variant *exercise_variant_named(const struct lesson *l, const char *name)
+{
+    for (const struct exercise_variant *v = l->exercise.variants; v && v->name; v++)
+        if (strcmp(v->name, name) == 0)
+            return v;
+    return NULL;
 }
 
 const struct exercise_fault *exercise_fault(void)
@@ -183,8 +209,8 @@ static void exact_samples(const struct tri_setup *t, const struct raster_params 
         for (int x = x0; x <= x1; x++) {
             unsigned mask = 0;
             for (int s = 0; s < n; s++)
-                if (reference_point_covered(t, (int64_t)x * SUBPIXEL_ONE + sp->x[s],
-                                            (int64_t)y * SUBPIXEL_ONE + sp->y[s]))
+                if (reference_point_covered_rule(t, exercise_rule(), (int64_t)x * SUBPIXEL_ONE + sp->x[s],
+                                                 (int64_t)y * SUBPIXEL_ONE + sp->y[s]))
                     mask |= 1u << s;
             if (!mask)
                 continue;
@@ -237,7 +263,7 @@ static void exact(const struct tri_setup *t, const struct raster_params *p, stru
         return;
     }
     struct exact_run r = { t, p, fb, tr, perspective, line };
-    reference_coverage(t, exact_pixel, &r);
+    reference_coverage_rule(t, exercise_rule(), exact_pixel, &r);
 }
 
 static void exact_linear(const struct tri_setup *t, const struct raster_params *p,
@@ -268,7 +294,10 @@ void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], cons
                      const char *file)
 {
     static char what[300];
-    snprintf(what, sizeof what, "%s, against the exact rule", file);
+    if (current_variant)
+        snprintf(what, sizeof what, "%s, against the exact rule, variant %s", file, current_variant->name);
+    else
+        snprintf(what, sizeof what, "%s, against the exact rule", file);
     *out = *l;
     /* the exact picture: the shared rule's, or the lesson's own where the
      * student writes a part of its shading (lesson 09's sampler) */

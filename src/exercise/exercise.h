@@ -34,6 +34,16 @@
  * lesson it is an exercise of. */
 void exercise_use(const struct lesson *l, rasterize_fn fn);
 
+/* The graded variant (VARIANT=, lesson_exercise.variants) that the exact
+ * rule and the checks follow from now on; NULL, and exercise_use, return
+ * to the lesson's own convention. */
+void exercise_use_variant(const struct exercise_variant *v);
+const struct exercise_variant *exercise_current_variant(void);
+/* The fill rule the exact rule decides by now: the variant's, else top-left. */
+enum fill_convention exercise_rule(void);
+/* Lesson l's graded variant called name, or NULL. */
+const struct exercise_variant *exercise_variant_named(const struct lesson *l, const char *name);
+
 /* Lesson 06's exercise (lesson_exercise.clip): the student's clipper against
  * one plane, exercise_clip() (student.h), and the front end around it. */
 struct poly;
@@ -87,8 +97,9 @@ extern const struct lesson_variant exercise_variant;
 const struct lesson_variant *exercise_exact(bool perspective);
 
 /* The lesson the explorer shows for an exercise: l's descriptor with two
- * variants, the exact rule (variants[0], what the diff view compares with)
- * and the exercise (an exhibit of the student's making). */
+ * variants, the exact rule (variants[0], what the diff view compares with,
+ * under the graded variant in use) and the exercise (an exhibit of the
+ * student's making). */
 void exercise_lesson(struct lesson *out, struct lesson_variant variants[2], const struct lesson *l,
                      const char *file);
 
@@ -154,6 +165,15 @@ struct exercise_code {
 };
 extern const struct exercise_code all_exercises[];     /* ends with lesson == NULL */
 
+/* The graded variants' skeletons and answers (lessons/NN-name/exercise-V.c
+ * and answer-V.c, generated build/exercise-variants.c). */
+struct exercise_variant_code {
+    const char *lesson;             /* "02" */
+    const char *variant;            /* "bottom-right" */
+    rasterize_fn skeleton, answer;  /* answer NULL where the answers are left out */
+};
+extern const struct exercise_variant_code all_exercise_variants[];  /* ends with lesson == NULL */
+
 /* The mutation suite (tests/mutations/NN-name.patch, generated
  * build/mutations.c): classic mistakes, each made in a worked answer, and
  * the check that must fail first on each. */
@@ -163,6 +183,7 @@ struct exercise_mutation {
     const char *check;              /* the check that names the mistake */
     rasterize_fn fn;
     clip_fn clip;                   /* lesson 06's exercise_clip, or NULL */
+    const char *variant;            /* the graded variant whose answer it mutates (NN-V--what), or NULL */
 };
 extern const struct exercise_mutation all_mutations[];  /* ends with lesson == NULL */
 

@@ -64,7 +64,8 @@ for f in $files; do
         first=$(grep -m1 -i 'undefined\|error' "$d/compile.txt")
     else
         timeout -s KILL "$limit" "$d/exercise-$nn" --check --file "$f" --out "$d/check" \
-            --open "make exercise LESSON=$nn FILE=$f" > "$d/check.txt" 2>&1 < /dev/null
+            ${GRADE_VARIANT:+--exercise-variant "$GRADE_VARIANT"} \
+            --open "make exercise LESSON=$nn${GRADE_VARIANT:+ VARIANT=$GRADE_VARIANT} FILE=$f" > "$d/check.txt" 2>&1 < /dev/null
         st=$?
         total=$(sed -n 's#^  [0-9][0-9]*/\([0-9][0-9]*\) .*#\1#p' "$d/check.txt" | head -n 1)
         passed=$(grep -c '^  [0-9][0-9]*/[0-9][0-9]* .* ok (' "$d/check.txt")

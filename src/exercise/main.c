@@ -3,8 +3,8 @@
  * The Makefile defines LESSON as the lesson's descriptor and links the
  * student's file, which defines exercise_rasterize.
  *
- *     exercise-NN [--file NAME] [LESSON PROGRAM OPTIONS]      the explorer
- *     exercise-NN --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD]
+ *     exercise-NN [--file NAME] [--exercise-variant V] [LESSON PROGRAM OPTIONS]      the explorer
+ *     exercise-NN --check [--file NAME] [--exercise-variant V] [--check-scene FILE]... [--out DIR] [--open CMD]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,7 +23,7 @@ void exercise_clip(struct poly *out, const struct poly *in, const struct plane *
 
 int main(int argc, char **argv)
 {
-    const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL;
+    const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL, *variant = NULL;
     bool check = false;
     const char **scenes = calloc((size_t)argc + 1, sizeof *scenes);
     char **rest = calloc((size_t)argc + 3, sizeof *rest);
@@ -45,6 +45,8 @@ int main(int argc, char **argv)
             out_dir = argv[++i];
         else if (strcmp(a, "--open") == 0 && has_value)
             open_cmd = argv[++i];
+        else if (strcmp(a, "--exercise-variant") == 0 && has_value)
+            variant = argv[++i];
         else {
             variant_given |= strcmp(a, "--variant") == 0 || strncmp(a, "--variant=", 10) == 0;
             rest[nrest++] = argv[i];
@@ -61,18 +63,36 @@ int main(int argc, char **argv)
                    "  --check                 run the lesson's checks on your code (make check), not the explorer\n"
                    "  --check-scene FILE      with --check: check this scene of your own first (make check SCENE=FILE)\n"
                    "  --out DIR               with --check: write counterexamples under DIR/NAME/ (default build/check)\n"
-                   "  --open CMD              with --check: the command printed to open a counterexample\n\n",
+                   "  --open CMD              with --check: the command printed to open a counterexample\n"
+                   "  --exercise-variant V    the graded variant V of the exercise (make check VARIANT=V):\n",
                    argv[0], argv[0]);
+            for (const struct exercise_variant *v = LESSON.exercise.variants; v && v->name; v++)
+                printf("                            %s: %s\n", v->name, v->what);
+            printf("\n");
             break;
         }
     exercise_use(&LESSON, exercise_rasterize);
     if (LESSON.exercise.clip)
         exercise_use_clip(exercise_clip);
+    if (variant) {
+        const struct exercise_variant *v = exercise_variant_named(&LESSON, variant);
+        if (!v) {
+            fprintf(stderr, "VARIANT=%s: lesson %.2s has no such variant (", variant, LESSON.id);
+            for (const struct exercise_variant *w = LESSON.exercise.variants; w && w->name; w++)
+                fprintf(stderr, "%s%s", w == LESSON.exercise.variants ? "variants: " : ", ", w->name);
+            fprintf(stderr, "%s)\n", LESSON.exercise.variants && LESSON.exercise.variants->name ? "" : "none");
+            free(scenes);
+            free(rest);
+            return 2;
+        }
+        exercise_use_variant(v);
+    }
     int status;
     if (check) {
         char cmd[600];
         if (!open_cmd) {
-            snprintf(cmd, sizeof cmd, "make exercise LESSON=%.2s FILE=%s", LESSON.id, file);
+            snprintf(cmd, sizeof cmd, "make exercise LESSON=%.2s%s%s FILE=%s", LESSON.id,
+                     variant ? " VARIANT=" : "", variant ? variant : "", file);
             open_cmd = cmd;
         }
         struct check_options o = {

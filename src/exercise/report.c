@@ -163,6 +163,11 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
                 "      expected none (COUNT_OPS and every edge_value() or pixel_centre() call count)\n",
                 (unsigned long long)v->mul, v->mul == 1 ? "" : "s", v->bx, v->y, v->x, v->y);
         break;
+    case WRONG_ORDER:
+        fprintf(out, "      pixel (%d, %d) came after pixel (%d, %d): expected the box walked from its\n"
+                "      bottom-right pixel, rows from the bottom up, each row from right to left\n",
+                v->x, v->y, v->before_x, v->before_y);
+        break;
     case WRONG_BLOCK_CLASS: {
         static const char *const klass[] = { "EMPTY", "FULL", "PARTIAL" };
         const char *got = v->got_class >= 0 && v->got_class < 3 ? klass[v->got_class] : "no class";
@@ -306,13 +311,15 @@ void explain(const struct checker *C, FILE *out, const struct verdict *v,
             if (edge_value(&t, k, v->x, v->y) != 0)
                 continue;
             bool top = t.I[k] == 0 && t.J[k] > 0, left = t.I[k] > 0;
-            fprintf(out, "      its centre lies exactly on edge %s (F = 0), a %s edge: the top-left rule %s\n",
+            enum fill_convention rule = exercise_rule();
+            fprintf(out, "      its centre lies exactly on edge %s (F = 0), a %s edge: the %s rule %s\n",
                     edge_names[k], top ? "top" : left ? "left" : t.I[k] == 0 ? "bottom" : "right",
-                    top || left ? "covers it" : "leaves it to the triangle on the other side");
+                    rule == FILL_BOTTOM_RIGHT ? "bottom-right" : "top-left",
+                    reference_edge_owns(rule, t.I[k], t.J[k]) ? "covers it" : "leaves it to the triangle on the other side");
         }
     }
     const struct lesson *l = C->l;
-    if (v->what == WRONG_MUL || v->what == WRONG_BLOCK_CLASS || v->what == WRONG_OUTSIDE
+    if (v->what == WRONG_MUL || v->what == WRONG_ORDER || v->what == WRONG_BLOCK_CLASS || v->what == WRONG_OUTSIDE
         || v->what == WRONG_LOD || v->what == WRONG_TEXEL)
         return;     /* the verdict said it all */
     if (f->held) {

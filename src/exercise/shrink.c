@@ -227,6 +227,6 @@ void shrink(struct checker *C, struct scene *s)
     }
     drop_triangles(&S, s);
     round_coordinates(&S, s);
-    if (C->kind == CK_COVERAGE || C->kind == CK_PROPERTY)
+    if (C->kind == CK_COVERAGE || C->kind == CK_PROPERTY || C->kind == CK_ORDER)
         plain_attributes(&S, s);
 }

@@ -257,7 +257,24 @@ static int64_t cross_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int64_t 
     return ((int64_t)x1 - x0) * (py - y0) - (px - x0) * ((int64_t)y1 - y0);
 }
 
+/* The bottom-right rule is the top-left rule of the edge walked the other
+ * way: (I, J) becomes (-I, -J), so a right edge (I < 0) reads as left and
+ * a bottom edge (I == 0, J < 0) as top. It is the top-left rule turned
+ * half way round the screen, and keeps meshes watertight for the same
+ * reason: a shared edge is walked one way by each of its two triangles, so
+ * exactly one of them owns it under either rule. */
+bool reference_edge_owns(enum fill_convention rule, int64_t I, int64_t J)
+{
+    return rule == FILL_BOTTOM_RIGHT ? is_top_left(-I, -J) : is_top_left(I, J);
+}
+
 bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy)
+{
+    return reference_point_covered_rule(t, FILL_TOP_LEFT, sx, sy);
+}
+
+bool reference_point_covered_rule(const struct tri_setup *t, enum fill_convention rule,
+                                  int64_t sx, int64_t sy)
 {
     const int32_t *X = t->x, *Y = t->y;
     if (cross_at(X[0], Y[0], X[1], Y[1], X[2], Y[2]) <= 0)
@@ -265,7 +282,7 @@ bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy)
     for (int k = 0; k < 3; k++) {
         int a = k, b = (k + 1) % 3;
         int64_t f = cross_at(X[a], Y[a], X[b], Y[b], sx, sy);
-        bool on_edge_ok = f == 0 && is_top_left((int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
+        bool on_edge_ok = f == 0 && reference_edge_owns(rule, (int64_t)Y[a] - Y[b], (int64_t)X[b] - X[a]);
         if (!(f > 0 || on_edge_ok))
             return false;
     }
@@ -318,6 +335,12 @@ double reference_pixel_area(const struct tri_setup *t, int px, int py)
 void reference_coverage(const struct tri_setup *t,
                         void (*cover)(void *ctx, int x, int y), void *ctx)
 {
+    reference_coverage_rule(t, FILL_TOP_LEFT, cover, ctx);
+}
+
+void reference_coverage_rule(const struct tri_setup *t, enum fill_convention rule,
+                             void (*cover)(void *ctx, int x, int y), void *ctx)
+{
     const int32_t *X = t->x, *Y = t->y;
     int64_t area2 = cross_at(X[0], Y[0], X[1], Y[1], X[2], Y[2]);
     if (area2 <= 0)   /* setup normalised the orientation: <= 0 means degenerate */
@@ -338,7 +361,7 @@ void reference_coverage(const struct tri_setup *t,
         for (int64_t px = x0; px <= x1; px++) {
             int64_t cx = px * SUBPIXEL_ONE + SUBPIXEL_HALF;
             int64_t cy = py * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            if (reference_point_covered(t, cx, cy))
+            if (reference_point_covered_rule(t, rule, cx, cy))
                 cover(ctx, (int)px, (int)py);
         }
     }

@@ -95,6 +95,15 @@ static inline bool is_top_left(int64_t I, int64_t J)
     return left || top;
 }
 
+/* Which edges own the centres exactly on them. Every lesson, the
+ * explorer and the bench use the top-left rule; the bottom-right rule, a
+ * graded exercise's convention (lessons/02-barycentric/exercise-bottom-right.c),
+ * is the reference's too, decided as exactly (reference_point_covered_rule
+ * and reference_coverage_rule below): a centre exactly on an edge is
+ * covered when that edge is a bottom edge (exactly horizontal, the
+ * triangle above it) or a right edge (the interior to its left). */
+enum fill_convention { FILL_TOP_LEFT, FILL_BOTTOM_RIGHT };
+
 /* Floor and ceiling of a / b for b > 0, also for negative a (C's division
  * truncates toward 0: -3 / 2 is -1, floor_div(-3, 2) is -2). */
 static inline int64_t floor_div(int64_t a, int64_t b)
@@ -295,6 +304,13 @@ static inline bool pixel_close(uint32_t want_rgba, float want_z, uint32_t got_rg
  * from the snapped vertices and the top-left rule, as for a pixel centre
  * (lesson 08's samples; the explorer's drawing of them). */
 bool reference_point_covered(const struct tri_setup *t, int64_t sx, int64_t sy);
+/* The same under either fill rule (reference_point_covered: FILL_TOP_LEFT). */
+bool reference_point_covered_rule(const struct tri_setup *t, enum fill_convention rule,
+                                  int64_t sx, int64_t sy);
+
+/* Does the edge with coefficients (I, J), of a triangle set up as above,
+ * own the centres on it under the rule? */
+bool reference_edge_owns(enum fill_convention rule, int64_t I, int64_t J);
 
 /* The exact area of pixel (px, py) that t covers, in square pixels (0..1):
  * the snapped triangle clipped against the pixel's square, in double
@@ -307,6 +323,9 @@ double reference_pixel_area(const struct tri_setup *t, int px, int py);
  * each covered pixel. */
 void reference_coverage(const struct tri_setup *t,
                         void (*cover)(void *ctx, int x, int y), void *ctx);
+/* The same under either fill rule (reference_coverage: FILL_TOP_LEFT). */
+void reference_coverage_rule(const struct tri_setup *t, enum fill_convention rule,
+                             void (*cover)(void *ctx, int x, int y), void *ctx);
 
 /* Reference colour and z at a pixel centre, in double precision: linear in
  * screen space (lessons 01-03) or perspective-correct (04 onwards). */
