@@ -248,7 +248,54 @@ struct twin {
     __m128d area2;
     double s_k[3], t_k[3], ones[3];
     double col[3][3];                   /* r, g, b of A, B and C */
+    const struct tex_tile *d;           /* the tiled twin's tile, or NULL: the target */
 };
+
+/* Would depth z pass at pixel (x, y): in the tile, or on the target. */
+static inline bool depth_pass(const struct twin *tw, int x, int y, float z)
+{
+    const struct tex_tile *d = tw->d;
+    if (!d)
+        return target_depth_pass(tw->fb, x, y, z);
+    return z < d->depth[(size_t)(y - d->y0) * (size_t)d->stride + (size_t)(x - d->x0)];
+}
+
+/* A covered pixel written as PLOT writes it (counted, then depth-tested):
+ * on the target, or in the tile, narrated there as the write it is. */
+static inline void write_pixel(const struct twin *tw, int x, int y, float z, uint32_t rgba)
+{
+    const struct tex_tile *d = tw->d;
+    if (!d) {
+        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z, rgba);
+        return;
+    }
+    size_t o = (size_t)(y - d->y0) * (size_t)d->stride + (size_t)(x - d->x0);
+    bool pass = z < d->depth[o];
+    NARRATE(tw->tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y, .z = z, .rgba = rgba,
+            .flags = pass ? TRACE_DEPTH_PASS : 0);
+    if (trace_frozen(tw->tr))
+        return;
+    size_t oc = (size_t)(y - d->y0) * (size_t)d->count_stride + (size_t)(x - d->x0);
+    if (d->count && d->count[oc] < 255)
+        d->count[oc]++;
+    if (pass)
+        d->depth[o] = z, d->color[o] = rgba;
+}
+
+/* The quad's derivatives in level-0 texels, rho and the lambda of the
+ * lesson's level of detail, told as the lesson tells them. */
+static inline void narrate_deriv(const struct twin *tw, int qx, int qy, unsigned covered,
+                                 const struct tex_deriv *d)
+{
+    if (!(NARRATING && tw->tr))
+        return;
+    double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0, dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+    double rho = fmax(sqrt(dudx * dudx + dvdx * dvdx), sqrt(dudy * dudy + dvdy * dvdy));
+    NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_LOD, .span = L_LOD - L_DERIV, .x = qx, .y = qy,
+            .mask = { (uint16_t)covered }, .flags = d->beyond ? 0 : TRACE_INSIDE,
+            .aux = { (float)dudx, (float)dvdx, (float)dudy, (float)dvdy, (float)rho,
+                     d->beyond ? (float)(tw->tex->nlevels - 1) : (float)tex_lod(d) });
+}
 
 /* The quad whose top-left pixel is (qx, qy). */
 static inline void quad_sse(const struct twin *tw, int qx, int qy)
@@ -270,8 +317,16 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     if (qx + 1 > t->maxx) covered &= ~10u;
     if (qy < t->miny) covered &= ~3u;
     if (qy + 1 > t->maxy) covered &= ~12u;
-    if (!covered)
+    for (int i = 0; NARRATING && tw->tr && i < 4; i++)
+        NARRATE(tw->tr, .kind = TRACE_PIXEL_TEST, .line = L_COVER, .x = qx + (i & 1), .y = qy + (i >> 1),
+                .e = { raw[0] + (i & 1) * tw->e.dx[0] + (i >> 1) * tw->e.dy[0],
+                       raw[1] + (i & 1) * tw->e.dx[1] + (i >> 1) * tw->e.dy[1],
+                       raw[2] + (i & 1) * tw->e.dx[2] + (i >> 1) * tw->e.dy[2] },
+                .flags = (covered >> i & 1) ? TRACE_INSIDE : 0);
+    if (!covered) {
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_SKIP, .x = qx, .y = qy);
         return;
+    }
     /* the weights of A, B, C over z at the four centres (edge values are
      * exact in doubles, and so are their sums), then 1/z, s and t */
     struct quad2 w[3];
@@ -298,7 +353,7 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
         pack4(rgb, rgba);
         for (int i = 0; i < 4; i++)
             if (covered >> i & 1)
-                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
+                write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
         return;
     }
     struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
@@ -308,11 +363,16 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     double *out[3] = { cr, cg, cb };
     for (int c = 0; c < 3; c++)
         _mm_storeu_pd(out[c], rgb[c].top), _mm_storeu_pd(out[c] + 2, rgb[c].bottom);
+    double W = tex ? tex->level[0].w : 1, H = tex ? tex->level[0].h : 1;
+    for (int i = 0; NARRATING && tw->tr && i < 4; i++)
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = qx + (i & 1), .y = qy + (i >> 1),
+                .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
+                .aux = { (float)(s[i] * W), (float)(tt[i] * H), (float)qs[i] });
     if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
         for (int i = 0; i < 4; i++)
             if (covered >> i & 1)
-                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i],
-                     shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
+                write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i],
+                            shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
         return;
     }
     /* the quad's derivatives, and trilinear's levels for all four pixels */
@@ -320,6 +380,7 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
                            .dtdy = tt[2] - tt[0], .w0 = tex->level[0].w, .h0 = tex->level[0].h,
                            .beyond = beyond };
+    narrate_deriv(tw, qx, qy, covered, &d);
     struct trilinear_at at = { 0, 0, 0 };
     struct level_taps taps[2];
     if (tw->filter == FILTER_TRILINEAR) {
@@ -333,21 +394,65 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
             continue;
         int x = qx + (i & 1), y = qy + (i >> 1);
         float z = (float)zs[i];
-        if (!target_depth_pass(tw->fb, x, y, z)) {
-            target_write(tw->fb, x, y, z, 0);       /* counted, hidden: no texel needed */
+        if (!depth_pass(tw, x, y, z)) {
+            if (tw->d)
+                write_pixel(tw, x, y, z, 0);        /* counted, hidden: no texel needed */
+            else
+                target_write(tw->fb, x, y, z, 0);
             continue;
         }
         __m128 texel;
+        struct tex_used u = { .taps = 1 };
         if (tw->filter == FILTER_TRILINEAR) {
             texel = trilinear4(tex, at, &taps[0], &taps[1], i);
+            if (NARRATING && tw->tr)    /* what the texture unit used, told as the lesson tells it */
+                tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d, &tex_stages_lesson, &u);
         } else {                /* the other filters: the texture unit's own code */
             struct texel_rgb c = tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d,
-                                                  &tex_stages_lesson, NULL);
+                                                  &tex_stages_lesson, &u);
             texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
         }
-        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z,
-             modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_FILTER, .x = x, .y = y,
+                .mask = { (uint16_t)covered, (uint16_t)u.taps, (uint16_t)tw->filter },
+                .aux = { (float)(s[i] * W), (float)(tt[i] * H), u.lambda, (float)u.level0,
+                         (float)u.level1, u.mix });
+        write_pixel(tw, x, y, z, modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
     }
+}
+
+/* The twin's state for triangle t (not empty). */
+static void twin_init(struct twin *tw, const struct tri_setup *t, const struct raster_params *p,
+                      struct target *fb, struct trace *tr, const struct tex_tile *d)
+{
+    *tw = (struct twin){ .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
+                         .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
+                         .ones = { 1, 1, 1 }, .d = d };
+    biased_edges_setup(&tw->e, t, true);
+    for (int k = 0; k < 3; k++) {
+        tw->s_k[k] = t->v[k].s, tw->t_k[k] = t->v[k].t;
+        tw->col[0][k] = t->v[k].r, tw->col[1][k] = t->v[k].g, tw->col[2][k] = t->v[k].b;
+    }
+}
+
+/* The lesson's walk over the pixels x0..x1, y0..y1 of the box: its 8 x 8
+ * blocks (aligned on the screen), the empty ones skipped, then their quads. */
+static void walk(const struct twin *tw, int x0, int y0, int x1, int y1)
+{
+    for (int by = y0 - y0 % TEX_BLOCK; by <= y1; by += TEX_BLOCK)
+        for (int bx = x0 - x0 % TEX_BLOCK; bx <= x1; bx += TEX_BLOCK) {
+            int xa = bx < x0 ? x0 : bx, xb = bx + TEX_BLOCK - 1 > x1 ? x1 : bx + TEX_BLOCK - 1;
+            int ya = by < y0 ? y0 : by, yb = by + TEX_BLOCK - 1 > y1 ? y1 : by + TEX_BLOCK - 1;
+            bool empty = tex_block_empty(&tw->e, xa, ya, xb, yb);
+            int line = empty ? L_EMPTY : L_QUADS;
+            NARRATE(tw->tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
+                    .x = xa, .y = ya, .x1 = xb, .y1 = yb,
+                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { TEX_BLOCK });
+            if (empty)
+                continue;
+            for (int qy = ya & ~1; qy <= yb && !trace_frozen(tw->tr); qy += 2)
+                for (int qx = xa & ~1; qx <= xb && !trace_frozen(tw->tr); qx += 2)
+                    quad_sse(tw, qx, qy);
+        }
 }
 
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
@@ -356,24 +461,20 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
-    struct twin tw = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
-                       .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
-                       .ones = { 1, 1, 1 } };
-    biased_edges_setup(&tw.e, t, true);
-    for (int k = 0; k < 3; k++) {
-        tw.s_k[k] = t->v[k].s, tw.t_k[k] = t->v[k].t;
-        tw.col[0][k] = t->v[k].r, tw.col[1][k] = t->v[k].g, tw.col[2][k] = t->v[k].b;
-    }
-    for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK)
-        for (int bx = t->minx - t->minx % TEX_BLOCK; bx <= t->maxx; bx += TEX_BLOCK) {
-            int xa = bx < t->minx ? t->minx : bx;
-            int xb = bx + TEX_BLOCK - 1 > t->maxx ? t->maxx : bx + TEX_BLOCK - 1;
-            int ya = by < t->miny ? t->miny : by;
-            int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
-            if (tex_block_empty(&tw.e, xa, ya, xb, yb))
-                continue;
-            for (int qy = ya & ~1; qy <= yb; qy += 2)
-                for (int qx = xa & ~1; qx <= xb; qx += 2)
-                    quad_sse(&tw, qx, qy);
-        }
+    struct twin tw;
+    twin_init(&tw, t, p, fb, tr, NULL);
+    walk(&tw, t->minx, t->miny, t->maxx, t->maxy);
+}
+
+void tex_draw_in_tile(const struct tri_setup *t, const struct raster_params *p,
+                      const struct tex_tile *d, struct trace *tr)
+{
+    int x0 = t->minx > d->x0 ? t->minx : d->x0, y0 = t->miny > d->y0 ? t->miny : d->y0;
+    int x1 = t->maxx < d->x0 + d->w - 1 ? t->maxx : d->x0 + d->w - 1;
+    int y1 = t->maxy < d->y0 + d->h - 1 ? t->maxy : d->y0 + d->h - 1;
+    if (t->empty || x0 > x1 || y0 > y1)
+        return;
+    struct twin tw;
+    twin_init(&tw, t, p, NULL, tr, d);
+    walk(&tw, x0, y0, x1, y1);
 }

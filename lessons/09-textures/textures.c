@@ -341,7 +341,14 @@ static const struct lesson_variant variants[] = {
       .what = "fine derivatives: each pixel its own row's and column's differences" },
     { .name = "analytic-lod", .kind = VARIANT_CONTRAST, .rasterize = rasterize_analytic,
       .what = "analytic derivatives at each pixel centre, no quads needed" },
+    { .name = "tiles", .kind = VARIANT_TWIN, .rasterize = tex_rasterize_tiled,
+      .what = "the same quads on lesson 07's 64 x 64 tiles, bins and workers: colour and depth in "
+              "cache, the textures shared, one worker per core (or --threads N)" },
 };
+
+_Static_assert(L_SETUP == TEX_LINE_SETUP && L_BLOCKS == TEX_LINE_BLOCKS,
+               "the tiled twin tells its set-up and its steps of lesson 07 at these lines");
+_Static_assert(TEX_P_THREADS == P_MAX_ANISO + 1, "--threads is the row after --max-aniso");
 
 static const char *const filter_names[] = { "nearest", "bilinear", "mip-bilinear", "trilinear",
                                             "aniso" };
@@ -365,7 +372,13 @@ const struct lesson lesson_09 = {
         [P_MAX_ANISO] = { .option = "max-aniso", .arg = "N", .name = "max aniso", .key = ']',
                           .key_down = '[', .min = 1, .max = 16, .def = MAX_ANISO_DEFAULT,
                           .help = "most taps of the aniso filter (1..16)" },
+        [TEX_P_THREADS] = { .option = "threads", .arg = "N", .name = "threads",
+                            .help = "worker threads of a tiled lesson, 1..64 (default: one per core)",
+                            .min = 1, .max = 64 },
         { 0 } },
+    .rasterize_scene = (const rasterize_scene_fn[]){ NULL, NULL, NULL, NULL, NULL, NULL,
+                                                     tex_tiled_scene },
+    .narration_units = tex_units,
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_VALUE_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, TEX_COLOUR_COST), COST_TERM(1, PACK_RGB_COST), { 0 } },

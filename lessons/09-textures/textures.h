@@ -25,6 +25,7 @@
 #include <stdint.h>
 
 #include "lesson.h"
+#include "tiled.h"           /* the tiled twin's tile, shared with tiled.c */
 
 #ifdef __clang__
 #pragma STDC FP_CONTRACT OFF    /* no fused multiply-add: the twin rounds as the lesson does */
@@ -54,7 +55,8 @@
  * default" (trilinear), as for every lesson's rows. */
 enum tex_filter { FILTER_NEAREST = 1, FILTER_BILINEAR, FILTER_MIP_BILINEAR, FILTER_TRILINEAR,
                   FILTER_ANISO };
-enum { P_FILTER, P_MAX_ANISO };     /* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO] */
+enum { P_FILTER, P_MAX_ANISO };     /* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO], */
+                                    /* and p->knob[TEX_P_THREADS] (tiled.h) */
 #define MAX_ANISO_DEFAULT 16
 
 /* The filter and the aniso limit a run's params ask for (defaults for 0). */
@@ -195,6 +197,7 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
 /* The fast twin (quads_sse.c): the same pixels, the lesson's stages. */
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr);
+
 
 /* --- what the narration carries -------------------------------------------- */
 
