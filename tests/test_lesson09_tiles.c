@@ -6,6 +6,7 @@
  * run, narrated one after another, write the fast build's bytes step by
  * step, each inside its tile, each bin in scene order. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -220,4 +221,60 @@ Test(lesson09_tiles, narrated_steps_write_the_fast_builds_pixels_tile_by_tile, .
         target_free(&whole);
         scene_free(&s);
     }
+}
+
+/* (s, t) by one reciprocal (textures.h: q = sum F_k Q_k, s = (sum F_k s_k
+ * Q_k) / q) moves from the weights' value (F_k / (2 area) / z_k, summed
+ * and divided, the rule's order) by at most 2^-48 texels per texel of
+ * max |s_k| W at every covered pixel centre of random textured triangles,
+ * large and tiny, near and far: 256 times less than the distance from a
+ * texel's edge (TEX_TIE) inside which nearest takes the weights' value. */
+Test(lesson09_tiles, one_reciprocal_moves_st_far_less_than_the_tie_distance, .timeout = 60)
+{
+    struct rng r = rng_for(0x09a3);
+    double worst = 0;
+    long pixels = 0;
+    for (int c = 0; c < 400; c++) {
+        struct vertex v[3];
+        int w = 256, h = 256;
+        random_tri(&r, c % 4 == 0 ? CAT_TINY : c % 4 == 1 ? CAT_LARGE : CAT_GENERIC, w, h, v);
+        double scale = c % 3 == 0 ? 1 : c % 3 == 1 ? 100 : 0.01;
+        for (int k = 0; k < 3; k++) {
+            v[k].z = rng_range(&r, 0.1, c % 5 == 0 ? 1000 : 10);
+            v[k].s = rng_range(&r, -3, 3) * scale, v[k].t = rng_range(&r, -3, 3) * scale;
+        }
+        struct tri_setup t;
+        if (!tri_setup(&t, v, w, h) || t.empty)
+            continue;
+        double ms = 0, mt = 0;
+        for (int k = 0; k < 3; k++)
+            ms = fmax(ms, fabs(t.v[k].s)), mt = fmax(mt, fabs(t.v[k].t));
+        double Q[3], SQ[3], TQ[3];
+        for (int k = 0; k < 3; k++)
+            Q[k] = 1 / t.v[k].z, SQ[k] = t.v[k].s * Q[k], TQ[k] = t.v[k].t * Q[k];
+        for (int y = t.miny; y <= t.maxy; y++)
+            for (int x = t.minx; x <= t.maxx; x++) {
+                int64_t e[3];
+                bool in = true;
+                for (int k = 0; k < 3; k++) {
+                    e[k] = edge_value(&t, k, x, y);
+                    in = in && e[k] + t.bias[k] >= 0;
+                }
+                if (!in)
+                    continue;
+                double f[3] = { (double)e[EDGE_BC], (double)e[EDGE_CA], (double)e[EDGE_AB] };
+                double q = 0, S = 0, T = 0, s0, t0;
+                for (int k = 0; k < 3; k++)
+                    q += f[k] * Q[k], S += f[k] * SQ[k], T += f[k] * TQ[k];
+                double rq = 1 / q;
+                tex_st_by_weights(&t, f, &s0, &t0);
+                worst = fmax(worst, fmax(fabs(S * rq - s0) / fmax(ms, 1), fabs(T * rq - t0) / fmax(mt, 1)));
+                pixels++;
+            }
+    }
+    cr_log_info("one reciprocal: %ld pixels, the largest move %g of max |s_k| (2^%.1f)", pixels, worst,
+                log2(worst));
+    cr_assert_gt(pixels, 100000);
+    cr_assert_leq(worst, 0x1p-48, "(s, t) moved by %g of max |s_k|", worst);
+    cr_assert_leq(worst * 256, TEX_TIE);
 }

@@ -48,6 +48,11 @@ static inline struct quad2 pair_div(struct quad2 a, struct quad2 b)
     return (struct quad2){ _mm_div_pd(a.top, b.top), _mm_div_pd(a.bottom, b.bottom) };
 }
 
+static inline struct quad2 pair_mul(struct quad2 a, struct quad2 b)
+{
+    return (struct quad2){ _mm_mul_pd(a.top, b.top), _mm_mul_pd(a.bottom, b.bottom) };
+}
+
 /* --- the texture unit, a texel's channels in four float lanes ------------------
  *
  * tex_bilinear, tex_trilinear and tex_modulate (sampling.c) with the three
@@ -248,6 +253,8 @@ struct twin {
     __m128d area2;
     double s_k[3], t_k[3], ones[3];
     double col[3][3];                   /* r, g, b of A, B and C */
+    double iz[3], sq[3], tq[3], cq[3][3];   /* ... over z: 1/z, s/z, t/z, r/z, g/z, b/z */
+    double tie[2];                      /* nearest: how close to a texel's edge asks the weights */
     const struct tex_tile *d;           /* the tiled twin's tile, or NULL: the target */
 };
 
@@ -327,36 +334,52 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
         NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_SKIP, .x = qx, .y = qy);
         return;
     }
-    /* the weights of A, B, C over z at the four centres (edge values are
-     * exact in doubles, and so are their sums), then 1/z, s and t */
-    struct quad2 w[3];
+    /* the edge values opposite A, B and C at the four centres: exact in
+     * doubles, and so are their sums */
+    struct quad2 F[3];
     for (int k = 0; k < 3; k++) {
         int j = edge_of[k];
         double f = (double)raw[j], dx = (double)tw->e.dx[j], dy = (double)tw->e.dy[j];
-        __m128d z = _mm_set1_pd(t->v[k].z);
-        w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), tw->area2), z);
-        w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), tw->area2), z);
+        F[k] = (struct quad2){ _mm_set_pd(f + dx, f), _mm_set_pd((f + dy) + dx, f + dy) };
     }
-    struct quad2 vq = pair_sum3(w, tw->ones);
-    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
-    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
-    struct quad2 rgb[3];
-    for (int c = 0; c < 3; c++) {
-        struct quad2 sum = pair_sum3(w, tw->col[c]);
-        rgb[c] = (struct quad2){ _mm_mul_pd(sum.top, depth.top), _mm_mul_pd(sum.bottom, depth.bottom) };
+    struct quad2 vq, depth, rgb[3], vs, vt;
+    if (tex) {
+        /* textured: q = sum F_k Q_k, one reciprocal r, then s, t, the colour
+         * and the depth 2 area r (textures.h) */
+        vq = pair_sum3(F, tw->iz);
+        struct quad2 rq = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+        depth = (struct quad2){ _mm_mul_pd(tw->area2, rq.top), _mm_mul_pd(tw->area2, rq.bottom) };
+        for (int c = 0; c < 3; c++)
+            rgb[c] = pair_mul(pair_sum3(F, tw->cq[c]), rq);
+        vs = pair_mul(pair_sum3(F, tw->sq), rq), vt = pair_mul(pair_sum3(F, tw->tq), rq);
+    } else {
+        /* untextured: the weights of A, B, C over z, then 1/z, the depth
+         * 1 / (1/z), the vertex colour sum_k w_k c_k times it, s and t */
+        struct quad2 w[3];
+        for (int k = 0; k < 3; k++) {
+            __m128d z = _mm_set1_pd(t->v[k].z);
+            w[k].top = _mm_div_pd(_mm_div_pd(F[k].top, tw->area2), z);
+            w[k].bottom = _mm_div_pd(_mm_div_pd(F[k].bottom, tw->area2), z);
+        }
+        vq = pair_sum3(w, tw->ones);
+        depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+        for (int c = 0; c < 3; c++)
+            rgb[c] = pair_mul(pair_sum3(w, tw->col[c]), depth);
+        if (!(tw->p->checker > 0) && !(NARRATING && tw->tr)) {
+            /* no checker: no s and t, the four colours packed at once */
+            double zs[4];
+            uint32_t rgba[4];
+            _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
+            pack4(rgb, rgba);
+            for (int i = 0; i < 4; i++)
+                if (covered >> i & 1)
+                    write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
+            return;
+        }
+        vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
     }
     double qs[4], zs[4], s[4], tt[4], cb[4], cg[4], cr[4];
     _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
-    if (!tex && !(tw->p->checker > 0) && !(NARRATING && tw->tr)) {
-        /* untextured, no checker: no s and t, the four colours packed at once */
-        uint32_t rgba[4];
-        pack4(rgb, rgba);
-        for (int i = 0; i < 4; i++)
-            if (covered >> i & 1)
-                write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
-        return;
-    }
-    struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
     _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
     _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
     _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
@@ -367,7 +390,7 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     for (int i = 0; NARRATING && tw->tr && i < 4; i++)
         NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = qx + (i & 1), .y = qy + (i >> 1),
                 .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
-                .aux = { (float)(s[i] * W), (float)(tt[i] * H), (float)qs[i] });
+                .aux = { (float)(s[i] * W), (float)(tt[i] * H), (float)(tex ? qs[i] / (double)t->area2 : qs[i]) });
     if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
         for (int i = 0; i < 4; i++)
             if (covered >> i & 1)
@@ -408,6 +431,16 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
             if (NARRATING && tw->tr)    /* what the texture unit used, told as the lesson tells it */
                 tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d, &tex_stages_lesson, &u);
         } else {                /* the other filters: the texture unit's own code */
+            if (tw->filter == FILTER_NEAREST
+                && (tex_near_edge(s[i] * W, tw->tie[0]) || tex_near_edge(tt[i] * H, tw->tie[1]))) {
+                /* on a texel's edge, or all but: the weights decide which texel (textures.h) */
+                double fk[3];
+                for (int k = 0; k < 3; k++) {
+                    int j = edge_of[k];
+                    fk[k] = (double)(raw[j] + (i & 1) * tw->e.dx[j] + (i >> 1) * tw->e.dy[j]);
+                }
+                tex_st_by_weights(t, fk, &s[i], &tt[i]);
+            }
             struct texel_rgb c = tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d,
                                                   &tex_stages_lesson, &u);
             texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
@@ -431,7 +464,13 @@ static void twin_init(struct twin *tw, const struct tri_setup *t, const struct r
     for (int k = 0; k < 3; k++) {
         tw->s_k[k] = t->v[k].s, tw->t_k[k] = t->v[k].t;
         tw->col[0][k] = t->v[k].r, tw->col[1][k] = t->v[k].g, tw->col[2][k] = t->v[k].b;
+        tw->iz[k] = 1 / t->v[k].z;
+        tw->sq[k] = t->v[k].s * tw->iz[k], tw->tq[k] = t->v[k].t * tw->iz[k];
+        for (int c = 0; c < 3; c++)
+            tw->cq[c][k] = tw->col[c][k] * tw->iz[k];
     }
+    if (tw->tex)
+        tex_tie_bounds(t, tw->tex->level[0].w, tw->tex->level[0].h, tw->tie);
 }
 
 /* The lesson's walk over the pixels x0..x1, y0..y1 of the box: its 8 x 8

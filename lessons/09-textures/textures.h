@@ -135,6 +135,58 @@ static inline void bilinear_corner(const struct texture_level *l, double s, doub
     *i = (int64_t)i0, *j = (int64_t)j0;
 }
 
+/* --- (s, t) at a pixel centre: one reciprocal, exact at texel edges ---------
+ *
+ * With F_k the edge value opposite vertex k (zero at its edge) and Q_k =
+ * 1 / z_k, a pixel's 1/z, s/z and t/z are sum F_k Q_k / (2 area) and sum
+ * F_k (s_k Q_k) / (2 area) ..., so
+ *
+ *     q = sum F_k Q_k,   r = 1 / q,   s = (sum F_k s_k Q_k) r,   z = (2 area) r
+ *
+ * one division per pixel (the weights F_k / (2 area) / z_k of lesson 04
+ * take six). Inside the triangle every F_k >= 0, so the sums have no
+ * cancellation in q, and (s, t) moves from the weights' value by a few
+ * units of the last place of max |s_k| (tested: at most 2^-48 texels per
+ * texel of max |s_k| W, tests/test_lesson09_tiles.c). Only the nearest
+ * texel jumps when (s, t) moves that little, and only where the rule's
+ * value lies exactly on a texel's edge, as a pixel centre of a 2-D scene
+ * often does: there (within TEX_TIE of an edge) nearest takes (s, t) from
+ * the weights themselves, in the rule's order. */
+#define TEX_TIE 0x1p-40         /* texels per texel of max |s_k| W: 256 times the largest move */
+
+/* (s, t) from the weights of lesson 04, in the rule's order: w_k = F_k /
+ * (2 area) / z_k, 1/z = sum w_k, s = (sum w_k s_k) / (1/z). f[k] is the
+ * edge value opposite vertex k. */
+static inline void tex_st_by_weights(const struct tri_setup *t, const double f[3], double *s, double *tt)
+{
+    double area2 = (double)t->area2, q = 0, sum_s = 0, sum_t = 0;
+    for (int k = 0; k < 3; k++) {
+        double w = f[k] / area2 / t->v[k].z;
+        q += w;
+        sum_s += w * t->v[k].s, sum_t += w * t->v[k].t;
+    }
+    *s = sum_s / q, *tt = sum_t / q;
+}
+
+/* How close to a texel's edge u may lie before nearest asks the weights:
+ * TEX_TIE max |s_k| W (of s, and of t with H), for the triangle. */
+static inline void tex_tie_bounds(const struct tri_setup *t, int w, int h, double bound[2])
+{
+    double ms = 0, mt = 0;
+    for (int k = 0; k < 3; k++) {
+        ms = fabs(t->v[k].s) > ms ? fabs(t->v[k].s) : ms;
+        mt = fabs(t->v[k].t) > mt ? fabs(t->v[k].t) : mt;
+    }
+    bound[0] = TEX_TIE * (ms > 1 ? ms : 1) * w, bound[1] = TEX_TIE * (mt > 1 ? mt : 1) * h;
+}
+
+/* Is u (texels) within b of an integer: of a texel's edge? */
+static inline bool tex_near_edge(double u, double b)
+{
+    double d = u - floor(u);
+    return d < b || 1 - d < b;
+}
+
 /* --- the blocks the quads are walked in (lesson 05's) ------------------------ */
 
 #define TEX_BLOCK 8
