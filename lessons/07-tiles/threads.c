@@ -246,9 +246,12 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 const struct tri *t = &out->records[b->entry[e] >> 1];
                 if (e + 4 < b->n) {     /* a record read a few triangles ahead */
                     const char *ahead = (const char *)&out->records[b->entry[e + 4] >> 1];
+                    if (pass && r->s)   /* ... a pass's: the scene's triangle, set up again */
+                        ahead = (const char *)&r->s->tris[out->lo + (int)(b->entry[e + 4] >> 1)];
                     __builtin_prefetch(ahead);
                     __builtin_prefetch(ahead + CACHE_LINE);
-                    __builtin_prefetch(ahead + sizeof *t - 1);
+                    __builtin_prefetch(ahead + (pass ? 2 * CACHE_LINE : sizeof *t - 1));
+                    __builtin_prefetch(ahead + (pass ? sizeof *r->s->tris : sizeof *t) - 1);
                 }
                 bool full = (b->entry[e] & 1) && !pass;
                 if (NARRATING && tr && r->s)

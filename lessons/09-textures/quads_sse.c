@@ -118,6 +118,14 @@ static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
     return true;
 }
 
+/* Four int32 held inside 0 .. hi (SSE2 has no min and max of int32). */
+static inline __m128i clamp4(__m128i v, __m128i hi)
+{
+    v = _mm_and_si128(v, _mm_cmpgt_epi32(v, _mm_setzero_si128()));     /* below 0: 0 */
+    __m128i above = _mm_cmpgt_epi32(v, hi);
+    return _mm_or_si128(_mm_and_si128(above, hi), _mm_andnot_si128(above, v));
+}
+
 /* log2 of a power of two: the exponent of its float, exact */
 static inline int log2_size(int n)
 {
@@ -137,13 +145,19 @@ static inline void level_taps(const struct texture_level *l, enum texture_wrap w
         sl[p] = lanes >> p & 1 ? s[p] : 0, tl[p] = lanes >> p & 1 ? t[p] : 0;
     __m128i iu, iv;
     __m128 a, b;
-    if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
-        /* the mathematical mod of a power of two: the low bits, negatives too */
+    if (corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
         const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
         int log2w = log2_size(l->w);
-        __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
-        __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
-        __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));
+        __m128i x0, x1, y0, y1;
+        if (wrap == TEXTURE_REPEAT) {   /* the mathematical mod of a power of two: the low bits, negatives too */
+            x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
+            y0 = _mm_and_si128(iv, mh), y1 = _mm_and_si128(_mm_add_epi32(iv, one), mh);
+        } else {                        /* clamp: held inside 0 .. size - 1 */
+            x0 = clamp4(iu, mw), x1 = clamp4(_mm_add_epi32(iu, one), mw);
+            y0 = clamp4(iv, mh), y1 = clamp4(_mm_add_epi32(iv, one), mh);
+        }
+        __m128i row0 = _mm_sll_epi32(y0, _mm_cvtsi32_si128(log2w));
+        __m128i row1 = _mm_sll_epi32(y1, _mm_cvtsi32_si128(log2w));
         _mm_storeu_si128((__m128i *)o->o00, _mm_add_epi32(row0, x0));
         _mm_storeu_si128((__m128i *)o->o10, _mm_add_epi32(row0, x1));
         _mm_storeu_si128((__m128i *)o->o01, _mm_add_epi32(row1, x0));
@@ -152,7 +166,7 @@ static inline void level_taps(const struct texture_level *l, enum texture_wrap w
         _mm_storeu_ps(o->b, b);
         return;
     }
-    for (int p = 0; p < 4; p++) {       /* clamp, or far out: bilinear_corner itself */
+    for (int p = 0; p < 4; p++) {       /* far out: bilinear_corner itself */
         int64_t i, j;
         int x0, x1, y0, y1;
         bilinear_corner(l, sl[p], tl[p], &i, &j, &o->a[p], &o->b[p]);
@@ -214,11 +228,11 @@ struct trilinear_at {
 static inline struct trilinear_at trilinear_at(const struct texture *tex, const struct tex_deriv *d)
 {
     double last = tex->nlevels - 1;
-    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho <= 1, no log2 needed */
+    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho^2 <= 1, no log2 needed */
         double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
         double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
         double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
-        if (!(sqrt(px2 > py2 ? px2 : py2) > 1))
+        if (!((px2 > py2 ? px2 : py2) > 1))     /* (where sqrt rounds to 1, log2 gives 0) */
             return (struct trilinear_at){ 0, 0, 0 };
     }
     double lambda = d->beyond ? last : tex_lod(d);
