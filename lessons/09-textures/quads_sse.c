@@ -2,7 +2,8 @@
  *
  * The same pixels, the same bytes: every value a pixel's colour depends on
  * is computed by the same IEEE operations in the same order, only four
- * pixels at a time (two pairs of doubles for the weights and the divides).
+ * pixels at a time (two pairs of doubles: a textured pixel's one
+ * reciprocal, an untextured one's weights and divides).
  * What is different: a quad's four pixels are evaluated at once (and a
  * level's taps for all four), trilinear takes one lambda per quad (the
  * quad's, which every pixel of it uses anyway), and a pixel's texel is
@@ -10,14 +11,17 @@
  * the checker needs no s and t, and packs its four colours at once (the
  * narrated build shades it pixel by pixel, as the lesson does, so that its
  * counts are the lesson's). The walk is the lesson's:
- * the 8 x 8 blocks of the box, the empty ones skipped, then their quads.
+ * the 8 x 8 blocks of the box, the empty ones skipped, then their quads,
+ * on the target, or (the tiled twin, tiled.c) the part of the box in one
+ * worker's 64 x 64 tile buffer. Narrated, it tells each quad as the lesson
+ * does (textures.h), so the explorer steps this very code.
  *
  *      lanes:   [ TL | TR ]  the quad's top row     (x0, x0 + 1) at y0
  *               [ BL | BR ]  its bottom row         (x0, x0 + 1) at y0 + 1
  *
  * The edge values are exact integers below 2^47, so they and their sums
  * are exact in doubles too: coverage tested on doubles is the integer
- * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
+ * test, and the sums of F_k / z_k are the narrated ones, bit for bit.
  */
 #include <math.h>
 #include <string.h>
@@ -432,10 +436,7 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
         int x = qx + (i & 1), y = qy + (i >> 1);
         float z = (float)zs[i];
         if (!depth_pass(tw, x, y, z)) {
-            if (tw->d)
-                write_pixel(tw, x, y, z, 0);        /* counted, hidden: no texel needed */
-            else
-                target_write(tw->fb, x, y, z, 0);
+            write_pixel(tw, x, y, z, 0);        /* counted, hidden: no texel needed */
             continue;
         }
         __m128 texel;

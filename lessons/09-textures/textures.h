@@ -282,7 +282,10 @@ enum { L_SETUP, L_BLOCKS, L_EMPTY, L_QUADS, L_COVER, L_SKIP, L_EVAL, L_DERIV, L_
  * A variant with fine or analytic derivatives narrates L_DERIV..L_LOD once
  * per covered pixel, (x, y) that pixel. Untextured triangles (and the
  * checker) skip L_DERIV..L_FILTER: shaded as every lesson shades. The
- * fast twin narrates its set-up and its writes only. */
+ * fast twin (and the tiled twin, which draws its quads) narrates the same
+ * events per quad, but no counts, and L_FILTER only for a pixel that passes
+ * the depth test (a hidden pixel's texel is never read; its write is told
+ * with colour 0). */
 enum { AUX_U, AUX_V, AUX_Q };
 enum { AUX_DUDX, AUX_DVDX, AUX_DUDY, AUX_DVDY, AUX_RHO, AUX_LAMBDA };
 enum { AUX_USED_LAMBDA = 2, AUX_LEVEL0, AUX_LEVEL1, AUX_MIX };
