@@ -123,8 +123,8 @@ $(B)/crack-search: $(B)/obj/tests/search/cracks.o $(B)/obj/lessons.o $(ALL_LES) 
 # too): a program of its own (Criterion does not run under TSan), run by
 # tests/test_lesson07.c.
 NO_CAIRO := $(filter-out src/scene/png.c,$(wildcard src/scene/*.c)) tests/portable/png_none.c   # PNG textures need cairo
-TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c lessons/08-multisampling/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
-$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h lessons/08-multisampling/*.h) | $(FIRST)
+TSAN_SRC := tests/tsan/tsan_tiles.c $(filter-out $(EX_SRC) $(EXP_SRC),$(wildcard lessons/07-tiles/*.c lessons/08-multisampling/*.c lessons/09-textures/*.c)) src/raster/raster.c $(NO_CAIRO) src/util/file.c src/shade/quad.c src/trace/trace.c
+$(B)/tsan-tiles: $(TSAN_SRC) src/lesson.h $(wildcard lessons/07-tiles/*.h lessons/08-multisampling/*.h lessons/09-textures/*.h) | $(FIRST)
 	$(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -Isrc -pthread $(PKG_CFLAGS) -O1 -fsanitize=thread $(TSAN_SRC) -lm -o $@
 
 # The soak (tests/soak/): every lesson's window under Xvfb, random input, sanitizers.

@@ -228,3 +228,77 @@ Test(lesson08_tiles, layers_a_hair_apart_in_depth_resolve_as_msaas)
     }
     scene_free(&s);
 }
+
+/* What a narrated step told: its writes, and how many fall outside its tile. */
+struct told {
+    int x0, y0, x1, y1;         /* the step's tile; x1 < x0: no write allowed */
+    int outside, writes, masks;
+};
+
+static void on_told(void *ctx, const struct trace_event *ev)
+{
+    struct told *w = ctx;
+    w->masks += ev->kind == TRACE_PIXEL_TEST;
+    if (ev->kind != TRACE_PIXEL_WRITE)
+        return;
+    w->writes++;
+    w->outside += ev->x < w->x0 || ev->x > w->x1 || ev->y < w->y0 || ev->y > w->y1;
+}
+
+/* The explorer's steps of the tiled run (its units, as the replay hands
+ * them over), narrated and fast side by side at 4 and 8 samples: after
+ * every step both pictures are the same bytes (every sample too), a step
+ * tells its pixels' masks and writes (the SIMD pixels where the CPU has
+ * them, narrated) only inside its tile, and the last picture is the fast
+ * build's timed scene run. */
+Test(lesson08_tiles, narrated_steps_write_the_fast_builds_bytes_step_by_step, .timeout = 60)
+{
+    struct rng rng = rng_for(0x0828);
+    for (int rep = 0; rep < 2; rep++) {
+        struct scene s;
+        random_scene(&s, &rng, 150 + 40 * rep, 110, 50, 0);
+        const struct lesson_variant *vn = lesson_variant(&lesson_08, "tiles");
+        const struct lesson_variant *vf = lesson_variant(&lesson_08_fast, "tiles");
+        struct raster_params p = default_params();
+        p.samples = rep ? 8 : 4;
+        cr_assert(lesson_param_set(&lesson_08, &p, "threads", 1 + rep));
+        long n = lesson_08.narration_units(&s, vn, &p, NULL, 0);
+        cr_assert_gt(n, s.ntris);
+        struct lesson_unit *u = malloc((size_t)n * sizeof *u);
+        cr_assert_not_null(u);
+        cr_assert_eq(lesson_08.narration_units(&s, vn, &p, u, n), n);
+        struct target a, b, whole;
+        cr_assert(target_init(&a, s.w, s.h, scene_background(&s)) && target_multisample(&a, p.samples));
+        cr_assert(target_init(&b, s.w, s.h, scene_background(&s)) && target_multisample(&b, p.samples));
+        int nx = (s.w + 63) / 64, writes = 0, masks = 0;
+        for (long i = 0; i < n; i++) {
+            struct run_place at = { .scene = &s, .unit = &u[i], .units = u, .nunits = (int)n };
+            struct raster_params q = p;
+            q.at = &at;
+            struct told w = { 0, 0, -1, -1, 0, 0, 0 };
+            if (u[i].tile >= 0)
+                w.x0 = u[i].tile % nx * 64, w.y0 = u[i].tile / nx * 64, w.x1 = w.x0 + 63, w.y1 = w.y0 + 63;
+            struct tri_setup t;
+            tri_setup(&t, s.tris[u[i].tri].v, s.w, s.h);
+            struct trace tr = { .sink = on_told, .ctx = &w };
+            trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
+            vn->rasterize(&t, &q, &a, &tr);
+            vf->rasterize(&t, &q, &b, NULL);
+            cr_assert_eq(w.outside, 0, "step %ld wrote outside its tile", i);
+            writes += w.writes, masks += w.masks;
+            char what[64];
+            snprintf(what, sizeof what, "%d samples, step %ld", p.samples, i);
+            expect_same(&a, &b, what);
+        }
+        cr_assert_gt(writes, 0);
+        cr_assert_gt(masks, writes, "no pixel told its mask");
+        cr_assert(target_init(&whole, s.w, s.h, scene_background(&s)) && target_multisample(&whole, p.samples));
+        cr_assert(lesson_scene_fn(&lesson_08_fast, vf)(&s, &p, &whole));
+        expect_same(&a, &whole, "the narrated steps against the timed run");
+        free(u);
+        target_free(&a);
+        target_free(&b);
+        target_free(&whole);
+        scene_free(&s);
+    }
+}

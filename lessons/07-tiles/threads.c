@@ -180,16 +180,18 @@ static int share_at(const struct run *r, int k, int worker)
 }
 
 /* Triangle i of the scene (or the one triangle) drawn by another lesson's
- * pass: set up again from the scene, as that lesson sets it up. */
+ * pass: set up again from the scene, as that lesson sets it up, with its
+ * image texture (lesson 09's). */
 static void draw_pass(const struct run *r, int i, void *buf, struct rect rc, struct trace *tr)
 {
-    struct tri_setup own;
-    const struct tri_setup *t = r->one;
-    if (r->s) {
-        tri_setup_bits(&own, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
-        t = &own;
+    if (!r->s) {
+        r->o.pass->draw(buf, r->one, rc, r->p, tr);
+        return;
     }
-    r->o.pass->draw(buf, t, rc, r->p, tr);
+    struct tri_setup t;
+    tri_setup_bits(&t, r->s->tris[i].v, r->s->w, r->s->h, r->p->subpixel_bits);
+    struct raster_params each = lesson_params_tri(r->p, r->s, i);
+    r->o.pass->draw(buf, &t, rc, &each, tr);
 }
 
 /* Draw one tile: load it into the tile buffer, every share's bin in
@@ -244,9 +246,12 @@ static void draw_tile(struct run *r, int tile, int worker, struct tile_buf *buf)
                 const struct tri *t = &out->records[b->entry[e] >> 1];
                 if (e + 4 < b->n) {     /* a record read a few triangles ahead */
                     const char *ahead = (const char *)&out->records[b->entry[e + 4] >> 1];
+                    if (pass && r->s)   /* ... a pass's: the scene's triangle, set up again */
+                        ahead = (const char *)&r->s->tris[out->lo + (int)(b->entry[e + 4] >> 1)];
                     __builtin_prefetch(ahead);
                     __builtin_prefetch(ahead + CACHE_LINE);
-                    __builtin_prefetch(ahead + sizeof *t - 1);
+                    __builtin_prefetch(ahead + (pass ? 2 * CACHE_LINE : sizeof *t - 1));
+                    __builtin_prefetch(ahead + (pass ? sizeof *r->s->tris : sizeof *t) - 1);
                 }
                 bool full = (b->entry[e] & 1) && !pass;
                 if (NARRATING && tr && r->s)

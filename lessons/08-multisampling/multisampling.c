@@ -60,6 +60,7 @@ static const char *const pseudocode[] = {
 
 enum { L_SETUP, L_BOX, L_LOOP, L_EMPTY, L_FULL, L_PARTIAL, L_MASK, L_WRITE };
 _Static_assert(L_LOOP == MS_LINE_BLOCKS, "the tiled twin's steps show at the blocks' line");
+_Static_assert(L_MASK == MS_LINE_MASK && L_WRITE == MS_LINE_WRITE, "the twin's pixels tell these lines");
 
 /* trace_event.aux[]: samples per pixel, how many the test found covered, the
  * mask (bit s = sample s; also mask[0]), 1 on the exhibit's regular grid;
@@ -416,9 +417,10 @@ static void block(const struct run *r, int x0, int y0, int x1, int y1)
             .e = { biased_edge_at(b, 0, x0, y0) - b->bias[0], biased_edge_at(b, 1, x0, y0) - b->bias[1],
                    biased_edge_at(b, 2, x0, y0) - b->bias[2] },
             .aux = { (float)r->pt.n, 0, 0, r->grid });
-    if (r->pixels && klass != BLOCK_EMPTY)
-        r->pixels(r, x0, y0, x1, y1, klass == BLOCK_FULL);   /* the tiled twin's, untraced */
-    else if (klass == BLOCK_FULL && !trace_frozen(r->tr))
+    if (r->pixels && klass != BLOCK_EMPTY) {    /* the tiled twin's SIMD pixels (pixels.c) */
+        if (klass == BLOCK_PARTIAL || !trace_frozen(r->tr))
+            r->pixels(r, x0, y0, x1, y1, klass == BLOCK_FULL);
+    } else if (klass == BLOCK_FULL && !trace_frozen(r->tr))
         full_block(r, x0, y0, x1, y1);
     else if (klass == BLOCK_PARTIAL)
         partial_block(r, x0, y0, x1, y1);

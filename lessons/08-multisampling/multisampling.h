@@ -23,6 +23,10 @@
 /* The pseudo-code's line of the blocks (multisampling.c), where the tiled
  * twin's steps of lesson 07 (bins, tiles, stores) are shown. */
 #define MS_LINE_BLOCKS 2
+/* ... and of a partial pixel's mask and its write, which the twin's SIMD
+ * pixels (pixels.c) tell as msaa's do */
+#define MS_LINE_MASK 6
+#define MS_LINE_WRITE 7
 #define Q_DEFAULT 8
 /* the lesson's parameter rows: p->knob[MS_P_BLOCK] is --block-size */
 enum { MS_P_BLOCK, MS_P_SAMPLES, MS_P_THREADS };
@@ -75,8 +79,9 @@ struct run {
      * of touched[j] says pixel (sx + i, sy + j) was, to be resolved once, at
      * the tile's store */
     uint64_t *touched;
-    /* the tiled twin, untraced: a FULL or PARTIAL block's pixels, SIMD
-     * (pixels.c), instead of full_block and partial_block; NULL: theirs */
+    /* the tiled twin: a FULL or PARTIAL block's pixels, SIMD (pixels.c),
+     * narrated as partial_block narrates them, instead of full_block and
+     * partial_block; NULL: theirs */
     void (*pixels)(const struct run *r, int x0, int y0, int x1, int y1, bool full);
 };
 

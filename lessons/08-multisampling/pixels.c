@@ -1,4 +1,4 @@
-/* Lesson 08's tiled twin, its pixels in an untraced run: msaa's per-sample
+/* Lesson 08's tiled twin, its pixels: msaa's per-sample
  * rule (multisampling.c: sample_mask, shade, resolve, store), four samples a
  * register (AVX2), in the same double arithmetic, so the same bytes:
  *
@@ -13,8 +13,13 @@
  * Under overdraw most samples are hidden: a float estimate that proves it
  * (sure_hidden) skips the division, for four pixels of a FULL block at once
  * where it can. The pixel is marked for the resolve at the tile's store
- * (tiled.c). Runs where the CPU has AVX2, at 4 or 8 samples; elsewhere, and
- * narrated, msaa's own loops. */
+ * (tiled.c). Runs where the CPU has AVX2, at 4 or 8 samples (elsewhere
+ * msaa's own loops), in both builds: narrated, a partial block's pixel
+ * tells its mask and its write as msaa's partial_block does (the write with
+ * the pixel's resolved colour, its new samples held back until the step
+ * has happened), so the explorer steps this very code. */
+#include <string.h>
+
 #include "multisampling.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TRISTEP_SIMDE)
@@ -137,10 +142,23 @@ AVX2 static void pixels_avx2(const struct run *r, int x0, int y0, int x1, int y1
             unsigned mask = all;
             if (!full) {
                 mask = mask_avx2(off, regs, c0, c1, c2);
+                NARRATE(r->tr, .kind = TRACE_PIXEL_TEST, .line = MS_LINE_MASK, .x = x, .y = y,
+                        .e = { c0 - e->bias[0], c1 - e->bias[1], c2 - e->bias[2] },
+                        .flags = mask ? TRACE_INSIDE : 0, .mask = { (uint16_t)mask },
+                        .aux = { (float)n, (float)__builtin_popcount(mask), (float)mask, r->grid });
                 c0 += dx0, c1 += dx1, c2 += dx2;
                 if (!mask)
                     continue;
             }
+            /* narrated: the new samples in `held` until the write is told */
+            bool narrated = NARRATING && r->tr && !full;
+            float held_z[SAMPLES_MAX];
+            uint32_t held_c[SAMPLES_MAX];
+            if (narrated) {
+                memcpy(held_z, sdepth + at, (size_t)n * sizeof *held_z);
+                memcpy(held_c, scolor + at, (size_t)n * sizeof *held_c);
+            }
+            bool passed = false;
             /* msaa's shade: the planes 1/z, r, g, b at the centre, (P0 + Px dx) + Py dy */
             __m256d dx = _mm256_set1_pd((double)(x - plx));
             __m256d v = _mm256_add_pd(_mm256_add_pd(p0, _mm256_mul_pd(px, dx)), _mm256_mul_pd(py, dy));
@@ -148,8 +166,8 @@ AVX2 static void pixels_avx2(const struct run *r, int x0, int y0, int x1, int y1
             bool shaded = false;
             __m128i colour = _mm_setzero_si128();
             for (int h = 0; h < regs; h++) {
-                float *sd = sdepth + at + 4 * h;
-                uint32_t *sc = scolor + at + 4 * h;
+                float *sd = narrated ? held_z + 4 * h : sdepth + at + 4 * h;
+                uint32_t *sc = narrated ? held_c + 4 * h : scolor + at + 4 * h;
                 __m256d at_s = _mm256_add_pd(inv_z, inv_off[h]);       /* 1/z at the samples */
                 __m128 old = _mm_loadu_ps(sd);
                 __m128 want = full ? _mm_castsi128_ps(_mm_set1_epi32(-1)) : _mm_castsi128_ps(_mm_cmpeq_epi32(
@@ -161,6 +179,7 @@ AVX2 static void pixels_avx2(const struct run *r, int x0, int y0, int x1, int y1
                 __m128 pass = _mm_and_ps(_mm_cmplt_ps(z, old), want);
                 if (!_mm_movemask_ps(pass))
                     continue;
+                passed = true;
                 if (!shaded) {      /* msaa's colour_of, once */
                     double vs[PL_COUNT];
                     _mm256_storeu_pd(vs, v);
@@ -175,6 +194,20 @@ AVX2 static void pixels_avx2(const struct run *r, int x0, int y0, int x1, int y1
                 _mm_storeu_si128((__m128i *)sc, _mm_castps_si128(_mm_blendv_ps(
                     _mm_castsi128_ps(c), _mm_castsi128_ps(colour), pass)));
             }
+            if (narrated) {     /* msaa's write, the pixel resolved as it is shown */
+                uint32_t rgba;
+                float nearest;
+                ms_resolve(n, held_c, held_z, &rgba, &nearest);
+                NARRATE(r->tr, .kind = TRACE_PIXEL_WRITE, .line = MS_LINE_WRITE, .x = x, .y = y,
+                        .z = nearest, .rgba = rgba, .flags = passed ? TRACE_DEPTH_PASS : 0,
+                        .mask = { (uint16_t)mask },
+                        .aux = { (float)n, (float)__builtin_popcount(mask), (float)mask, r->grid });
+                if (trace_frozen(r->tr))
+                    continue;
+                memcpy(sdepth + at, held_z, (size_t)n * sizeof *held_z);
+                memcpy(scolor + at, held_c, (size_t)n * sizeof *held_c);
+            }
+            (void)passed;
             row |= (uint64_t)1 << (x - sx);
             if (count) {    /* saturating, as msaa's store */
                 unsigned c = count[x] + (unsigned)__builtin_popcount(mask);
@@ -189,7 +222,7 @@ AVX2 static void pixels_avx2(const struct run *r, int x0, int y0, int x1, int y1
 
 ms_pixels_fn ms_pixels(const struct run *r)
 {
-    bool fits = (r->pt.n == 4 || r->pt.n == 8) && r->touched && !r->tr;
+    bool fits = (r->pt.n == 4 || r->pt.n == 8) && r->touched;
     return fits && __builtin_cpu_supports("avx2") ? pixels_avx2 : NULL;
 }
 #else

@@ -2,7 +2,7 @@
  *
  * The same samples, the same per-sample test, shading and depth test as
  * msaa (multisampling.c: ms_box, ms_setup, ms_blocks run here unchanged;
- * untraced, a block's pixels four samples a register, pixels.c),
+ * a block's pixels four samples a register, pixels.c, narrated as msaa's),
  * inside lesson 07's production architecture (lessons/07-tiles/: its
  * shares, bins and workers, threads.c), with what a tile holds changed:
  *
@@ -144,7 +144,7 @@ static void draw(void *buf, const struct tri_setup *t, struct rect rc, const str
     ms_setup(&r, t, p, b->fb, tr, (struct ms_options){ .fill_rule = true });
     r.scolor = b->color, r.sdepth = b->depth;
     r.sx = rc.x0, r.sy = rc.y0, r.srow = TILE, r.touched = b->touched;
-    r.pixels = ms_pixels(&r);     /* untraced: SIMD pixels (pixels.c) */
+    r.pixels = ms_pixels(&r);     /* SIMD pixels (pixels.c), narrated too */
     ms_blocks(&r, box, p->knob[MS_P_BLOCK] > 0 ? p->knob[MS_P_BLOCK] : Q_DEFAULT);
     restore_lines(tr, was);
 }

@@ -2,7 +2,8 @@
  *
  * The same pixels, the same bytes: every value a pixel's colour depends on
  * is computed by the same IEEE operations in the same order, only four
- * pixels at a time (two pairs of doubles for the weights and the divides).
+ * pixels at a time (two pairs of doubles: a textured pixel's one
+ * reciprocal, an untextured one's weights and divides).
  * What is different: a quad's four pixels are evaluated at once (and a
  * level's taps for all four), trilinear takes one lambda per quad (the
  * quad's, which every pixel of it uses anyway), and a pixel's texel is
@@ -10,14 +11,17 @@
  * the checker needs no s and t, and packs its four colours at once (the
  * narrated build shades it pixel by pixel, as the lesson does, so that its
  * counts are the lesson's). The walk is the lesson's:
- * the 8 x 8 blocks of the box, the empty ones skipped, then their quads.
+ * the 8 x 8 blocks of the box, the empty ones skipped, then their quads,
+ * on the target, or (the tiled twin, tiled.c) the part of the box in one
+ * worker's 64 x 64 tile buffer. Narrated, it tells each quad as the lesson
+ * does (textures.h), so the explorer steps this very code.
  *
  *      lanes:   [ TL | TR ]  the quad's top row     (x0, x0 + 1) at y0
  *               [ BL | BR ]  its bottom row         (x0, x0 + 1) at y0 + 1
  *
  * The edge values are exact integers below 2^47, so they and their sums
  * are exact in doubles too: coverage tested on doubles is the integer
- * test, and the weights F_k / (2 area) are the narrated ones, bit for bit.
+ * test, and the sums of F_k / z_k are the narrated ones, bit for bit.
  */
 #include <math.h>
 #include <string.h>
@@ -46,6 +50,11 @@ static inline struct quad2 pair_sum3(const struct quad2 w[3], const double a[3])
 static inline struct quad2 pair_div(struct quad2 a, struct quad2 b)
 {
     return (struct quad2){ _mm_div_pd(a.top, b.top), _mm_div_pd(a.bottom, b.bottom) };
+}
+
+static inline struct quad2 pair_mul(struct quad2 a, struct quad2 b)
+{
+    return (struct quad2){ _mm_mul_pd(a.top, b.top), _mm_mul_pd(a.bottom, b.bottom) };
 }
 
 /* --- the texture unit, a texel's channels in four float lanes ------------------
@@ -113,6 +122,14 @@ static inline bool corner4(const double s[4], double w, __m128i *i, __m128 *a)
     return true;
 }
 
+/* Four int32 held inside 0 .. hi (SSE2 has no min and max of int32). */
+static inline __m128i clamp4(__m128i v, __m128i hi)
+{
+    v = _mm_and_si128(v, _mm_cmpgt_epi32(v, _mm_setzero_si128()));     /* below 0: 0 */
+    __m128i above = _mm_cmpgt_epi32(v, hi);
+    return _mm_or_si128(_mm_and_si128(above, hi), _mm_andnot_si128(above, v));
+}
+
 /* log2 of a power of two: the exponent of its float, exact */
 static inline int log2_size(int n)
 {
@@ -132,13 +149,19 @@ static inline void level_taps(const struct texture_level *l, enum texture_wrap w
         sl[p] = lanes >> p & 1 ? s[p] : 0, tl[p] = lanes >> p & 1 ? t[p] : 0;
     __m128i iu, iv;
     __m128 a, b;
-    if (wrap == TEXTURE_REPEAT && corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
-        /* the mathematical mod of a power of two: the low bits, negatives too */
+    if (corner4(sl, l->w, &iu, &a) && corner4(tl, l->h, &iv, &b)) {
         const __m128i one = _mm_set1_epi32(1), mw = _mm_set1_epi32(l->w - 1), mh = _mm_set1_epi32(l->h - 1);
         int log2w = log2_size(l->w);
-        __m128i x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
-        __m128i row0 = _mm_sll_epi32(_mm_and_si128(iv, mh), _mm_cvtsi32_si128(log2w));
-        __m128i row1 = _mm_sll_epi32(_mm_and_si128(_mm_add_epi32(iv, one), mh), _mm_cvtsi32_si128(log2w));
+        __m128i x0, x1, y0, y1;
+        if (wrap == TEXTURE_REPEAT) {   /* the mathematical mod of a power of two: the low bits, negatives too */
+            x0 = _mm_and_si128(iu, mw), x1 = _mm_and_si128(_mm_add_epi32(iu, one), mw);
+            y0 = _mm_and_si128(iv, mh), y1 = _mm_and_si128(_mm_add_epi32(iv, one), mh);
+        } else {                        /* clamp: held inside 0 .. size - 1 */
+            x0 = clamp4(iu, mw), x1 = clamp4(_mm_add_epi32(iu, one), mw);
+            y0 = clamp4(iv, mh), y1 = clamp4(_mm_add_epi32(iv, one), mh);
+        }
+        __m128i row0 = _mm_sll_epi32(y0, _mm_cvtsi32_si128(log2w));
+        __m128i row1 = _mm_sll_epi32(y1, _mm_cvtsi32_si128(log2w));
         _mm_storeu_si128((__m128i *)o->o00, _mm_add_epi32(row0, x0));
         _mm_storeu_si128((__m128i *)o->o10, _mm_add_epi32(row0, x1));
         _mm_storeu_si128((__m128i *)o->o01, _mm_add_epi32(row1, x0));
@@ -147,7 +170,7 @@ static inline void level_taps(const struct texture_level *l, enum texture_wrap w
         _mm_storeu_ps(o->b, b);
         return;
     }
-    for (int p = 0; p < 4; p++) {       /* clamp, or far out: bilinear_corner itself */
+    for (int p = 0; p < 4; p++) {       /* far out: bilinear_corner itself */
         int64_t i, j;
         int x0, x1, y0, y1;
         bilinear_corner(l, sl[p], tl[p], &i, &j, &o->a[p], &o->b[p]);
@@ -209,11 +232,11 @@ struct trilinear_at {
 static inline struct trilinear_at trilinear_at(const struct texture *tex, const struct tex_deriv *d)
 {
     double last = tex->nlevels - 1;
-    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho <= 1, no log2 needed */
+    if (!d->beyond) {   /* tex_lod's rho: magnified (log2 rho <= 0) when rho^2 <= 1, no log2 needed */
         double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0;
         double dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
         double px2 = dudx * dudx + dvdx * dvdx, py2 = dudy * dudy + dvdy * dvdy;
-        if (!(sqrt(px2 > py2 ? px2 : py2) > 1))
+        if (!((px2 > py2 ? px2 : py2) > 1))     /* (where sqrt rounds to 1, log2 gives 0) */
             return (struct trilinear_at){ 0, 0, 0 };
     }
     double lambda = d->beyond ? last : tex_lod(d);
@@ -248,7 +271,56 @@ struct twin {
     __m128d area2;
     double s_k[3], t_k[3], ones[3];
     double col[3][3];                   /* r, g, b of A, B and C */
+    double iz[3], sq[3], tq[3], cq[3][3];   /* ... over z: 1/z, s/z, t/z, r/z, g/z, b/z */
+    double tie[2];                      /* nearest: how close to a texel's edge asks the weights */
+    const struct tex_tile *d;           /* the tiled twin's tile, or NULL: the target */
 };
+
+/* Would depth z pass at pixel (x, y): in the tile, or on the target. */
+static inline bool depth_pass(const struct twin *tw, int x, int y, float z)
+{
+    const struct tex_tile *d = tw->d;
+    if (!d)
+        return target_depth_pass(tw->fb, x, y, z);
+    return z < d->depth[(size_t)(y - d->y0) * (size_t)d->stride + (size_t)(x - d->x0)];
+}
+
+/* A covered pixel written as PLOT writes it (counted, then depth-tested):
+ * on the target, or in the tile, narrated there as the write it is. */
+static inline void write_pixel(const struct twin *tw, int x, int y, float z, uint32_t rgba)
+{
+    const struct tex_tile *d = tw->d;
+    if (!d) {
+        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z, rgba);
+        return;
+    }
+    size_t o = (size_t)(y - d->y0) * (size_t)d->stride + (size_t)(x - d->x0);
+    bool pass = z < d->depth[o];
+    NARRATE(tw->tr, .kind = TRACE_PIXEL_WRITE, .line = L_WRITE, .x = x, .y = y, .z = z, .rgba = rgba,
+            .flags = pass ? TRACE_DEPTH_PASS : 0);
+    if (trace_frozen(tw->tr))
+        return;
+    size_t oc = (size_t)(y - d->y0) * (size_t)d->count_stride + (size_t)(x - d->x0);
+    if (d->count && d->count[oc] < 255)
+        d->count[oc]++;
+    if (pass)
+        d->depth[o] = z, d->color[o] = rgba;
+}
+
+/* The quad's derivatives in level-0 texels, rho and the lambda of the
+ * lesson's level of detail, told as the lesson tells them. */
+static inline void narrate_deriv(const struct twin *tw, int qx, int qy, unsigned covered,
+                                 const struct tex_deriv *d)
+{
+    if (!(NARRATING && tw->tr))
+        return;
+    double dudx = d->dsdx * d->w0, dvdx = d->dtdx * d->h0, dudy = d->dsdy * d->w0, dvdy = d->dtdy * d->h0;
+    double rho = fmax(sqrt(dudx * dudx + dvdx * dvdx), sqrt(dudy * dudy + dvdy * dvdy));
+    NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_LOD, .span = L_LOD - L_DERIV, .x = qx, .y = qy,
+            .mask = { (uint16_t)covered }, .flags = d->beyond ? 0 : TRACE_INSIDE,
+            .aux = { (float)dudx, (float)dvdx, (float)dudy, (float)dvdy, (float)rho,
+                     d->beyond ? (float)(tw->tex->nlevels - 1) : (float)tex_lod(d) });
+}
 
 /* The quad whose top-left pixel is (qx, qy). */
 static inline void quad_sse(const struct twin *tw, int qx, int qy)
@@ -270,49 +342,78 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     if (qx + 1 > t->maxx) covered &= ~10u;
     if (qy < t->miny) covered &= ~3u;
     if (qy + 1 > t->maxy) covered &= ~12u;
-    if (!covered)
+    for (int i = 0; NARRATING && tw->tr && i < 4; i++)
+        NARRATE(tw->tr, .kind = TRACE_PIXEL_TEST, .line = L_COVER, .x = qx + (i & 1), .y = qy + (i >> 1),
+                .e = { raw[0] + (i & 1) * tw->e.dx[0] + (i >> 1) * tw->e.dy[0],
+                       raw[1] + (i & 1) * tw->e.dx[1] + (i >> 1) * tw->e.dy[1],
+                       raw[2] + (i & 1) * tw->e.dx[2] + (i >> 1) * tw->e.dy[2] },
+                .flags = (covered >> i & 1) ? TRACE_INSIDE : 0);
+    if (!covered) {
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_SKIP, .x = qx, .y = qy);
         return;
-    /* the weights of A, B, C over z at the four centres (edge values are
-     * exact in doubles, and so are their sums), then 1/z, s and t */
-    struct quad2 w[3];
+    }
+    /* the edge values opposite A, B and C at the four centres: exact in
+     * doubles, and so are their sums */
+    struct quad2 F[3];
     for (int k = 0; k < 3; k++) {
         int j = edge_of[k];
         double f = (double)raw[j], dx = (double)tw->e.dx[j], dy = (double)tw->e.dy[j];
-        __m128d z = _mm_set1_pd(t->v[k].z);
-        w[k].top = _mm_div_pd(_mm_div_pd(_mm_set_pd(f + dx, f), tw->area2), z);
-        w[k].bottom = _mm_div_pd(_mm_div_pd(_mm_set_pd((f + dy) + dx, f + dy), tw->area2), z);
+        F[k] = (struct quad2){ _mm_set_pd(f + dx, f), _mm_set_pd((f + dy) + dx, f + dy) };
     }
-    struct quad2 vq = pair_sum3(w, tw->ones);
-    /* depth 1 / (1/z), and the vertex colour: sum_k w_k c_k from 0, times the depth */
-    struct quad2 depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
-    struct quad2 rgb[3];
-    for (int c = 0; c < 3; c++) {
-        struct quad2 sum = pair_sum3(w, tw->col[c]);
-        rgb[c] = (struct quad2){ _mm_mul_pd(sum.top, depth.top), _mm_mul_pd(sum.bottom, depth.bottom) };
+    struct quad2 vq, depth, rgb[3], vs, vt;
+    if (tex) {
+        /* textured: q = sum F_k Q_k, one reciprocal r, then s, t, the colour
+         * and the depth 2 area r (textures.h) */
+        vq = pair_sum3(F, tw->iz);
+        struct quad2 rq = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+        depth = (struct quad2){ _mm_mul_pd(tw->area2, rq.top), _mm_mul_pd(tw->area2, rq.bottom) };
+        for (int c = 0; c < 3; c++)
+            rgb[c] = pair_mul(pair_sum3(F, tw->cq[c]), rq);
+        vs = pair_mul(pair_sum3(F, tw->sq), rq), vt = pair_mul(pair_sum3(F, tw->tq), rq);
+    } else {
+        /* untextured: the weights of A, B, C over z, then 1/z, the depth
+         * 1 / (1/z), the vertex colour sum_k w_k c_k times it, s and t */
+        struct quad2 w[3];
+        for (int k = 0; k < 3; k++) {
+            __m128d z = _mm_set1_pd(t->v[k].z);
+            w[k].top = _mm_div_pd(_mm_div_pd(F[k].top, tw->area2), z);
+            w[k].bottom = _mm_div_pd(_mm_div_pd(F[k].bottom, tw->area2), z);
+        }
+        vq = pair_sum3(w, tw->ones);
+        depth = pair_div((struct quad2){ _mm_set1_pd(1), _mm_set1_pd(1) }, vq);
+        for (int c = 0; c < 3; c++)
+            rgb[c] = pair_mul(pair_sum3(w, tw->col[c]), depth);
+        if (!(tw->p->checker > 0) && !(NARRATING && tw->tr)) {
+            /* no checker: no s and t, the four colours packed at once */
+            double zs[4];
+            uint32_t rgba[4];
+            _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
+            pack4(rgb, rgba);
+            for (int i = 0; i < 4; i++)
+                if (covered >> i & 1)
+                    write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
+            return;
+        }
+        vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
     }
     double qs[4], zs[4], s[4], tt[4], cb[4], cg[4], cr[4];
     _mm_storeu_pd(zs, depth.top), _mm_storeu_pd(zs + 2, depth.bottom);
-    if (!tex && !(tw->p->checker > 0) && !(NARRATING && tw->tr)) {
-        /* untextured, no checker: no s and t, the four colours packed at once */
-        uint32_t rgba[4];
-        pack4(rgb, rgba);
-        for (int i = 0; i < 4; i++)
-            if (covered >> i & 1)
-                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i], rgba[i]);
-        return;
-    }
-    struct quad2 vs = pair_div(pair_sum3(w, tw->s_k), vq), vt = pair_div(pair_sum3(w, tw->t_k), vq);
     _mm_storeu_pd(qs, vq.top), _mm_storeu_pd(qs + 2, vq.bottom);
     _mm_storeu_pd(s, vs.top), _mm_storeu_pd(s + 2, vs.bottom);
     _mm_storeu_pd(tt, vt.top), _mm_storeu_pd(tt + 2, vt.bottom);
     double *out[3] = { cr, cg, cb };
     for (int c = 0; c < 3; c++)
         _mm_storeu_pd(out[c], rgb[c].top), _mm_storeu_pd(out[c] + 2, rgb[c].bottom);
+    double W = tex ? tex->level[0].w : 1, H = tex ? tex->level[0].h : 1;
+    for (int i = 0; NARRATING && tw->tr && i < 4; i++)
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = qx + (i & 1), .y = qy + (i >> 1),
+                .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
+                .aux = { (float)(s[i] * W), (float)(tt[i] * H), (float)(tex ? qs[i] / (double)t->area2 : qs[i]) });
     if (!tex) {             /* untextured: the shared shading (and the checker), as the lesson's */
         for (int i = 0; i < 4; i++)
             if (covered >> i & 1)
-                PLOT(tw->fb, tw->tr, L_WRITE, qx + (i & 1), qy + (i >> 1), (float)zs[i],
-                     shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
+                write_pixel(tw, qx + (i & 1), qy + (i >> 1), (float)zs[i],
+                            shade_pixel(tw->p, tw->tr, cr[i], cg[i], cb[i], s[i], tt[i]));
         return;
     }
     /* the quad's derivatives, and trilinear's levels for all four pixels */
@@ -320,6 +421,7 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
     struct tex_deriv d = { .dsdx = s[1] - s[0], .dtdx = tt[1] - tt[0], .dsdy = s[2] - s[0],
                            .dtdy = tt[2] - tt[0], .w0 = tex->level[0].w, .h0 = tex->level[0].h,
                            .beyond = beyond };
+    narrate_deriv(tw, qx, qy, covered, &d);
     struct trilinear_at at = { 0, 0, 0 };
     struct level_taps taps[2];
     if (tw->filter == FILTER_TRILINEAR) {
@@ -333,21 +435,78 @@ static inline void quad_sse(const struct twin *tw, int qx, int qy)
             continue;
         int x = qx + (i & 1), y = qy + (i >> 1);
         float z = (float)zs[i];
-        if (!target_depth_pass(tw->fb, x, y, z)) {
-            target_write(tw->fb, x, y, z, 0);       /* counted, hidden: no texel needed */
+        if (!depth_pass(tw, x, y, z)) {
+            write_pixel(tw, x, y, z, 0);        /* counted, hidden: no texel needed */
             continue;
         }
         __m128 texel;
+        struct tex_used u = { .taps = 1 };
         if (tw->filter == FILTER_TRILINEAR) {
             texel = trilinear4(tex, at, &taps[0], &taps[1], i);
+            if (NARRATING && tw->tr)    /* what the texture unit used, told as the lesson tells it */
+                tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d, &tex_stages_lesson, &u);
         } else {                /* the other filters: the texture unit's own code */
+            if (tw->filter == FILTER_NEAREST
+                && (tex_near_edge(s[i] * W, tw->tie[0]) || tex_near_edge(tt[i] * H, tw->tie[1]))) {
+                /* on a texel's edge, or all but: the weights decide which texel (textures.h) */
+                double fk[3];
+                for (int k = 0; k < 3; k++) {
+                    int j = edge_of[k];
+                    fk[k] = (double)(raw[j] + (i & 1) * tw->e.dx[j] + (i >> 1) * tw->e.dy[j]);
+                }
+                tex_st_by_weights(t, fk, &s[i], &tt[i]);
+            }
             struct texel_rgb c = tex_filter_texel(tex, tw->filter, tw->max_aniso, s[i], tt[i], &d,
-                                                  &tex_stages_lesson, NULL);
+                                                  &tex_stages_lesson, &u);
             texel = _mm_setr_ps(c.c[2], c.c[1], c.c[0], 0);
         }
-        PLOT(tw->fb, tw->tr, L_WRITE, x, y, z,
-             modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
+        NARRATE(tw->tr, .kind = TRACE_STEP, .line = L_FILTER, .x = x, .y = y,
+                .mask = { (uint16_t)covered, (uint16_t)u.taps, (uint16_t)tw->filter },
+                .aux = { (float)(s[i] * W), (float)(tt[i] * H), u.lambda, (float)u.level0,
+                         (float)u.level1, u.mix });
+        write_pixel(tw, x, y, z, modulate4(texel, _mm_set_pd(cg[i], cb[i]), _mm_set_pd(0, cr[i])));
     }
+}
+
+/* The twin's state for triangle t (not empty). */
+static void twin_init(struct twin *tw, const struct tri_setup *t, const struct raster_params *p,
+                      struct target *fb, struct trace *tr, const struct tex_tile *d)
+{
+    *tw = (struct twin){ .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
+                         .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
+                         .ones = { 1, 1, 1 }, .d = d };
+    biased_edges_setup(&tw->e, t, true);
+    for (int k = 0; k < 3; k++) {
+        tw->s_k[k] = t->v[k].s, tw->t_k[k] = t->v[k].t;
+        tw->col[0][k] = t->v[k].r, tw->col[1][k] = t->v[k].g, tw->col[2][k] = t->v[k].b;
+        tw->iz[k] = 1 / t->v[k].z;
+        tw->sq[k] = t->v[k].s * tw->iz[k], tw->tq[k] = t->v[k].t * tw->iz[k];
+        for (int c = 0; c < 3; c++)
+            tw->cq[c][k] = tw->col[c][k] * tw->iz[k];
+    }
+    if (tw->tex)
+        tex_tie_bounds(t, tw->tex->level[0].w, tw->tex->level[0].h, tw->tie);
+}
+
+/* The lesson's walk over the pixels x0..x1, y0..y1 of the box: its 8 x 8
+ * blocks (aligned on the screen), the empty ones skipped, then their quads. */
+static void walk(const struct twin *tw, int x0, int y0, int x1, int y1)
+{
+    for (int by = y0 - y0 % TEX_BLOCK; by <= y1; by += TEX_BLOCK)
+        for (int bx = x0 - x0 % TEX_BLOCK; bx <= x1; bx += TEX_BLOCK) {
+            int xa = bx < x0 ? x0 : bx, xb = bx + TEX_BLOCK - 1 > x1 ? x1 : bx + TEX_BLOCK - 1;
+            int ya = by < y0 ? y0 : by, yb = by + TEX_BLOCK - 1 > y1 ? y1 : by + TEX_BLOCK - 1;
+            bool empty = tex_block_empty(&tw->e, xa, ya, xb, yb);
+            int line = empty ? L_EMPTY : L_QUADS;
+            NARRATE(tw->tr, .kind = TRACE_BLOCK, .line = (uint8_t)line, .span = (uint8_t)(line - L_BLOCKS),
+                    .x = xa, .y = ya, .x1 = xb, .y1 = yb,
+                    .klass = (uint8_t)(empty ? BLOCK_EMPTY : BLOCK_PARTIAL), .aux = { TEX_BLOCK });
+            if (empty)
+                continue;
+            for (int qy = ya & ~1; qy <= yb && !trace_frozen(tw->tr); qy += 2)
+                for (int qx = xa & ~1; qx <= xb && !trace_frozen(tw->tr); qx += 2)
+                    quad_sse(tw, qx, qy);
+        }
 }
 
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
@@ -360,24 +519,20 @@ void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
     NARRATE_SETUP(tr, t, L_SETUP);
     if (t->empty)
         return;
-    struct twin tw = { .t = t, .p = p, .fb = fb, .tr = tr, .tex = p->texture, .filter = tex_filter_of(p),
-                       .max_aniso = tex_max_aniso_of(p), .area2 = _mm_set1_pd((double)t->area2),
-                       .ones = { 1, 1, 1 } };
-    biased_edges_setup(&tw.e, t, true);
-    for (int k = 0; k < 3; k++) {
-        tw.s_k[k] = t->v[k].s, tw.t_k[k] = t->v[k].t;
-        tw.col[0][k] = t->v[k].r, tw.col[1][k] = t->v[k].g, tw.col[2][k] = t->v[k].b;
-    }
-    for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK)
-        for (int bx = t->minx - t->minx % TEX_BLOCK; bx <= t->maxx; bx += TEX_BLOCK) {
-            int xa = bx < t->minx ? t->minx : bx;
-            int xb = bx + TEX_BLOCK - 1 > t->maxx ? t->maxx : bx + TEX_BLOCK - 1;
-            int ya = by < t->miny ? t->miny : by;
-            int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
-            if (tex_block_empty(&tw.e, xa, ya, xb, yb))
-                continue;
-            for (int qy = ya & ~1; qy <= yb; qy += 2)
-                for (int qx = xa & ~1; qx <= xb; qx += 2)
-                    quad_sse(&tw, qx, qy);
-        }
+    struct twin tw;
+    twin_init(&tw, t, p, fb, tr, NULL);
+    walk(&tw, t->minx, t->miny, t->maxx, t->maxy);
+}
+
+void tex_draw_in_tile(const struct tri_setup *t, const struct raster_params *p,
+                      const struct tex_tile *d, struct trace *tr)
+{
+    int x0 = t->minx > d->x0 ? t->minx : d->x0, y0 = t->miny > d->y0 ? t->miny : d->y0;
+    int x1 = t->maxx < d->x0 + d->w - 1 ? t->maxx : d->x0 + d->w - 1;
+    int y1 = t->maxy < d->y0 + d->h - 1 ? t->maxy : d->y0 + d->h - 1;
+    if (t->empty || x0 > x1 || y0 > y1)
+        return;
+    struct twin tw;
+    twin_init(&tw, t, p, NULL, tr, d);
+    walk(&tw, x0, y0, x1, y1);
 }

@@ -52,6 +52,9 @@ static const char *const pseudocode[] = {
  * and t divided by 1/z. Its colour, a covered pixel's: three channels
  * summed and divided. */
 #define TEX_EVAL_COST { .mul = 14, .add = 9 }
+/* ... a textured pixel's (s, t) by one reciprocal (textures.h): q = sum F_k
+ * Q_k, its reciprocal, s and t summed and multiplied by it. */
+#define TEX_EVAL_RECIP_COST { .mul = 12, .add = 6 }
 #define TEX_COLOUR_COST { .mul = 12, .add = 9 }
 /* The texture unit (sampling.c), per tap: a bilinear tap (u, v, the
  * weights, three channels lerped three times), the level of detail, the
@@ -90,11 +93,15 @@ struct run {
     double inv_area2;
     double cz[3][3];            /* per vertex A, B, C: r, g, b */
     double q[3], sq[3], tq[3];  /* ... and 1/z, s/z, t/z: the analytic derivatives' planes */
+    double cq[3][3];            /* ... and r/z, g/z, b/z */
+    bool by_reciprocal;         /* (s, t) by one reciprocal (textures.h), else by the weights */
+    double tie[2];              /* nearest: how close to a texel's edge asks the weights */
 };
 
 /* What is interpolated at one pixel centre. */
 struct at_pixel {
     double q, s, t, rgb[3];
+    float z;                    /* the depth */
 };
 
 /* The barycentric weights of A, B, C from the raw edge values (F02, F03,
@@ -106,6 +113,21 @@ struct at_pixel {
 static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
 {
     double area2 = (double)r->t->area2;
+    if (r->by_reciprocal) {     /* a textured pixel: q = sum F_k Q_k, one reciprocal (textures.h) */
+        double fk[3] = { (double)f[EDGE_BC], (double)f[EDGE_CA], (double)f[EDGE_AB] };
+        double q = 0, s = 0, t = 0, c[3] = { 0, 0, 0 };
+        for (int k = 0; k < 3; k++) {
+            q += fk[k] * r->q[k];
+            s += fk[k] * r->sq[k], t += fk[k] * r->tq[k];
+            for (int i = 0; i < 3; i++)
+                c[i] += fk[k] * r->cq[k][i];
+        }
+        double rq = 1 / q;
+        struct at_pixel a = { .q = q / area2, .s = s * rq, .t = t * rq, .z = (float)(area2 * rq) };
+        for (int i = 0; i < 3; i++)
+            a.rgb[i] = c[i] * rq;
+        return a;
+    }
     double b[3] = { (double)f[EDGE_BC] / area2, (double)f[EDGE_CA] / area2,
                     (double)f[EDGE_AB] / area2 };
     struct at_pixel a = { 0 };
@@ -121,6 +143,7 @@ static struct at_pixel at_pixel(const struct run *r, const int64_t f[3])
     double z = 1 / a.q;                 /* the depth, and what the colour is multiplied by */
     for (int i = 0; i < 3; i++)
         a.rgb[i] = c[i] * z;
+    a.z = (float)z;
     if (r->o.affine) {      /* the exhibit: s and t linear in the screen, as if z were constant */
         a.s = b[0] * r->t->v[0].s + b[1] * r->t->v[1].s + b[2] * r->t->v[2].s;
         a.t = b[0] * r->t->v[0].t + b[1] * r->t->v[1].t + b[2] * r->t->v[2].t;
@@ -212,7 +235,10 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
     double W = r->tex ? r->tex->level[0].w : 1, H = r->tex ? r->tex->level[0].h : 1;
     for (int i = 0; i < 4; i++) {
         a[i] = at_pixel(r, f[i]);
-        COUNT(r->tr, 1, TEX_EVAL_COST);
+        if (r->by_reciprocal)
+            COUNT(r->tr, 1, TEX_EVAL_RECIP_COST);
+        else
+            COUNT(r->tr, 1, TEX_EVAL_COST);
         beyond = beyond || !(a[i].q > 0);
         NARRATE(r->tr, .kind = TRACE_STEP, .line = L_EVAL, .x = QX(qx, i), .y = QY(qy, i),
                 .flags = (covered >> i & 1) ? TRACE_INSIDE : 0,
@@ -234,6 +260,12 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
             struct tex_deriv d = deriv_of(r, a, i, beyond);
             if (r->o.lod != LOD_COARSE)
                 narrate_deriv(r, x, y, covered, &d);
+            if (r->filter == FILTER_NEAREST && r->by_reciprocal
+                && (tex_near_edge(a[i].s * W, r->tie[0]) || tex_near_edge(a[i].t * H, r->tie[1]))) {
+                /* on a texel's edge, or all but: the weights decide which texel (textures.h) */
+                double fk[3] = { (double)f[i][EDGE_BC], (double)f[i][EDGE_CA], (double)f[i][EDGE_AB] };
+                tex_st_by_weights(r->t, fk, &a[i].s, &a[i].t);
+            }
             struct tex_used u;
             struct texel_rgb texel = tex_filter_texel(r->tex, r->filter, r->max_aniso, a[i].s, a[i].t,
                                                       &d, r->st, &u);
@@ -249,7 +281,7 @@ static void quad(struct run *r, int qx, int qy, int xa, int ya, int xb, int yb)
             COUNT(r->tr, 1, MODULATE_COST);
             rgba = tex_modulate(texel, a[i].rgb[0], a[i].rgb[1], a[i].rgb[2]);
         }
-        PLOT(r->fb, r->tr, L_WRITE, x, y, (float)(1 / a[i].q), rgba);
+        PLOT(r->fb, r->tr, L_WRITE, x, y, a[i].z, rgba);
     }
 }
 
@@ -272,7 +304,14 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
         r.q[k] = 1 / v->z;
         r.sq[k] = v->s * r.q[k], r.tq[k] = v->t * r.q[k];
         r.cz[k][0] = v->r, r.cz[k][1] = v->g, r.cz[k][2] = v->b;
+        for (int i = 0; i < 3; i++)
+            r.cq[k][i] = r.cz[k][i] * r.q[k];
     }
+    /* the exhibit's linear (s, t) and the analytic derivatives (which need
+     * 1/z itself) keep the weights */
+    r.by_reciprocal = r.tex && !o.affine && o.lod != LOD_ANALYTIC;
+    if (r.tex)
+        tex_tie_bounds(t, r.tex->level[0].w, r.tex->level[0].h, r.tie);
     for (int by = t->miny - t->miny % TEX_BLOCK; by <= t->maxy; by += TEX_BLOCK) {
         int ya = by < t->miny ? t->miny : by;
         int yb = by + TEX_BLOCK - 1 > t->maxy ? t->maxy : by + TEX_BLOCK - 1;
@@ -343,7 +382,14 @@ static const struct lesson_variant variants[] = {
       .what = "fine derivatives: each pixel its own row's and column's differences" },
     { .name = "analytic-lod", .kind = VARIANT_CONTRAST, .rasterize = rasterize_analytic,
       .what = "analytic derivatives at each pixel centre, no quads needed" },
+    { .name = "tiles", .kind = VARIANT_TWIN, .rasterize = tex_rasterize_tiled,
+      .what = "the same quads on lesson 07's 64 x 64 tiles, bins and workers: colour and depth in "
+              "cache, the textures shared, one worker per core (or --threads N)" },
 };
+
+_Static_assert(L_SETUP == TEX_LINE_SETUP && L_BLOCKS == TEX_LINE_BLOCKS,
+               "the tiled twin tells its set-up and its steps of lesson 07 at these lines");
+_Static_assert(TEX_P_THREADS == P_AFFINE + 1, "--threads is the row after --affine");
 
 static const char *const filter_names[] = { "nearest", "bilinear", "mip-bilinear", "trilinear",
                                             "aniso" };
@@ -371,7 +417,13 @@ const struct lesson lesson_09 = {
                        .help = "texture affinely, not perspective-correct (lesson 04's exhibit)",
                        .words = (const char *const[]){ "perspective", "affine" },
                        .key = 'p', .min = 0, .max = 1 },
+        [TEX_P_THREADS] = { .option = "threads", .arg = "N", .name = "threads",
+                            .help = "worker threads of a tiled lesson, 1..64 (default: one per core)",
+                            .min = 1, .max = 64 },
         { 0 } },
+    .rasterize_scene = (const rasterize_scene_fn[]){ NULL, NULL, NULL, NULL, NULL, NULL,
+                                                     tex_tiled_scene },
+    .narration_units = tex_units,
     .cost_tested = (const struct cost_term[]){ COST_TERM(3, EDGE_VALUE_COST), { 0 } },
     .cost_covered = (const struct cost_term[]){
         COST_TERM(1, TEX_COLOUR_COST), COST_TERM(1, PACK_RGB_COST), { 0 } },

@@ -25,6 +25,7 @@
 #include <stdint.h>
 
 #include "lesson.h"
+#include "tiled.h"           /* the tiled twin's tile, shared with tiled.c */
 
 #ifdef __clang__
 #pragma STDC FP_CONTRACT OFF    /* no fused multiply-add: the twin rounds as the lesson does */
@@ -56,7 +57,7 @@ enum tex_filter { FILTER_NEAREST = 1, FILTER_BILINEAR, FILTER_MIP_BILINEAR, FILT
                   FILTER_ANISO };
 /* the lesson's rows: p->knob[P_FILTER], p->knob[P_MAX_ANISO], and
  * p->knob[P_AFFINE], --affine as in lesson 04 (every variant then takes
- * the affine exhibit's (s, t)) */
+ * the affine exhibit's (s, t)); p->knob[TEX_P_THREADS] after them (tiled.h) */
 enum { P_FILTER, P_MAX_ANISO, P_AFFINE };
 #define MAX_ANISO_DEFAULT 16
 
@@ -136,6 +137,58 @@ static inline void bilinear_corner(const struct texture_level *l, double s, doub
     *i = (int64_t)i0, *j = (int64_t)j0;
 }
 
+/* --- (s, t) at a pixel centre: one reciprocal, exact at texel edges ---------
+ *
+ * With F_k the edge value opposite vertex k (zero at its edge) and Q_k =
+ * 1 / z_k, a pixel's 1/z, s/z and t/z are sum F_k Q_k / (2 area) and sum
+ * F_k (s_k Q_k) / (2 area) ..., so
+ *
+ *     q = sum F_k Q_k,   r = 1 / q,   s = (sum F_k s_k Q_k) r,   z = (2 area) r
+ *
+ * one division per pixel (the weights F_k / (2 area) / z_k of lesson 04
+ * take six). Inside the triangle every F_k >= 0, so the sums have no
+ * cancellation in q, and (s, t) moves from the weights' value by a few
+ * units of the last place of max |s_k| (tested: at most 2^-48 texels per
+ * texel of max |s_k| W, tests/test_lesson09_tiles.c). Only the nearest
+ * texel jumps when (s, t) moves that little, and only where the rule's
+ * value lies exactly on a texel's edge, as a pixel centre of a 2-D scene
+ * often does: there (within TEX_TIE of an edge) nearest takes (s, t) from
+ * the weights themselves, in the rule's order. */
+#define TEX_TIE 0x1p-40         /* texels per texel of max |s_k| W: 256 times the largest move */
+
+/* (s, t) from the weights of lesson 04, in the rule's order: w_k = F_k /
+ * (2 area) / z_k, 1/z = sum w_k, s = (sum w_k s_k) / (1/z). f[k] is the
+ * edge value opposite vertex k. */
+static inline void tex_st_by_weights(const struct tri_setup *t, const double f[3], double *s, double *tt)
+{
+    double area2 = (double)t->area2, q = 0, sum_s = 0, sum_t = 0;
+    for (int k = 0; k < 3; k++) {
+        double w = f[k] / area2 / t->v[k].z;
+        q += w;
+        sum_s += w * t->v[k].s, sum_t += w * t->v[k].t;
+    }
+    *s = sum_s / q, *tt = sum_t / q;
+}
+
+/* How close to a texel's edge u may lie before nearest asks the weights:
+ * TEX_TIE max |s_k| W (of s, and of t with H), for the triangle. */
+static inline void tex_tie_bounds(const struct tri_setup *t, int w, int h, double bound[2])
+{
+    double ms = 0, mt = 0;
+    for (int k = 0; k < 3; k++) {
+        ms = fabs(t->v[k].s) > ms ? fabs(t->v[k].s) : ms;
+        mt = fabs(t->v[k].t) > mt ? fabs(t->v[k].t) : mt;
+    }
+    bound[0] = TEX_TIE * (ms > 1 ? ms : 1) * w, bound[1] = TEX_TIE * (mt > 1 ? mt : 1) * h;
+}
+
+/* Is u (texels) within b of an integer: of a texel's edge? */
+static inline bool tex_near_edge(double u, double b)
+{
+    double d = u - floor(u);
+    return d < b || 1 - d < b;
+}
+
 /* --- the blocks the quads are walked in (lesson 05's) ------------------------ */
 
 #define TEX_BLOCK 8
@@ -199,6 +252,7 @@ void textures_rasterize(const struct tri_setup *t, const struct raster_params *p
 void tex_rasterize_sse(const struct tri_setup *t, const struct raster_params *p,
                        struct target *fb, struct trace *tr);
 
+
 /* --- what the narration carries -------------------------------------------- */
 
 /* Pseudo-code lines (textures.c). */
@@ -230,7 +284,10 @@ enum { L_SETUP, L_BLOCKS, L_EMPTY, L_QUADS, L_COVER, L_SKIP, L_EVAL, L_DERIV, L_
  * A variant with fine or analytic derivatives narrates L_DERIV..L_LOD once
  * per covered pixel, (x, y) that pixel. Untextured triangles (and the
  * checker) skip L_DERIV..L_FILTER: shaded as every lesson shades. The
- * fast twin narrates its set-up and its writes only. */
+ * fast twin (and the tiled twin, which draws its quads) narrates the same
+ * events per quad, but no counts, and L_FILTER only for a pixel that passes
+ * the depth test (a hidden pixel's texel is never read; its write is told
+ * with colour 0). */
 enum { AUX_U, AUX_V, AUX_Q };
 enum { AUX_DUDX, AUX_DVDX, AUX_DUDY, AUX_DVDY, AUX_RHO, AUX_LAMBDA };
 enum { AUX_USED_LAMBDA = 2, AUX_LEVEL0, AUX_LEVEL1, AUX_MIX };

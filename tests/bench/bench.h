@@ -123,10 +123,14 @@ void bench_textured_csv(FILE *f);               /* ... as rows of bench.csv (its
 /* Pixels of the exact rows whose coverage differs from the reference or llvmpipe. */
 int64_t bench_textured_differences(void);
 /* Scene i's name, and the speed of the last texture-mapping lesson's fastest
- * exact variant over llvmpipe's (1 thread each; 0 when either is missing),
- * its lesson ("09") and variant in *lesson, *variant. */
+ * exact variant over llvmpipe's (1 thread each, or all: every core each; 0
+ * when either is missing), its lesson ("09") and variant in *lesson, *variant. */
 const char *bench_textured_scene(int i);
-double bench_textured_speedup(int i, const char **lesson, const char **variant);
+double bench_textured_speedup(int i, bool all, const char **lesson, const char **variant);
+/* The fastest one-thread variant's cycles per covered pixel on each
+ * textured scene, against the bound of its counted arithmetic; one line
+ * each (md: a markdown item), cycles_what: what bench_cycles() counts. */
+void bench_textured_cycles(FILE *f, bool md, const char *cycles_what);
 
 /* The 3-D front end (front.c): a 100,000-triangle torus seen from inside
  * its tube, through look-at, clipping, projection, guard band, fan and cull. */

@@ -1,5 +1,7 @@
 /* tsan_tiles.c - lesson 07's workers under ThreadSanitizer, drawing lesson
- * 07's pixels and lesson 08's samples (its twin `tiles`, at 4 samples).
+ * 07's pixels, lesson 08's samples (its twin `tiles`, at 4 samples) and
+ * lesson 09's textured quads (its twin `tiles`, two textures shared by the
+ * workers, every filter).
  *
  * Criterion runs each test in a process of its own in a way TSan does not
  * support, so this is a small program of its own, built with
@@ -16,7 +18,7 @@
 
 #include "lesson.h"
 
-extern const struct lesson lesson_07, lesson_08;
+extern const struct lesson lesson_07, lesson_08, lesson_09;
 
 static uint64_t next(uint64_t *s)
 {
@@ -48,6 +50,45 @@ static int threads_row(const struct lesson *l)
     while (l->params[i].option && strcmp(l->params[i].option, "threads") != 0)
         i++;
     return i;
+}
+
+/* The row of lesson l's table with option `name` (lesson.c is not linked here). */
+static int row_of(const struct lesson *l, const char *name)
+{
+    int i = 0;
+    while (l->params[i].option && strcmp(l->params[i].option, name) != 0)
+        i++;
+    return i;
+}
+
+/* A textured scene for lesson 09: triangles of every size at one depth,
+ * under two builtin textures taking turns (repeat and clamp). */
+static bool textured_scene(struct scene *s, uint64_t *seed, int w, int h, int n)
+{
+    size_t cap = (size_t)n * 256 + 256, at = 0;
+    char *text = malloc(cap), err[256];
+    if (!text)
+        return false;
+    at += (size_t)snprintf(text + at, cap - at, "size %d %d\n", w, h);
+    for (int i = 0; i < n; i++) {
+        if (i % 20 == 0)
+            at += (size_t)snprintf(text + at, cap - at, "texture builtin:%s\n",
+                                   i % 40 ? "bricks clamp" : "checker-numbers repeat");
+        double cx = uniform(seed, -20, w + 20), cy = uniform(seed, -20, h + 20);
+        double r = i % 10 == 0 ? 120 : i % 3 == 0 ? 25 : 5;
+        at += (size_t)snprintf(text + at, cap - at, "tri");
+        for (int k = 0; k < 3; k++)
+            at += (size_t)snprintf(text + at, cap - at, " %.3f %.3f 1 %.3f %.3f %.3f %.3f %.3f",
+                                   cx + uniform(seed, -r, r), cy + uniform(seed, -r, r),
+                                   uniform(seed, 0.3, 1), uniform(seed, 0.3, 1), uniform(seed, 0.3, 1),
+                                   uniform(seed, -2, 2), uniform(seed, -2, 2));
+        at += (size_t)snprintf(text + at, cap - at, "\n");
+    }
+    bool ok = scene_parse(s, "tsan", text, at, err, sizeof err);
+    if (!ok)
+        fprintf(stderr, "tsan-tiles: %s\n", err);
+    free(text);
+    return ok;
 }
 
 int main(void)
@@ -96,6 +137,36 @@ int main(void)
                 }
                 target_free(&one);
             }
+        }
+        scene_free(&s);
+        /* lesson 09's tiles: every filter, the textures read by every worker */
+        const struct lesson *l = &lesson_09;
+        int vi = 0;
+        while (vi < l->nvariants && strcmp(l->variants[vi].name, "tiles") != 0)
+            vi++;
+        if (vi == l->nvariants || !textured_scene(&s, &seed, 150 + 61 * rep, 100 + 23 * rep, 200))
+            return 1;
+        for (int f = 1; f <= 5; f++) {
+            struct raster_params p = { .subpixel_bits = SUBPIXEL_BITS };
+            p.knob[row_of(l, "filter")] = f;
+            p.knob[row_of(l, "threads")] = 1;
+            struct target one;
+            if (!target_init(&one, s.w, s.h, 0xff000000u) || !l->rasterize_scene[vi](&s, &p, &one))
+                return 1;
+            for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
+                struct target fb;
+                p.knob[row_of(l, "threads")] = threads[k];
+                if (!target_init(&fb, s.w, s.h, 0xff000000u) || !l->rasterize_scene[vi](&s, &p, &fb))
+                    return 1;
+                if (!same(&one, &fb)) {
+                    fprintf(stderr, "tsan-tiles: %s tiles, filter %d, on %d threads differs from 1 "
+                            "thread (scene %d)\n", l->id, f, threads[k], rep);
+                    return 1;
+                }
+                target_free(&fb);
+                pictures++;
+            }
+            target_free(&one);
         }
         scene_free(&s);
     }
