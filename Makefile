@@ -54,13 +54,16 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
+.PHONY: all run test fresh-test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
 .SECONDEXPANSION:
 
-ifneq ($(MAKECMDGOALS),clean)
+ifneq ($(filter-out clean fresh-test,$(or $(MAKECMDGOALS),all)),)
 include $(B)/config.mk
 endif
-$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),build) $@
+# make test's packages, its sub-makes' (aarch64, simde) included, come in
+# one apt-get run, before anything else: the first thing make does is to
+# remake this included fragment.
+$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),$(if $(filter test soak fuzz,$(MAKECMDGOALS)),test,build)) $@
 deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # The compiler and its flags, rewritten only when they change (make CC=clang
@@ -195,10 +198,12 @@ $(B)/mutations.c: Makefile $(MUTATIONS:%=tests/mutations/%.patch) $(MUTATIONS:%=
 	  printf '    { "%s", "%s", "%s", %s, %s },\n' "$$(echo $$m | cut -c1-2)" "$$m" "$$k" $$f $$c; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/mutations.o: $(B)/mutations.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
+# The student's object is compiled every time (FILE may be another file),
+# so it keeps no dependency file that could name a FILE since deleted.
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
-	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
+	@mkdir -p $(@D) && rm -f $(@:.o=.d) && $(filter-out -MMD -MP,$(CC_ALL)) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
@@ -230,6 +235,8 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/t
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --markdown tests/bench/BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+# The README's two commands on a brand-new Debian 12 (tests/fresh/fresh-test.sh; root).
+fresh-test: ; @bash tests/fresh/fresh-test.sh
 MINUTES  ?= 10
 soak: deps-test
 	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak
@@ -239,4 +246,6 @@ FIGURES  ?= figures
 figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)
 clean: ; rm -rf $(BUILD)
 
--include $(shell find $(B) -name '*.d' 2>/dev/null)
+# The dependencies of the objects the build keeps (not those of a student's
+# or a graded file, which may be gone).
+-include $(shell find $(B)/obj $(B)/fast $(B)/mutations -name '*.d' 2>/dev/null)
