@@ -82,6 +82,7 @@ if [ ! -s "$base" ]; then
   fi
   b=$(mktemp -d /var/tmp/tristep-fresh-base.XXXXXX)
   dirs+=("$b")
+  chmod 755 "$b"                  # the system's /: apt's _apt user and others pass
   say "building a minimal Debian 12 with debootstrap from $mirror (once; kept as $base)"
   SECONDS=0
   if ! debootstrap --variant=minbase --include=git,make,gcc,libc6-dev,ca-certificates \
@@ -96,7 +97,7 @@ if [ ! -s "$base" ]; then
   { echo "deb $mirror $suite main"; echo "deb $mirror $suite-updates main"
     echo "deb http://deb.debian.org/debian-security $suite-security main"; } > "$b/etc/apt/sources.list"
   tar -cf "$base.part" -C "$b" . && mv "$base.part" "$base" || die "cannot write $base"
-  rm -f "$b.log"
+  rm -rf --one-file-system "$b" "$b.log"
   say "base system built in ${SECONDS}s"
 fi
 
@@ -104,6 +105,7 @@ fi
 root=$(mktemp -d /var/tmp/tristep-fresh.XXXXXX)
 dirs+=("$root"); keep=("$root")
 tar -xf "$base" -C "$root" || die "cannot unpack $base"
+chmod 755 "$root"                 # the system's / (tar gives it the mode of the base's)
 mount -t proc proc "$root/proc" && mount --bind /sys "$root/sys" && mount --bind /dev "$root/dev" &&
   mount --bind /dev/pts "$root/dev/pts" && mount -t tmpfs shm "$root/dev/shm" || die "cannot mount /proc, /sys, /dev in $root"
 cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null
