@@ -62,8 +62,11 @@ include $(B)/config.mk
 endif
 # make test's packages, its sub-makes' (aarch64, simde) included, come in
 # one apt-get run, before anything else: the first thing make does is to
-# remake this included fragment.
-$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),$(if $(filter test soak fuzz,$(MAKECMDGOALS)),test,build)) $@
+# remake this included fragment. make -n, -q and -t remake it too, but
+# install nothing: MAKEFLAGS (its first word, the one-letter options) says
+# so while the Makefile is read, no longer in the recipe.
+DRY_RUN  := $(strip $(foreach f,n q t,$(findstring $f,$(filter-out -%,$(firstword $(MAKEFLAGS))))))
+$(B)/config.mk: src/deps.sh ; @TRISTEP_DRY_RUN=$(DRY_RUN) sh src/deps.sh $(or $(PORT),$(if $(filter test soak fuzz,$(MAKECMDGOALS)),test,build)) $@
 deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
 
 # The compiler and its flags, rewritten only when they change (make CC=clang

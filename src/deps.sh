@@ -81,9 +81,11 @@ once() { tr ' ' '\n' | awk 'NF && !seen[$0]++' | paste -sd' ' -; }
 missing() { for g in $groups; do missing_of "$g"; done | once; }
 deb=$(for g in $groups; do debs "$g"; done | once)
 
-# A dry run of make: the first word of MAKEFLAGS holds make's one-letter
+# A dry run of make: TRISTEP_DRY_RUN from the Makefile (make takes -n
+# out of MAKEFLAGS while it remakes an included makefile), or, in a recipe
+# make -n runs anyway, the first word of MAKEFLAGS, make's one-letter
 # options (it starts with a space when there are none).
-dry=
+dry=${TRISTEP_DRY_RUN-}
 case ${MAKEFLAGS-} in
   [!\ -]*) case ${MAKEFLAGS%% *} in *[nqt]*) dry=1 ;; esac ;;
 esac
