@@ -22,6 +22,9 @@
 # mirror of this machine's apt sources, or FRESH_MIRROR); without either it
 # says so and exits 2.
 set -u
+# All of it is one function, read whole before it runs: a change to this
+# file during a run cannot change the run.
+main() {
 say() { echo "fresh-test: $*"; }
 die() { echo "fresh-test: $*" >&2; exit 2; }
 
@@ -188,3 +191,5 @@ else
   tail -n 30 "$log"
 fi
 exit $((rc == 0 ? 0 : 1))
+}
+main "$@"
