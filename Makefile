@@ -54,7 +54,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test fresh-test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
+.PHONY: all run test fresh-test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench deps-fuzz exercise check grade skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(filter-out clean fresh-test,$(or $(MAKECMDGOALS),all)),)
@@ -66,8 +66,8 @@ endif
 # install nothing: MAKEFLAGS (its first word, the one-letter options) says
 # so while the Makefile is read, no longer in the recipe.
 DRY_RUN  := $(strip $(foreach f,n q t,$(findstring $f,$(filter-out -%,$(firstword $(MAKEFLAGS))))))
-$(B)/config.mk: src/deps.sh ; @TRISTEP_DRY_RUN=$(DRY_RUN) sh src/deps.sh $(or $(PORT),$(if $(filter test soak fuzz,$(MAKECMDGOALS)),test,build)) $@
-deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
+$(B)/config.mk: src/deps.sh ; @TRISTEP_DRY_RUN=$(DRY_RUN) sh src/deps.sh $(or $(PORT),$(if $(filter fuzz,$(MAKECMDGOALS)),fuzz,$(if $(filter test soak,$(MAKECMDGOALS)),test,build))) $@
+deps-test deps-bench deps-fuzz: ; @sh src/deps.sh $(@:deps-%=%)
 
 # The compiler and its flags, rewritten only when they change (make CC=clang
 # after make rebuilds everything with clang).
@@ -129,7 +129,7 @@ $(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_A
 $(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(LD_ALL) -fsanitize=fuzzer $^ $(LIBS) -o $@
 $(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(LD_ALL) $^ $(LIBS) -o $@
 SECONDS  ?= 60
-fuzz: deps-test ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
+fuzz: deps-fuzz ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
 fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 	@for f in $(FUZZERS); do mkdir -p $(B)/corpus/$$f $(B)/crashes; \
 	  echo "fuzz: $$f for $(SECONDS) s (new inputs in $(B)/corpus/$$f, failures in $(B)/crashes)"; \

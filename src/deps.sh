@@ -10,6 +10,7 @@
 #           Criterion, Xvfb, xdotool, ImageMagick's import, patch (the
 #           mutation suite), and what simde and aarch64 need
 #   bench   the build packages and OSMesa for the llvmpipe peer  (make bench)
+#   fuzz    the test packages, clang and its libFuzzer  (make fuzz)
 #   simde   SIMDe's headers  (make simde-test: the exactness driver through SIMDe)
 #   aarch64 Debian's aarch64 cross compiler and C library, qemu-user, SIMDe  (make aarch64)
 # With OUT, writes the compiler and linker flags as a makefile fragment
@@ -28,8 +29,9 @@ case $mode in
   build) groups=build ;;
   test)  groups="build test simde aarch64" ;;
   bench) groups="build bench" ;;
+  fuzz)  groups="build test fuzz" ;;
   simde|aarch64) groups=$mode ;;
-  *) echo "deps.sh: unknown mode $mode (build, test, bench, simde, aarch64)" >&2; exit 2 ;;
+  *) echo "deps.sh: unknown mode $mode (build, test, bench, fuzz, simde, aarch64)" >&2; exit 2 ;;
 esac
 
 # The Debian packages and the plain names of a group.
@@ -38,6 +40,7 @@ debs() {
     build)   echo "pkg-config libsdl2-dev libcairo2-dev libpango1.0-dev fonts-dejavu-core" ;;
     test)    echo "libcriterion-dev xvfb xdotool imagemagick patch" ;;
     bench)   echo "libosmesa6-dev" ;;
+    fuzz)    echo "clang libclang-rt-dev" ;;
     simde)   echo "libsimde-dev" ;;
     aarch64) echo "gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user libsimde-dev" ;;
   esac
@@ -47,6 +50,7 @@ names() {
     build)   echo "SDL2, cairo, Pango (with pangocairo), DejaVu fonts, pkg-config" ;;
     test)    echo "Criterion, Xvfb, xdotool, ImageMagick, patch" ;;
     bench)   echo "OSMesa (Mesa)" ;;
+    fuzz)    echo "clang with its libFuzzer runtime" ;;
     simde)   echo "SIMDe (SIMD Everywhere, header-only)" ;;
     aarch64) echo "Debian's or Ubuntu's aarch64 cross compiler, qemu-user and SIMDe" ;;
   esac
@@ -68,6 +72,9 @@ missing_of() {
       pc criterion; has Xvfb; has xdotool; has import; has patch ;;
     bench)
       pc osmesa ;;
+    fuzz)    # clang, and a program linked with libFuzzer
+      printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { return !d + !n; }\n' |
+        clang -fsanitize=fuzzer -x c - -o /dev/null >/dev/null 2>&1 || printf 'clang+libFuzzer ' ;;
     simde)   # SIMDe's headers where the compiler finds them
       printf '#include <simde/x86/sse2.h>\n' | ${CC:-cc} -E -x c - >/dev/null 2>&1 || printf 'SIMDe ' ;;
     aarch64)

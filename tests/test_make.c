@@ -2,9 +2,10 @@
  * (what make would run, in the order it would run it) in a build folder of
  * the test's own:
  *   - the user's CFLAGS and LDFLAGS do not replace the flags tristep needs;
- *   - make test installs its packages before it compiles anything, and a
- *     dry run installs nothing (these tests never install: apt-get, apt,
- *     dpkg and sudo are stand-ins that say they were called);
+ *   - make test installs its packages before it compiles anything, a dry
+ *     run installs nothing, and two installs never overlap (these tests
+ *     never install: apt-get, apt, dpkg and sudo are stand-ins that say
+ *     they were called);
  *   - make figures writes where FIGURES says, and make bench times the
  *     figures into its build folder, never over the committed figures/;
  *   - make check takes a new FILE when the one checked before is gone.
@@ -182,6 +183,47 @@ Test(make, figures_go_where_figures_says, .init = make_build_dir, .fini = test_s
     cr_assert(line_with(out, "--figures-cmd", line, sizeof line), "no bench recipe:\n%.2000s", out);
     cr_assert(strstr(line, "FIGURES=$(B)/"), "make bench times figures into figures/: %s", line);
     free(out);
+}
+
+/* Two installs at once (two makes, or the sub-makes of one) never overlap:
+ * the second waits until the first is done, and says that it waits. The
+ * stand-in apt-get here succeeds slowly and writes when it starts and ends;
+ * Criterion stays missing, so both runs install. */
+Test(make, a_second_install_waits_for_the_first, .init = make_build_dir, .fini = test_scratch_remove,
+     .timeout = 60)
+{
+    stand_in("pkg-config", "for a; do [ \"$a\" = criterion ] && exit 1; done\n"
+                           "PATH=${PATH#*:} exec pkg-config \"$@\"");
+    char body[512], cmd[1024];
+    snprintf(body, sizeof body, "echo \"start $1\" >> %s.order; sleep 0.5; echo \"end $1\" >> %s.order", installs,
+             installs);
+    stand_in("apt-get", body);
+    snprintf(cmd, sizeof cmd, "env -u MAKEFLAGS -u TRISTEP_DRY_RUN -u TRISTEP_DEPS_LOCKED PATH=\"%s:$PATH\" sh -c "
+             "'sh src/deps.sh test > %s.1 2>&1 & sleep 0.2; sh src/deps.sh test > %s.2 2>&1; wait'",
+             bin, installs, installs);
+    cr_assert_neq(system(cmd), -1);
+    char path[128];
+    snprintf(path, sizeof path, "%s.order", installs);
+    FILE *f = fopen(path, "r");
+    cr_assert_not_null(f, "apt-get was never called");
+    char line[64];
+    int depth = 0, calls = 0;
+    while (fgets(line, sizeof line, f)) {
+        depth += strncmp(line, "start", 5) == 0 ? 1 : -1;
+        calls += strncmp(line, "start", 5) == 0;
+        cr_assert(depth == 0 || depth == 1, "two apt-get runs at once (%s)", path);
+    }
+    fclose(f);
+    cr_assert_eq(calls, 4, "apt-get ran %d times, not update and install twice", calls);
+    snprintf(path, sizeof path, "%s.2", installs);
+    char *second = NULL;
+    f = fopen(path, "r");
+    cr_assert_not_null(f);
+    size_t cap = 0;
+    cr_assert_gt(getdelim(&second, &cap, '\0', f), 0);
+    fclose(f);
+    cr_assert(strstr(second, "waiting for it"), "the second install did not say that it waits:\n%s", second);
+    free(second);
 }
 
 /* A student checks a.c, deletes it, checks b.c: the second check runs (a
