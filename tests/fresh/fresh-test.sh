@@ -60,8 +60,11 @@ release() {
     umount "$t" 2>/dev/null || umount -l "$t"
   done
 }
+child=             # the long command running, in the background (wait is
+                   # interrupted by a signal, a command in the foreground is not)
 cleanup() {
   local d
+  [ -z "$child" ] || kill "$child" 2>/dev/null
   for d in "${dirs[@]}"; do
     release "$d"
     if findmnt -rn -o TARGET | grep -q "^$d/"; then
@@ -88,12 +91,14 @@ if [ ! -s "$base" ]; then
   chmod 755 "$b"                  # the system's /: apt's _apt user and others pass
   say "building a minimal Debian 12 with debootstrap from $mirror (once; kept as $base)"
   SECONDS=0
-  if ! debootstrap --variant=minbase --include=git,make,gcc,libc6-dev,ca-certificates \
-       "$suite" "$b" "$mirror" >"$b.log" 2>&1; then
+  debootstrap --variant=minbase --include=git,make,gcc,libc6-dev,ca-certificates \
+    "$suite" "$b" "$mirror" >"$b.log" 2>&1 & child=$!
+  if ! wait $child; then
     release "$b"
     tail -n 5 "$b.log" >&2
     die "debootstrap failed; whole log: $b.log"
   fi
+  child=
   release "$b"                    # debootstrap leaves /proc or /sys mounted on some paths
   # the archive as a newly installed Debian 12 has it: the release, its
   # updates and the security updates
@@ -171,8 +176,10 @@ log=$root.log
 SECONDS=0
 timeout -s KILL "${FRESH_TIMEOUT:-3600}" chroot "$root" /usr/bin/env -i HOME=/root \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb LANG=C.UTF-8 \
-  /bin/bash /root/commands.sh > "$log" 2>&1
+  /bin/bash /root/commands.sh > "$log" 2>&1 & child=$!
+wait $child
 rc=$?
+child=
 took=$SECONDS
 chroot "$root" dpkg-query -W -f '${Package}\n' | sort > "$root.after"
 [ -s "$root/tmp/window.png" ] && cp "$root/tmp/window.png" "$root.png"
@@ -186,7 +193,7 @@ rm -f "$root.before" "$root.after"
 if [ $rc -eq 0 ]; then
   say "passed in ${took}s: make test and make run on a brand-new Debian 12 ($head); whole log: $log"
 else
-  [ $rc -eq 137 ] && say "timed out after ${FRESH_TIMEOUT:-3600}s"
+  [ $rc -eq 137 ] && [ $took -ge "${FRESH_TIMEOUT:-3600}" ] && say "timed out after ${FRESH_TIMEOUT:-3600}s"
   say "FAILED (exit $rc) after ${took}s; whole log: $log"
   tail -n 30 "$log"
 fi
