@@ -11,10 +11,9 @@
  * Xvfb ending under the program (the soak starts it again), and
  * LeakSanitizer's own fatal error, "Tracer caught signal 11", when its
  * tracer crashes while it stops the program's threads to look for leaks
- * (seen about once in 40 quits on a loaded machine, Pango's short-lived
- * threads running; the leak check never ran). Either way the lesson runs
- * once more, said so in the report, and that run decides. And, for a run of at least
- * FLAT_AFTER_S + 30 seconds, memory that keeps growing after the first
+ * (seen in 2 of 250 quits of lesson 03 on a loaded machine; the leak check
+ * never ran). Either way the lesson runs once more, said so in the report,
+ * and that run decides. And, for a run of at least FLAT_AFTER_S + 30 seconds, memory that keeps growing after the first
  * minute: the largest resident size after it above the size at one minute
  * by more than FLAT_SLACK (allocator caches settle, ASan's quarantine is
  * capped at QUARANTINE_MB below). What it reports: per lesson and in all,
