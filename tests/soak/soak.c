@@ -34,6 +34,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -187,38 +188,50 @@ static bool xvfb_alive(int *st)
     return false;
 }
 
+/* Start Xvfb on a display it picks itself and names on a pipe once it
+ * accepts connections (-displayfd): two soaks or window tests at once never
+ * take the same display, as they could when each looked for a free number
+ * first. It ends after `seconds` even if the soak dies. */
 static bool start_xvfb(int seconds)
 {
-    for (int n = 150; n < 200; n++) {
-        char lock[64], sock[64], limit[32];
-        snprintf(lock, sizeof lock, "/tmp/.X%d-lock", n);
-        snprintf(sock, sizeof sock, "/tmp/.X11-unix/X%d", n);
-        if (access(lock, F_OK) == 0 || access(sock, F_OK) == 0)
-            continue;
-        snprintf(display, sizeof display, ":%d", n);
-        snprintf(limit, sizeof limit, "%d", seconds);   /* ends even if the soak dies */
-        char screen[32];
-        snprintf(screen, sizeof screen, "%dx%dx24", SCREEN_W, SCREEN_H);
-        char *argv[] = { "timeout", limit, "Xvfb", display, "-screen", "0", screen,
-                         "-nolisten", "tcp", NULL };
-        xvfb = start(argv, NULL, NULL, "xvfb.err");
-        for (int t = 0; t < 10000; t += 50) {
-            if (access(sock, F_OK) == 0)
-                return true;
-            int st;
-            if (waitpid(xvfb, &st, WNOHANG) == xvfb) {
-                xvfb = -1;
-                if (WIFEXITED(st) && WEXITSTATUS(st) == 127) {
-                    fprintf(stderr, "tristep-soak: Xvfb is not installed (make test installs it)\n");
-                    return false;
-                }
-                break;
-            }
-            sleep_ms(50);
-        }
-        stop_xvfb();
+    int fds[2];
+    if (pipe(fds) != 0) {
+        perror("tristep-soak: pipe");
+        return false;
     }
-    fprintf(stderr, "tristep-soak: no free display for Xvfb in :150..:199\n");
+    char fd[16], limit[32], screen[32];
+    snprintf(fd, sizeof fd, "%d", fds[1]);
+    snprintf(limit, sizeof limit, "%d", seconds);
+    snprintf(screen, sizeof screen, "%dx%dx24", SCREEN_W, SCREEN_H);
+    char *argv[] = { "timeout", limit, "Xvfb", "-displayfd", fd, "-screen", "0", screen,
+                     "-nolisten", "tcp", NULL };
+    xvfb = start(argv, NULL, NULL, "xvfb.err");
+    close(fds[1]);
+    char line[16];
+    size_t n = 0;
+    struct pollfd in = { .fd = fds[0], .events = POLLIN };
+    while (n < sizeof line - 1 && !memchr(line, '\n', n) && poll(&in, 1, 30000) > 0) {
+        ssize_t got = read(fds[0], line + n, sizeof line - 1 - n);
+        if (got <= 0)
+            break;
+        n += (size_t)got;
+    }
+    close(fds[0]);
+    line[n] = '\0';
+    if (n > 1 && line[n - 1] == '\n') {
+        snprintf(display, sizeof display, ":%d", atoi(line));
+        return true;
+    }
+    int st;
+    if (xvfb > 0 && waitpid(xvfb, &st, WNOHANG) == xvfb) {
+        xvfb = -1;
+        if (WIFEXITED(st) && WEXITSTATUS(st) == 127) {
+            fprintf(stderr, "tristep-soak: Xvfb is not installed (make test installs it)\n");
+            return false;
+        }
+    }
+    stop_xvfb();
+    fprintf(stderr, "tristep-soak: Xvfb did not start within 30 s (its messages: %s/xvfb.err)\n", work);
     return false;
 }
 
@@ -459,6 +472,8 @@ static void soak_one(const char *path, const char *name, double seconds, bool ex
             char what[64];
             snprintf(what, sizeof what, "died after %.0f s", t);
             judge(res, WIFSIGNALED(gone) ? 128 + WTERMSIG(gone) : WEXITSTATUS(gone), what, err);
+            if (res->ok)        /* exit status 0, nothing on stderr: it quit, and no Q was sent */
+                snprintf(res->why, sizeof res->why, "%s (exit status 0), though no Q was sent", what);
             res->ok = false;
             res->seconds = t;
             return;
