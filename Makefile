@@ -64,14 +64,20 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench bench-lines soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons student-kit student-kit-test FORCE
+.PHONY: all run test fresh-test figures bench bench-lines soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench deps-fuzz exercise check grade skeletons student-kit student-kit-test FORCE
 .SECONDEXPANSION:
 
-ifneq ($(MAKECMDGOALS),clean)
+ifneq ($(filter-out clean fresh-test,$(or $(MAKECMDGOALS),all)),)
 include $(B)/config.mk
 endif
-$(B)/config.mk: src/deps.sh ; @sh src/deps.sh $(or $(PORT),build) $@
-deps-test deps-bench: ; @sh src/deps.sh $(@:deps-%=%)
+# make test's packages, its sub-makes' (aarch64, simde) included, come in
+# one apt-get run, before anything else: the first thing make does is to
+# remake this included fragment. make -n, -q and -t remake it too, but
+# install nothing: MAKEFLAGS (its first word, the one-letter options) says
+# so while the Makefile is read, no longer in the recipe.
+DRY_RUN  := $(strip $(foreach f,n q t,$(findstring $f,$(filter-out -%,$(firstword $(MAKEFLAGS))))))
+$(B)/config.mk: src/deps.sh ; @TRISTEP_DRY_RUN=$(DRY_RUN) sh src/deps.sh $(or $(PORT),$(if $(filter fuzz,$(MAKECMDGOALS)),fuzz,$(if $(filter test soak,$(MAKECMDGOALS)),test,build))) $@
+deps-test deps-bench deps-fuzz: ; @sh src/deps.sh $(@:deps-%=%)
 
 # The compiler and its flags, rewritten only when they change (make CC=clang
 # after make rebuilds everything with clang).
@@ -139,7 +145,7 @@ $(B)/obj/fuzz-%.o: tests/fuzz/libfuzzer.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_A
 $(B)/fuzz-%: $(B)/obj/fuzz-%.o $(FUZZ_OBJ) ; $(LD_ALL) -fsanitize=fuzzer $^ $(LIBS) -o $@
 $(B)/fuzz-replay: $(B)/obj/tests/fuzz/replay.o $(FUZZ_OBJ) ; $(LD_ALL) $^ $(LIBS) -o $@
 SECONDS  ?= 60
-fuzz: deps-test ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
+fuzz: deps-fuzz ; @$(MAKE) --no-print-directory FUZZ=1 fuzz-run
 fuzz-run: $(FUZZERS:%=$(B)/fuzz-%)
 	@for f in $(FUZZERS); do mkdir -p $(B)/corpus/$$f $(B)/crashes; \
 	  echo "fuzz: $$f for $(SECONDS) s (new inputs in $(B)/corpus/$$f, failures in $(B)/crashes)"; \
@@ -239,10 +245,12 @@ $(B)/exercise-variants.c: Makefile $(wildcard lessons/*/) | $(FIRST)
 	  printf '    { "%s", "%s", %s, %s },\n' $$n $$v $$s $$a; done >> $@
 	@printf '    { NULL, NULL, NULL, NULL },\n};\n' >> $@
 $(B)/obj/exercise-variants.o: $(B)/exercise-variants.c | $(FIRST) ; @$(CC_ALL) -c $< -o $@
+# The student's object is compiled every time (FILE may be another file),
+# so it keeps no dependency file that could name a FILE since deleted.
 $(B)/exercise/student-$(LESSON).o: FORCE | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file$(if $(VARIANT),; lesson $(LESSON)'s graded variants: $(or $(patsubst $(EX_LESSON)/exercise-%.c,%,$(wildcard $(EX_LESSON)/exercise-*.c)),none))"; exit 2; }
-	@mkdir -p $(@D) && $(CC_ALL) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
+	@mkdir -p $(@D) && rm -f $(@:.o=.d) && $(filter-out -MMD -MP,$(CC_ALL)) $(STUDENT) -I$(EX_LESSON) -c $(FILE) -o $@
 $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -c $< -o $@
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
@@ -301,6 +309,8 @@ test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/lines-peer $(B)/t
 bench: deps-bench all
 	@$(MAKE) --no-print-directory $(B)/tristep-bench   # read again: deps-bench may have installed OSMesa
 	$(B)/tristep-bench --out $(B) --markdown tests/bench/BENCH.md --figures-cmd '$(MAKE) --no-print-directory -s BUILD=$(BUILD) FIGURES=$(B)/bench-figures figures'
+# The README's two commands on a brand-new Debian 12 (tests/fresh/fresh-test.sh; root).
+fresh-test: ; @bash tests/fresh/fresh-test.sh
 MINUTES  ?= 10
 soak: deps-test
 	@$(MAKE) --no-print-directory SANITIZE=1 all $(BUILD)/sanitize/tristep-soak
@@ -310,4 +320,6 @@ FIGURES  ?= figures
 figures: all ; @mkdir -p $(FIGURES) && sh figures/make-figures.sh $(B) $(FIGURES)
 clean: ; rm -rf $(BUILD)
 
--include $(shell find $(B) -name '*.d' 2>/dev/null)
+# The dependencies of the objects the build keeps (not those of a student's
+# or a graded file, which may be gone).
+-include $(shell find $(B)/obj $(B)/fast $(B)/mutations -name '*.d' 2>/dev/null)
