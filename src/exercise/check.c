@@ -322,6 +322,7 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
         target_free(&C.spare_got[i]);
     }
     free(C.mask);
+    free(C.tie);
     return ok;
 }
 

@@ -33,7 +33,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_TILES, WRONG_READS,
 };
 
 struct verdict {
@@ -57,6 +57,12 @@ struct verdict {
      * dv/dy in level-0 texels), lambda = log2(rho) and the code's */
     double deriv[4], want_lambda, got_lambda;
     struct texel_fault texel;       /* WRONG_TEXEL: the texel read outside its level */
+    /* WRONG_TILES: the tile (bx, by)-(bx1, by1) narrated outside the
+     * triangle's box, or the got_n-th tile of a box of want_n tiles;
+     * WRONG_READS: got_n texels of got_class levels read for pixel (x, y),
+     * levels the bits of got_mask, where want_n (4 per level read) and
+     * two adjacent levels at most are the filter's */
+    int box[4];                     /* WRONG_TILES: the triangle's box, x0, y0, x1, y1 */
 };
 
 /* Everything one check run needs. */
@@ -79,6 +85,8 @@ struct checker {
     uint64_t pixel_mul;         /* mul counted when the last pixel began */
     bool both_ways;             /* lesson 06: clip every polygon walked both ways */
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
+    uint8_t *tie;               /* pixels whose nearest surface two triangles tie for (either colour is right) */
+    int tiles;                  /* tiles narrated for the triangle being drawn (lesson 07) */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };

@@ -101,6 +101,40 @@ static void watch_lod(struct checker *C, const struct trace_event *ev, struct ve
     (void)C;
 }
 
+/* The texels read for one written pixel (lesson 09), counted inside
+ * exercise_texel(): the trilinear filter reads two bilinear taps of 4
+ * texels, at two adjacent levels (or one level twice). A bilinear tap of
+ * more texels, or a mix of more levels, draws the same picture slower. */
+#define TRILINEAR_READS 8
+static void watch_reads(const struct trace_event *ev, struct verdict *v)
+{
+    const struct texel_reads *r = exercise_texel_reads();
+    int levels = __builtin_popcount(r->levels);
+    uint32_t low = r->levels & -r->levels;
+    bool adjacent = levels < 2 || r->levels == (low | low << 1);
+    if (r->n > TRILINEAR_READS || levels > 2 || !adjacent)
+        *v = (struct verdict){ .what = WRONG_READS, .x = ev->x, .y = ev->y,
+                               .got_n = (int)(r->n < 1000000 ? r->n : 1000000), .want_n = TRILINEAR_READS,
+                               .got_class = levels, .got_mask = r->levels };
+    exercise_texel_reads_clear();
+}
+
+/* A tile narrated (lesson 07): one of the tiles of the triangle's box, and
+ * no more of them than the box has. Walking every tile of the screen for
+ * every triangle draws the same picture, and takes the time of the screen
+ * instead of the triangle's. */
+static void watch_tile(struct checker *C, const struct trace_event *ev, struct verdict *v)
+{
+    const struct tri_setup *t = C->t;
+    int ntiles = (t->maxx / 64 - t->minx / 64 + 1) * (t->maxy / 64 - t->miny / 64 + 1);
+    C->tiles++;
+    bool outside = ev->x1 < t->minx || ev->x > t->maxx || ev->y1 < t->miny || ev->y > t->maxy;
+    if (outside || C->tiles > ntiles)
+        *v = (struct verdict){ .what = WRONG_TILES, .x = ev->x, .y = ev->y, .bx = ev->x, .by = ev->y,
+                               .bx1 = ev->x1, .by1 = ev->y1, .want_n = ntiles, .got_n = C->tiles,
+                               .edge = outside, .box = { t->minx, t->miny, t->maxx, t->maxy } };
+}
+
 /* The narration, watched for the lesson's property. */
 static void watch(void *ctx, const struct trace_event *ev)
 {
@@ -108,6 +142,15 @@ static void watch(void *ctx, const struct trace_event *ev)
     struct verdict *v = C->prop;
     if (v->what != WRONG_NONE)
         return;
+    if (C->l->exercise.textures && ev->kind == TRACE_PIXEL_WRITE) {
+        watch_reads(ev, v);
+        return;
+    }
+    if (C->l->exercise.tiles && ev->kind == TRACE_BLOCK && ev->aux[1] == 0) {
+        watch_tile(C, ev, v);
+        if (v->what != WRONG_NONE)
+            return;
+    }
     if (C->l->exercise.lod_line > 0 && ev->kind == TRACE_STEP && ev->line == C->l->exercise.lod_line) {
         watch_lod(C, ev, v);
         return;
@@ -204,7 +247,7 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
             what = WRONG_COUNT;
         else if (want_mask != got_mask)
             what = WRONG_MASK;
-        else if (colour && W->count[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
+        else if (colour && W->count[i] && !C->tie[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
             what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
         if (what != WRONG_NONE) {
             *v = (struct verdict){
@@ -227,6 +270,43 @@ const struct lesson_variant *check_exact(const struct lesson *l)
     return l->exercise.textures ? &l->variants[0] : exercise_exact(l->perspective);
 }
 
+/* The parameters triangle i of s is drawn with: its texture, and the
+ * scene's checker (texture checker N), which every lesson shades. */
+static struct raster_params tri_params(const struct raster_params *p, const struct scene *s, int i)
+{
+    struct raster_params out = lesson_params_tri(p, s, i);
+    out.checker = s->checker;
+    return out;
+}
+
+/* Two surfaces whose exact depths at a pixel centre differ by less than
+ * this (relative) tie for it: code that computes depth in float (lesson
+ * 04's lanes keep 1/z to about 1e-5) may give it to either, and both
+ * colours are right. Exactly equal depths (a triangle drawn twice) are no
+ * tie: the first one drawn keeps the pixel. */
+#define DEPTH_TIE 4e-5
+
+struct tie_run {
+    struct checker *C;
+    const struct tri_setup *t;
+};
+
+static void tie_pixel(void *ctx, int x, int y)
+{
+    struct tie_run *r = ctx;
+    struct checker *C = r->C;
+    size_t i = (size_t)y * (size_t)C->want.w + (size_t)x;
+    if (!C->want.count[i])
+        return;
+    double z, rgb[3], st[2];
+    reference_shade(r->t, x, y, C->l->perspective, &z, rgb, st);
+    double old = C->want.depth[i], d = z - old;
+    if ((float)z != (float)old && fabs(d) <= DEPTH_TIE * fabs(old))
+        C->tie[i] = 1;
+    else if (d < 0)
+        C->tie[i] = 0;      /* nearer than both: its own */
+}
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
@@ -237,13 +317,21 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     if (!mask)
         return true;
     C->mask = mask;
+    uint8_t *tie = realloc(C->tie, (size_t)s->w * (size_t)s->h);
+    if (!tie)
+        return true;
+    C->tie = tie;
+    memset(C->tie, 0, (size_t)s->w * (size_t)s->h);
+    bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
     C->evaluations++;
     const struct lesson_variant *exact = check_exact(C->l);
     bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
-        C->p = lesson_params_tri(&C->p, s, i);
+        C->p = tri_params(&C->p, s, i);
+        if (colour && i > 0 && samples == 1)
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t });
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
@@ -254,6 +342,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         C->prop = &prop;
         C->t = &t;
         C->in_row = false;
+        C->tiles = 0;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
         if (check_guard)
@@ -303,7 +392,7 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
     for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);
-        p = lesson_params_tri(&p, s, *i);
+        p = tri_params(&p, s, *i);
         struct trace tr = { .sink = NULL };
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)
@@ -328,6 +417,12 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         return true;
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
+    uint8_t *tie = ok ? realloc(C->tie, (size_t)s->w * (size_t)s->h) : NULL;
+    ok = tie != NULL;
+    if (ok) {
+        C->tie = tie;
+        memset(C->tie, 0, (size_t)s->w * (size_t)s->h);
+    }
     C->evaluations += ok;
     const struct lesson_variant *exact = C->l->exercise.textures ? check_exact(C->l) : exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();

@@ -112,6 +112,17 @@ struct texel_fault {
 };
 const struct texel_fault *exercise_texel_fault(void);
 
+/* The texels read through exercise_texel() since exercise_texel_reads_clear()
+ * (or exercise_fault_clear()): how many, and the levels read (bit k: level
+ * k; a level the texture does not have is not a bit). Lesson 09's check
+ * holds them, per written pixel, to the filter's taps. */
+struct texel_reads {
+    uint64_t n;
+    uint32_t levels;
+};
+const struct texel_reads *exercise_texel_reads(void);
+void exercise_texel_reads_clear(void);
+
 /* --- make check ---------------------------------------------------------------- */
 
 struct check_options {
