@@ -24,6 +24,8 @@
  * process that runs it, so a crash still says which scene did it. */
 struct guard {
     int check, scene, tri;
+    bool searching;             /* scene is the search's, made from search_seed */
+    uint64_t search_seed;
     struct check_result result;
 };
 extern struct guard *check_guard;     /* NULL unless guarded */
@@ -86,7 +88,9 @@ struct checker {
     bool both_ways;             /* lesson 06: clip every polygon walked both ways */
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint8_t *tie;               /* pixels whose nearest surface two triangles tie for (either colour is right) */
+    double *zexact;             /* the exact depth of the surface nearest at each pixel */
     int tiles;                  /* tiles narrated for the triangle being drawn (lesson 07) */
+    double search_share;        /* seconds of search for each check that searches */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };

@@ -285,26 +285,44 @@ static struct raster_params tri_params(const struct raster_params *p, const stru
  * colours are right. Exactly equal depths (a triangle drawn twice) are no
  * tie: the first one drawn keeps the pixel. */
 #define DEPTH_TIE 4e-5
+/* A pixel centre this near a border of the checker's squares (in squares,
+ * relative to s N and t N) lies on it: float texture coordinates may put
+ * it in either square. */
+#define CHECKER_TIE 2e-4
 
 struct tie_run {
     struct checker *C;
     const struct tri_setup *t;
+    int checker;
 };
 
+static bool on_border(double v)
+{
+    return fabs(v - round(v)) <= CHECKER_TIE * fmax(1, fabs(v));
+}
+
+/* Before triangle t is drawn: the pixels it ties for with the surface
+ * drawn there, and those it takes whose checker square is a toss-up. */
 static void tie_pixel(void *ctx, int x, int y)
 {
     struct tie_run *r = ctx;
     struct checker *C = r->C;
     size_t i = (size_t)y * (size_t)C->want.w + (size_t)x;
-    if (!C->want.count[i])
-        return;
     double z, rgb[3], st[2];
     reference_shade(r->t, x, y, C->l->perspective, &z, rgb, st);
-    double old = C->want.depth[i], d = z - old;
-    if ((float)z != (float)old && fabs(d) <= DEPTH_TIE * fabs(old))
+    bool border = r->checker > 0 && (on_border(st[0] * r->checker) || on_border(st[1] * r->checker));
+    if (!C->want.count[i]) {
+        C->tie[i] = border;
+        C->zexact[i] = z;
+        return;
+    }
+    double old = C->zexact[i], d = z - old;
+    if (z != old && fabs(d) <= DEPTH_TIE * fabs(old))
         C->tie[i] = 1;
     else if (d < 0)
-        C->tie[i] = 0;      /* nearer than both: its own */
+        C->tie[i] = border;     /* nearer than both: its own */
+    if (d < 0)
+        C->zexact[i] = z;
 }
 
 /* The scene at one sample count, C->p.samples. */
@@ -318,9 +336,13 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         return true;
     C->mask = mask;
     uint8_t *tie = realloc(C->tie, (size_t)s->w * (size_t)s->h);
-    if (!tie)
+    if (tie)
+        C->tie = tie;
+    double *zexact = realloc(C->zexact, sizeof *zexact * (size_t)s->w * (size_t)s->h);
+    if (zexact)
+        C->zexact = zexact;
+    if (!tie || !zexact)
         return true;
-    C->tie = tie;
     memset(C->tie, 0, (size_t)s->w * (size_t)s->h);
     bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
     C->evaluations++;
@@ -330,8 +352,8 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
         C->p = tri_params(&C->p, s, i);
-        if (colour && i > 0 && samples == 1)
-            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t });
+        if (colour && samples == 1)
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker });
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);

@@ -134,6 +134,13 @@ struct check_options {
     FILE *out;                      /* the report (stdout) */
     bool progress;                  /* show progress on long checks (a terminal) */
     const char *program;            /* the exercise program, for the debugger command */
+    /* the search after each check's fixed scenes: scenes made from seed,
+     * until one fails, search_seconds (for the whole lesson, shared by its
+     * checks) are spent or search_scenes (per check) are drawn; no search
+     * when both are 0 */
+    uint64_t seed;
+    double search_seconds;
+    int search_scenes;
 };
 
 struct check_result {
@@ -143,6 +150,8 @@ struct check_result {
     int x, y;                       /* its first wrong pixel */
     uint64_t step;                  /* the step that shows it in the explorer */
     int ntris;                      /* triangles in the counterexample */
+    uint64_t searched;              /* scenes the search drew */
+    bool found_by_search;           /* the counterexample's scene is the search's */
 };
 
 /* Run every check of lesson l on the code given to exercise_use, in order,
