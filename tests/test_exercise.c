@@ -58,6 +58,10 @@ struct run {
 static clip_fn use_clip;
 static front_fn use_front;
 
+/* Search scenes per check after the fixed ones (the search of make check,
+ * bounded by a count so that the suite is repeatable): 0, none. */
+static int search_scenes;
+
 /* Check fn as lesson l's exercise; the report is kept for messages. */
 static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
                   const struct raster_params *params)
@@ -70,7 +74,7 @@ static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
     struct check_options o = {
         .file = "test.c", .out_dir = run->dir, .open_cmd = "make exercise LESSON=NN",
         .params = params ? *params : (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS },
-        .out = out,
+        .out = out, .seed = 1, .search_scenes = search_scenes,
     };
     exercise_use(l, fn);
     exercise_use_clip(use_clip);
@@ -989,6 +993,7 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
  * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch,
  * under a first line that says the mistake and a line "check: NAME" naming
  * the check that must fail first on it (make check on the copy says which). */
+#define MUTATION_SEARCH 100       /* search scenes per check: the first, fixed by seed 1 */
 Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
 {
     int n = 0, caught = 0, per_lesson[10] = { 0 };
@@ -997,7 +1002,9 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
         cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
         struct run run;
         use_clip = m->clip;
+        search_scenes = MUTATION_SEARCH;
         check(&run, l, m->fn, NULL);
+        search_scenes = 0;
         use_clip = NULL;
         bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
         cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,

@@ -162,11 +162,11 @@ static int clip_pipeline(const struct frustum *v, enum cull cull, const struct w
 
 bool exercise_front(struct scene *s)
 {
+    fault = (struct clip_fault){ .what = CLIP_OK };
     if (current_front)
         return current_front(s);
     if (!current_clip)
         return front_scene(s);
-    fault = (struct clip_fault){ .what = CLIP_OK };
     world_base = s->world.tris;
     return front_scene_with(s, clip_pipeline);
 }

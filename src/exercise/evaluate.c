@@ -294,6 +294,7 @@ struct tie_run {
     struct checker *C;
     const struct tri_setup *t;
     int checker;
+    bool perspective;
 };
 
 static bool on_border(double v)
@@ -309,7 +310,7 @@ static void tie_pixel(void *ctx, int x, int y)
     struct checker *C = r->C;
     size_t i = (size_t)y * (size_t)C->want.w + (size_t)x;
     double z, rgb[3], st[2];
-    reference_shade(r->t, x, y, C->l->perspective, &z, rgb, st);
+    reference_shade(r->t, x, y, r->perspective, &z, rgb, st);
     bool border = r->checker > 0 && (on_border(st[0] * r->checker) || on_border(st[1] * r->checker));
     if (!C->want.count[i]) {
         C->tie[i] = border;
@@ -325,6 +326,22 @@ static void tie_pixel(void *ctx, int x, int y)
         C->zexact[i] = z;
 }
 
+/* No ties yet on a picture of s's size; false when out of memory. */
+static bool tie_start(struct checker *C, const struct scene *s)
+{
+    size_t n = (size_t)s->w * (size_t)s->h;
+    uint8_t *tie = realloc(C->tie, n);
+    if (tie)
+        C->tie = tie;
+    double *zexact = realloc(C->zexact, sizeof *zexact * n);
+    if (zexact)
+        C->zexact = zexact;
+    if (!tie || !zexact)
+        return false;
+    memset(C->tie, 0, n);
+    return true;
+}
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
@@ -335,15 +352,8 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     if (!mask)
         return true;
     C->mask = mask;
-    uint8_t *tie = realloc(C->tie, (size_t)s->w * (size_t)s->h);
-    if (tie)
-        C->tie = tie;
-    double *zexact = realloc(C->zexact, sizeof *zexact * (size_t)s->w * (size_t)s->h);
-    if (zexact)
-        C->zexact = zexact;
-    if (!tie || !zexact)
+    if (!tie_start(C, s))
         return true;
-    memset(C->tie, 0, (size_t)s->w * (size_t)s->h);
     bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
     C->evaluations++;
     const struct lesson_variant *exact = check_exact(C->l);
@@ -353,7 +363,7 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
         C->p = tri_params(&C->p, s, i);
         if (colour && samples == 1)
-            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker });
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker, C->l->perspective });
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
@@ -419,6 +429,8 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)
             check_guard->tri = *i;
+        if (!watch_faults)      /* the exact picture: its ties first */
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker, true });
         v->rasterize(&t, &p, fb, watch_faults ? &tr : NULL);
         if (watch_faults)
             C->triangles++;
@@ -439,12 +451,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         return true;
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
-    uint8_t *tie = ok ? realloc(C->tie, (size_t)s->w * (size_t)s->h) : NULL;
-    ok = tie != NULL;
-    if (ok) {
-        C->tie = tie;
-        memset(C->tie, 0, (size_t)s->w * (size_t)s->h);
-    }
+    ok = ok && tie_start(C, s);
     C->evaluations += ok;
     const struct lesson_variant *exact = C->l->exercise.textures ? check_exact(C->l) : exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();

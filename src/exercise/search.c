@@ -50,34 +50,47 @@ static double px(int64_t v)            /* 1/256 px units to pixels */
     return (double)v / SUBPIXEL_ONE;
 }
 
-/* Two triangles sharing an edge of random direction (dx, dy), in 1/256
- * px and coprime, that passes the pixel centre C at F = f exactly (0: on
- * it; +-1: the least an edge can miss it); its ends a few pixels or
- * thousands away; the third vertices either side; windings at random. */
+/* Two triangles sharing an edge A B that passes the pixel centre C at F =
+ * f exactly: on it (f = 0), or the least an edge can miss it (f = +-1,
+ * 1/65536 of a pixel squared: B - A has coprime coordinates in 1/256 px
+ * and C - A is the vector the extended Euclid gives for them). The ends a
+ * few pixels or thousands away, in every direction (every edge class), the
+ * third vertices either side, windings at random. */
 static void tie_pair(struct rng *r, struct scene *s, int f, bool far)
 {
-    int64_t lim = far ? 4000 : 700, dx, dy;
+    int64_t lim = far ? 8000 * SUBPIXEL_ONE : (int64_t)rng_range(r, 1, 14) * SUBPIXEL_ONE, dx, dy;
     do {
         dx = irange(r, -lim, lim), dy = irange(r, -lim, lim);
+        if (pick(r, 0.15)) {                /* horizontal or vertical: the top and left classes themselves */
+            if (pick(r, 0.5))
+                dy = 0, dx = dx ? dx : 1;
+            else
+                dx = 0, dy = dy ? dy : 1;
+            if (f != 0)                     /* F = +-1 wants coprime coordinates: a step of 1/256 */
+                dx = dx ? (dx < 0 ? -1 : 1) : 0, dy = dy ? (dy < 0 ? -1 : 1) : 0;
+        }
     } while ((dx == 0 && dy == 0) || gcd(dx, dy) != 1);
-    if (pick(r, 0.2)) {                     /* horizontal or vertical: the top and left classes themselves */
-        bool h = pick(r, 0.5);
-        dx = h ? (pick(r, 0.5) ? 1 : -1) : 0, dy = h ? 0 : (pick(r, 0.5) ? 1 : -1);
-    }
-    /* e with dx ey - dy ex = 1 (extended Euclid on dx and -dy) */
-    int64_t r0 = dx, r1 = -dy, s0 = 1, s1 = 0, t0 = 0, t1 = 1;
-    while (r1 != 0) {
-        int64_t q = r0 / r1, rr = r0 - q * r1, ss = s0 - q * s1, tt = t0 - q * t1;
-        r0 = r1, r1 = rr, s0 = s1, s1 = ss, t0 = t1, t1 = tt;
-    }
-    int64_t ex = t0 * r0 * f, ey = s0 * r0 * f;
-    int64_t len = llabs(dx) > llabs(dy) ? llabs(dx) : llabs(dy);
     int64_t X = (int64_t)irange(r, 1, s->w - 2) * SUBPIXEL_ONE + SUBPIXEL_HALF;
     int64_t Y = (int64_t)irange(r, 1, s->h - 2) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-    /* the ends at -m and k - m steps from C (at most ~16000 px away) */
-    int64_t span = far ? 15000 * SUBPIXEL_ONE / len : (int64_t)rng_range(r, 2, 12) * SUBPIXEL_ONE / len + 1;
-    int64_t m = irange(r, 1, span > 1 ? span : 1), k = m + irange(r, 1, span > 1 ? span : 1);
-    int64_t ax = X - m * dx + ex, ay = Y - m * dy + ey, bx = ax + k * dx, by = ay + k * dy;
+    int64_t wx = 0, wy = 0, j;      /* C - A = w + j D */
+    if (f != 0) {
+        /* w with dx wy - dy wx = f (extended Euclid on dx and -dy) */
+        int64_t r0 = dx, r1 = -dy, s0 = 1, s1 = 0, t0 = 0, t1 = 1;
+        while (r1 != 0) {
+            int64_t q = r0 / r1, rr = r0 - q * r1, ss = s0 - q * s1, tt = t0 - q * t1;
+            r0 = r1, r1 = rr, s0 = s1, s1 = ss, t0 = t1, t1 = tt;
+        }
+        wx = t0 * r0 * f, wy = s0 * r0 * f;
+        j = (double)wx * (double)dx + (double)wy * (double)dy < 0;      /* C between A and B */
+    } else {
+        /* on the line: D a whole number n of the steps d, C k steps from A */
+        j = 0;
+        int64_t big = llabs(dx) > llabs(dy) ? llabs(dx) : llabs(dy), most = lim / big;
+        int64_t nsteps = irange(r, 2, most > 2 ? most : 2), k = irange(r, 1, nsteps - 1);
+        wx = k * dx, wy = k * dy;
+        dx *= nsteps, dy *= nsteps;
+    }
+    int64_t ax = X - wx - j * dx, ay = Y - wy - j * dy, bx = ax + dx, by = ay + dy;
     struct vertex A = gen_rvtx(r, px(ax), px(ay), 1, 4), B = gen_rvtx(r, px(bx), px(by), 1, 4);
     /* the third vertices along the normal (-dy, dx), a few pixels to thousands away */
     double nl = sqrt((double)dx * (double)dx + (double)dy * (double)dy);
@@ -255,7 +268,7 @@ bool search_colour(const struct search_for *l, uint64_t seed, struct scene *s, c
             double cx = rng_range(&r, 0, w), cy = rng_range(&r, 0, h), d = rng_range(&r, 4, 40);
             struct vertex v[3];
             for (int k = 0; k < 3; k++) {
-                v[k] = gen_rvtx(&r, gen_grid(&r, cx + rng_range(&r, -d, d)), gen_grid(&r, cy + rng_range(&r, -d, d)), 1, 10);
+                v[k] = gen_rvtx(&r, gen_grid(&r, cx + rng_range(&r, -d, d)), gen_grid(&r, cy + rng_range(&r, -d, d)), 1, 4);
                 v[k].s = rng_range(&r, -2, 3), v[k].t = rng_range(&r, -2, 3);
             }
             gen_add(s, v[0], v[1], v[2]);
@@ -339,8 +352,14 @@ bool search_textures(const struct search_for *l, uint64_t seed, struct scene *s,
     bool clamp = pick(&r, 0.35);
     char texture[64];
     snprintf(texture, sizeof texture, "builtin:noise-%dx%d %s", tw, th, clamp ? "clamp" : "repeat");
-    /* where in texture space: near 0, far out (to 10^6), or anywhere between */
-    double far = pick(&r, 0.4) ? (pick(&r, 0.5) ? 1 : -1) * exp2(rng_range(&r, 10, 19.9)) : rng_range(&r, -3, 3);
+    /* where in texture space: near 0, far out (to 10^6: u = s W past 2^31 on a texture 4096 wide),
+     * or anywhere between */
+    double far = rng_range(&r, -3, 3);
+    if (pick(&r, 0.5)) {
+        far = (pick(&r, 0.5) ? 1 : -1) * (pick(&r, 0.5) ? rng_range(&r, 5e5, 999990) : exp2(rng_range(&r, 10, 19)));
+        if (pick(&r, 0.3))
+            a = 12, b = b > 5 ? 5 : b, tw = 1 << a, th = 1 << b, last = a > b ? a : b;
+    }
     double s0 = far + rng_range(&r, -1, 1), t0 = (pick(&r, 0.5) ? far : 0) + rng_range(&r, -1, 1);
     /* the level of detail across the triangle: magnified to beyond the last level */
     double lambda = rng_range(&r, -3, last + 2.5);
