@@ -403,6 +403,7 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     plan_free();
     target_free(&C.want);
     target_free(&C.got);
+    target_free(&C.own);
     for (int i = 0; i < CHECK_SPARES; i++) {
         target_free(&C.spare_want[i]);
         target_free(&C.spare_got[i]);

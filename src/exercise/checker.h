@@ -74,6 +74,11 @@ struct checker {
     struct raster_params p;
     enum check_kind kind;
     struct target want, got;
+    /* a 3-D scene: the exact rule on the code's own screen triangles (its
+     * clipper's polygons, fanned its way), which compare() accepts where
+     * it differs from want by the snapping of another fan alone */
+    struct target own;
+    bool use_own;
     /* pictures of other sizes and sample counts, the most recent first,
      * kept between scenes: lesson 08 draws each scene at 4, 8 and 1
      * samples, and random scenes change size (no reallocation each time) */

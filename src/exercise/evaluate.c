@@ -228,6 +228,19 @@ static void texel_pixel(const struct checker *C, struct verdict *v)
     }
 }
 
+/* The lesson's clipped polygon, starting at another vertex, fanned from
+ * there: the other fan's slivers, their vertices snapped to 1/256 pixel,
+ * tilt their planes of depth and colour by as much as a sliver is thin.
+ * Where the code's clipper gave the lesson's polygons (as cyclic
+ * sequences), its pixel i is right when it is the exact rule's on the
+ * code's own triangles (the exact plane of the triangle drawn). */
+static bool own_close(const struct checker *C, size_t i)
+{
+    const struct target *G = &C->got, *O = &C->own;
+    return O->color && O->count[i] == C->want.count[i]
+        && pixel_close(O->color[i], O->depth[i], G->color[i], G->depth[i]);
+}
+
 /* The first pixel, in reading order, where the pictures differ. */
 static bool compare(const struct checker *C, int tri, struct verdict *v)
 {
@@ -247,7 +260,8 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
             what = WRONG_COUNT;
         else if (want_mask != got_mask)
             what = WRONG_MASK;
-        else if (colour && W->count[i] && !C->tie[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
+        else if (colour && W->count[i] && !C->tie[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i])
+                 && !(C->use_own && own_close(C, i)))
             what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
         if (what != WRONG_NONE) {
             *v = (struct verdict){
@@ -342,6 +356,19 @@ static bool tie_start(struct checker *C, const struct scene *s)
     return true;
 }
 
+/* The picture of the code's own screen triangles, cleared. */
+static bool own_start(struct checker *C, const struct scene *s)
+{
+    struct target *O = &C->own;
+    if (O->color && O->w == s->w && O->h == s->h) {
+        O->background = scene_background(s);
+        target_clear(O);
+        return true;
+    }
+    target_free(O);
+    return target_init(O, s->w, s->h, scene_background(s));
+}
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
@@ -415,9 +442,19 @@ bool exercise_projected(struct scene *out, const struct scene *s)
     return false;
 }
 
+/* compare() after world triangle w: where the code's clipper gave the
+ * lesson's polygons, the exact plane of the triangles it drew is right. */
+static bool compare_world(struct checker *C, int w, struct verdict *v)
+{
+    C->use_own = exercise_clip_as_lesson(w);
+    bool same = compare(C, w, v);
+    C->use_own = false;
+    return same;
+}
+
 /* Draw screen triangles [*i, end of world triangle w) of s with fn into fb. */
 static void draw_world_tri(struct checker *C, const struct scene *s, int w, int *i,
-                           const struct lesson_variant *v, struct target *fb, bool watch_faults)
+                           const struct lesson_variant *v, struct target *fb, bool watch_faults, bool ties)
 {
     struct raster_params p = C->p;
     p.at = &(struct run_place){ .scene = s };
@@ -429,7 +466,7 @@ static void draw_world_tri(struct checker *C, const struct scene *s, int w, int 
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)
             check_guard->tri = *i;
-        if (!watch_faults)      /* the exact picture: its ties first */
+        if (ties)               /* the exact picture: its ties first */
             reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker, true });
         v->rasterize(&t, &p, fb, watch_faults ? &tr : NULL);
         if (watch_faults)
@@ -451,14 +488,14 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         return true;
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
-    ok = ok && tie_start(C, s);
+    ok = ok && tie_start(C, s) && own_start(C, s);
     C->evaluations += ok;
     const struct lesson_variant *exact = C->l->exercise.textures ? check_exact(C->l) : exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();
     int a = 0, b = 0;
     for (int w = 0; ok && w < s->world.ntris; w++) {
         int a0 = a, b0 = b;
-        draw_world_tri(C, &want, w, &a, exact, &C->want, false);
+        draw_world_tri(C, &want, w, &a, exact, &C->want, false, true);
         struct verdict base = { .world = true, .tri = w, .samples = 1 };
         if (cf->what != CLIP_OK && cf->tri == w) {
             *v = base;
@@ -468,7 +505,9 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
             break;
         }
         exercise_fault_clear();
-        draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true);
+        int b0_own = b;
+        draw_world_tri(C, &got, w, &b0_own, exact, &C->own, false, false);
+        draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true, false);
         const struct exercise_fault *f = exercise_fault();
         if (f->any) {
             *v = base;
@@ -479,7 +518,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
             v->what = WRONG_TEXEL, v->texel = *exercise_texel_fault();
             texel_pixel(C, v);
             ok = false;
-        } else if (!compare(C, w, v)) {
+        } else if (!compare_world(C, w, v)) {
             v->world = true;
             ok = false;
         }

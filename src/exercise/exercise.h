@@ -71,6 +71,11 @@ struct clip_fault {
 };
 const struct clip_fault *exercise_clip_fault(void);
 
+/* Since the last exercise_front(): did every polygon the student's clipper
+ * made of world triangle tri equal the lesson's clipper's, vertex for
+ * vertex, as a cyclic sequence (perhaps starting at another vertex)? */
+bool exercise_clip_as_lesson(int tri);
+
 /* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
  * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
  * count a new vertex made one way and not, to the last bit, the other as
