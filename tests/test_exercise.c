@@ -823,7 +823,7 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09 FILE=lessons/09-textures/answer.c", dir);
     st = shell(cmd, &log);
     cr_expect_eq(st, 0, "make check on lesson 09's answer:\n%s", log);
-    cr_expect_not_null(strstr(log, "all 12 checks pass"), "%s", log);
+    cr_expect_not_null(strstr(log, "all 13 checks pass"), "%s", log);
     snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09", dir);
     st = shell(cmd, &log);
     cr_expect_neq(st, 0, "make check passes lesson 09's untouched skeleton:\n%s", log);
@@ -992,11 +992,13 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
  * A mistake of your own: copy lessons/NN-name/answer.c, make the mistake in
  * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch,
  * under a first line that says the mistake and a line "check: NAME" naming
- * the check that must fail first on it (make check on the copy says which). */
-#define MUTATION_SEARCH 100       /* search scenes per check: the first, fixed by seed 1 */
+ * the check that must fail first on it (make check on the copy says which).
+ * A patch whose check is "none (a correct design)" is a correct solution of
+ * another making than the answer's: it must pass every check. */
+#define MUTATION_SEARCH 64       /* search scenes per check: the first, fixed by seed 1 */
 Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
 {
-    int n = 0, caught = 0, per_lesson[10] = { 0 };
+    int n = 0, caught = 0, per_lesson[10] = { 0 }, designs = 0, accepted = 0;
     for (const struct exercise_mutation *m = all_mutations; m->lesson; m++, n++) {
         const struct lesson *l = lesson_nn(m->lesson);
         cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
@@ -1006,6 +1008,15 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
         check(&run, l, m->fn, NULL);
         search_scenes = 0;
         use_clip = NULL;
+        if (strncmp(m->check, "none", 4) == 0) {       /* a correct design: every check passes */
+            cr_expect(run.ok, "tests/mutations/%s.patch: a correct design, failed %s:\n%s", m->name, run.r.failed,
+                      run.report);
+            designs++;
+            accepted += run.ok;
+            n--;
+            run_free(&run);
+            continue;
+        }
         bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
         cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,
                   m->check, run.ok ? "all passed" : run.r.failed, run.report);
@@ -1013,8 +1024,9 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
         per_lesson[m->lesson[1] - '0'] += ok;
         run_free(&run);
     }
-    fprintf(stderr, "mistakes caught %d of %d\n", caught, n);
+    fprintf(stderr, "mistakes caught %d of %d, correct designs accepted %d of %d\n", caught, n, accepted, designs);
     cr_expect_eq(caught, n, "mistakes caught %d of %d", caught, n);
+    cr_expect_eq(accepted, designs, "correct designs accepted %d of %d", accepted, designs);
     for (int i = 0; all_exercises[i].lesson; i++) {
         int k = all_exercises[i].lesson[1] - '0';
         cr_expect_geq(per_lesson[k], 8, "lesson %s: %d mistakes caught, fewer than 8", all_exercises[i].lesson,

@@ -51,6 +51,7 @@ struct check {
     scene_gen gen;
     bool both_ways;
     search_gen search;          /* its search after the fixed scenes, or NULL */
+    const char *trusts;         /* what it takes on trust, said with its verdict, or NULL */
 };
 
 /* What the search aims at in lesson l. */
@@ -269,6 +270,8 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
     else
         fprintf(out, "ok (%d scene%s, %llu triangles)\n", total, total == 1 ? "" : "s",
                 (unsigned long long)(C->triangles - tris0));
+    if (ck->trusts)
+        fprintf(out, "      (%s)\n", ck->trusts);
     return true;
 }
 
@@ -329,38 +332,40 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     }
     struct check *c = P->checks;
     if (user_count)
-        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user, true, NULL };
-    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single, false, NULL };
-    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false, search_ties };
-    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false, NULL };
-    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false, search_coverage };
+        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user, true, NULL, NULL };
+    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single, false, NULL, NULL };
+    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false, search_ties, NULL };
+    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false, NULL, NULL };
+    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false, search_coverage, NULL };
     if (l->exercise.tiles)
-        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false, NULL };
+        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false, NULL, NULL };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
-                                CK_COLOUR, gen_colour, false, search_colour };
+                                CK_COLOUR, gen_colour, false, search_colour, NULL };
     if (l->exercise.no_pixel_mul)
-        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false, NULL };
+        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false, NULL,
+                                    "counted from your COUNTs and your calls of edge_value() and pixel_centre():\n"
+                                    "       a product you write by hand in the loop is not seen" };
     if (l->exercise.full_blocks)
-        c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false, NULL };
+        c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false, NULL, NULL };
     if (l->exercise.textures) {     /* textured scenes, simplest first: colour and the sampler's faults */
-        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false, NULL };
-        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false, NULL };
-        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false, NULL };
-        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false, NULL };
-        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false, NULL };
-        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false, NULL };
-        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false, NULL };
-        c[P->n++] = (struct check){ "textures of every shape", CK_ALL, gen_none, false, search_textures };
+        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false, NULL, NULL };
+        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false, NULL, NULL };
+        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false, NULL, NULL };
+        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false, NULL, NULL };
+        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false, NULL, NULL };
+        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false, NULL, NULL };
+        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false, NULL, NULL };
+        c[P->n++] = (struct check){ "textures of every shape", CK_ALL, gen_none, false, search_textures, NULL };
     }
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
-        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false, NULL };
-        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false, NULL };
-        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two, false, NULL };
-        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far, false, NULL };
-        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge, true, NULL };
-        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside, true, NULL };
-        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor, true, NULL };
-        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras, true, search_world };
+        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false, NULL, NULL };
+        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false, NULL, NULL };
+        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two, false, NULL, NULL };
+        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far, false, NULL, NULL };
+        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge, true, NULL, NULL };
+        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside, true, NULL, NULL };
+        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor, true, NULL, NULL };
+        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras, true, search_world, NULL };
     }
     return true;
 }

@@ -60,7 +60,7 @@ struct verdict {
     double deriv[4], want_lambda, got_lambda;
     struct texel_fault texel;       /* WRONG_TEXEL: the texel read outside its level */
     /* WRONG_TILES: the tile (bx, by)-(bx1, by1) narrated outside the
-     * triangle's box, or the got_n-th tile of a box of want_n tiles;
+     * triangle's box of want_n tiles;
      * WRONG_READS: got_n texels of got_class levels read for pixel (x, y),
      * levels the bits of got_mask, where want_n (4 per level read) and
      * two adjacent levels at most are the filter's */
@@ -94,7 +94,6 @@ struct checker {
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint8_t *tie;               /* pixels whose nearest surface two triangles tie for (either colour is right) */
     double *zexact;             /* the exact depth of the surface nearest at each pixel */
-    int tiles;                  /* tiles narrated for the triangle being drawn (lesson 07) */
     double search_share;        /* seconds of search for each check that searches */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;

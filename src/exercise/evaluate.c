@@ -119,20 +119,17 @@ static void watch_reads(const struct trace_event *ev, struct verdict *v)
     exercise_texel_reads_clear();
 }
 
-/* A tile narrated (lesson 07): one of the tiles of the triangle's box, and
- * no more of them than the box has. Walking every tile of the screen for
- * every triangle draws the same picture, and takes the time of the screen
- * instead of the triangle's. */
+/* A tile narrated (lesson 07): one of the tiles of the triangle's box.
+ * Walking every tile of the screen for every triangle draws the same
+ * picture, and takes the time of the screen instead of the triangle's. */
 static void watch_tile(struct checker *C, const struct trace_event *ev, struct verdict *v)
 {
     const struct tri_setup *t = C->t;
-    int ntiles = (t->maxx / 64 - t->minx / 64 + 1) * (t->maxy / 64 - t->miny / 64 + 1);
-    C->tiles++;
-    bool outside = ev->x1 < t->minx || ev->x > t->maxx || ev->y1 < t->miny || ev->y > t->maxy;
-    if (outside || C->tiles > ntiles)
+    if (ev->x1 < t->minx || ev->x > t->maxx || ev->y1 < t->miny || ev->y > t->maxy)
         *v = (struct verdict){ .what = WRONG_TILES, .x = ev->x, .y = ev->y, .bx = ev->x, .by = ev->y,
-                               .bx1 = ev->x1, .by1 = ev->y1, .want_n = ntiles, .got_n = C->tiles,
-                               .edge = outside, .box = { t->minx, t->miny, t->maxx, t->maxy } };
+                               .bx1 = ev->x1, .by1 = ev->y1,
+                               .want_n = (t->maxx / 64 - t->minx / 64 + 1) * (t->maxy / 64 - t->miny / 64 + 1),
+                               .box = { t->minx, t->miny, t->maxx, t->maxy } };
 }
 
 /* The narration, watched for the lesson's property. */
@@ -146,7 +143,7 @@ static void watch(void *ctx, const struct trace_event *ev)
         watch_reads(ev, v);
         return;
     }
-    if (C->l->exercise.tiles && ev->kind == TRACE_BLOCK && ev->aux[1] == 0) {
+    if (C->l->exercise.tiles && ev->kind == TRACE_BLOCK && ev->aux[0] == 64 && ev->aux[1] == 0) {
         watch_tile(C, ev, v);
         if (v->what != WRONG_NONE)
             return;
@@ -401,7 +398,6 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
         C->prop = &prop;
         C->t = &t;
         C->in_row = false;
-        C->tiles = 0;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
         if (check_guard)

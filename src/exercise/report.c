@@ -206,15 +206,10 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
         break;
     }
     case WRONG_TILES:
-        if (v->edge)
-            fprintf(out, "      your code visited tile (%d, %d)-(%d, %d), outside the triangle's box\n"
-                    "      (%d, %d)-(%d, %d): only the %d tile%s of the box can hold a pixel of it (the picture is\n"
-                    "      right, the time is the screen's, not the triangle's)\n", v->bx, v->by, v->bx1, v->by1,
-                    v->box[0], v->box[1], v->box[2], v->box[3], v->want_n, v->want_n == 1 ? "" : "s");
-        else
-            fprintf(out, "      your code visited %d tiles for a triangle whose box holds %d: tile (%d, %d)-(%d, %d)\n"
-                    "      was one too many (each tile of the box is classified once)\n", v->got_n, v->want_n,
-                    v->bx, v->by, v->bx1, v->by1);
+        fprintf(out, "      your code visited tile (%d, %d)-(%d, %d), outside the triangle's box\n"
+                "      (%d, %d)-(%d, %d): only the %d tile%s of the box can hold a pixel of it (the picture is\n"
+                "      right, the time is the screen's, not the triangle's)\n", v->bx, v->by, v->bx1, v->by1,
+                v->box[0], v->box[1], v->box[2], v->box[3], v->want_n, v->want_n == 1 ? "" : "s");
         break;
     case WRONG_READS:
         fprintf(out, "      your sampler read %d texel%s from %d level%s (mask %#x) for pixel (%d, %d);\n"

@@ -253,8 +253,8 @@ static double depth_q(double z, bool perspective)
 bool search_colour(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n)
 {
     struct rng r = { seed };
-    int kind = (int)irange(&r, 0, 9);
-    if (l->samples && (kind == 6 || kind == 7))
+    int kind = (int)irange(&r, 0, 11);
+    if (l->samples && kind >= 6 && kind <= 9)
         kind = 4;       /* near-equal depths per sample: the samples' own ties */
     int w = (int)irange(&r, 16, 64), h = (int)irange(&r, 12, 48);
     check_scene_start(s, w, h);
@@ -293,10 +293,10 @@ bool search_colour(const struct search_for *l, uint64_t seed, struct scene *s, c
                  "every pixel", copies);
         return true;
     }
-    case 6: case 7: {
+    case 6: case 7: case 8: case 9: {
         /* two surfaces crossing at a shallow angle: depths within 1/1000 of each other */
         struct vertex a[3], b[3];
-        double z0 = rng_range(&r, 1, 20), spread = rng_range(&r, 2e-4, 3e-3);
+        double z0 = rng_range(&r, 1, 20), spread = rng_range(&r, 1e-4, 1.5e-3);
         for (int k = 0; k < 3; k++) {
             a[k] = gen_rvtx(&r, gen_grid(&r, rng_range(&r, -2.0 * w, 3.0 * w)), gen_grid(&r, rng_range(&r, -2.0 * h, 3.0 * h)),
                             z0, z0 * (1 + rng_range(&r, -0.3, 0.3)));
