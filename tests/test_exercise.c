@@ -1034,6 +1034,38 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
     }
 }
 
+/* The search is seeded: the same seed finds the same counterexample, the
+ * report prints the seed, and the fixed scenes alone (no search) miss the
+ * mistakes only the search is there for. */
+Test(exercise, the_search_is_seeded_and_repeatable, .timeout = 120)
+{
+    const struct exercise_mutation *m = mutation("03-bias-twice");
+    const struct lesson *l = lesson_nn("03");
+    struct run a, b, none;
+    char *text[2] = { NULL, NULL };
+    search_scenes = MUTATION_SEARCH;
+    check(&a, l, m->fn, NULL);
+    check(&b, l, m->fn, NULL);
+    search_scenes = 0;
+    check(&none, l, m->fn, NULL);
+    cr_expect(none.ok, "the fixed scenes alone find it:\n%s", none.report);
+    struct run *runs[2] = { &a, &b };
+    for (int i = 0; i < 2; i++) {
+        cr_assert_not(runs[i]->ok, "%s", runs[i]->report);
+        cr_expect_str_eq(runs[i]->r.failed, "fill-rule ties");
+        cr_expect(runs[i]->r.found_by_search);
+        cr_expect_not_null(strstr(runs[i]->report, "make check SEED=1 "), "%s", runs[i]->report);
+        text[i] = strdup(test_read_text(runs[i]->r.counterexample));
+        cr_assert_not_null(text[i]);
+    }
+    cr_expect_str_eq(text[0], text[1], "two runs of one seed, two counterexamples");
+    free(text[0]);
+    free(text[1]);
+    run_free(&a);
+    run_free(&b);
+    run_free(&none);
+}
+
 /* A wrong colour is marked by the diff at the very step that writes it,
  * the triangle unfinished: the printed command opens on a marked pixel. */
 Test(exercise, a_wrong_colour_is_marked_at_the_step_that_writes_it)
