@@ -485,6 +485,39 @@ Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
     scene_free(&s);
 }
 
+/* The search's scenes, for every lesson's aim: each one has triangles, and
+ * written as a counterexample is written it reads back to as many (every
+ * s and t, every coordinate and texture within the format), the same
+ * scene for the same seed. */
+Test(exercise, the_search_scenes_are_scenes_the_format_reads_back)
+{
+    static const search_gen gens[] = { search_ties, search_coverage, search_colour, search_textures, search_world };
+    static const struct search_for aims[] = { { 0 }, { .tiles = true }, { .samples = true }, { .perspective = true } };
+    for (size_t g = 0; g < sizeof gens / sizeof gens[0]; g++)
+        for (size_t a = 0; a < sizeof aims / sizeof aims[0]; a++)
+            for (uint64_t seed = 0; seed < 150; seed++) {
+                struct scene s, again, back;
+                char what[256], what2[256], err[256];
+                cr_assert(gens[g](&aims[a], seed * 7919 + a, &s, what, sizeof what));
+                cr_assert(gens[g](&aims[a], seed * 7919 + a, &again, what2, sizeof what2));
+                cr_expect_str_eq(what, what2);
+                int n = s.world.camera_line ? s.world.ntris : s.ntris;
+                cr_expect_gt(n, 0, "%s", what);
+                cr_expect_eq(again.ntris, s.ntris, "%s", what);
+                char *text = NULL;
+                size_t len = 0;
+                FILE *f = open_memstream(&text, &len);
+                cr_assert(f && scene_write(&s, f));
+                fclose(f);
+                cr_assert(scene_parse(&back, "back.scene", text, len, err, sizeof err), "%s: %s", what, err);
+                cr_expect_eq(back.world.camera_line ? back.world.ntris : back.ntris, n, "%s", what);
+                free(text);
+                scene_free(&back);
+                scene_free(&again);
+                scene_free(&s);
+            }
+}
+
 /* Lesson 09's textured scenes: every triangle under an image texture, and
  * each scene written as a counterexample is written reads back to the same
  * triangles under the same textures (builtin:NAME, the same wrap). */

@@ -368,6 +368,10 @@ bool search_textures(const struct search_for *l, uint64_t seed, struct scene *s,
         ds *= rng_range(&r, 0.02, 1);
     else
         dt *= rng_range(&r, 0.02, 1);
+    /* every s and t of the scene within the format's +-10^6 */
+    ds = fmin(ds, 1e5), dt = fmin(dt, 1e5);
+    double room = 999999 - 3 * (ds + dt) - 2;
+    s0 = fmax(fmin(s0, room), -room), t0 = fmax(fmin(t0, room), -room);
     struct gen_text x;
     gen_text_start(&x, 48, 36, texture);
     double z1 = pick(&r, 0.5) ? 1 : rng_range(&r, 1, 6);
