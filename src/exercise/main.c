@@ -27,7 +27,7 @@ int main(int argc, char **argv)
     const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL;
     bool check = false;
     unsigned long long seed = 1;
-    double search = 2.0;        /* seconds of search for the whole lesson */
+    double search = 1.5;        /* seconds of search for the whole lesson */
     const char **scenes = calloc((size_t)argc + 1, sizeof *scenes);
     char **rest = calloc((size_t)argc + 3, sizeof *rest);
     if (!scenes || !rest)
@@ -70,7 +70,7 @@ int main(int argc, char **argv)
                    "  --out DIR               with --check: write counterexamples under DIR/NAME/ (default build/check)\n"
                    "  --open CMD              with --check: the command printed to open a counterexample\n"
                    "  --seed N                with --check: the search's seed (default 1: the same scenes every run)\n"
-                   "  --search SECONDS        with --check: how long the search after the fixed scenes runs (default 2)\n\n",
+                   "  --search SECONDS        with --check: how long the search after the fixed scenes runs (default 1.5)\n\n",
                    argv[0], argv[0]);
             break;
         }
