@@ -1,5 +1,5 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
-#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
+#          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s] [SEED=n] [SEARCH=s]
 #          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
 #          (check, exercise and grade take VARIANT=name: a lesson's graded variant, lessons/README.md)
 #          make student-kit [KIT=folder] (the course without its answers, to hand out) | make student-kit-test
@@ -256,7 +256,7 @@ $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/studen
 	@$(LD_ALL) $^ $(LIBS) -o $@
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(EX_VARIANT) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
 check: $(B)/exercise-$(LESSON)
-	@$< --check --file $(FILE) $(EX_VARIANT) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(VARIANT), VARIANT=$(VARIANT))$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
+	@$< --check --file $(FILE) $(EX_VARIANT) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(VARIANT), VARIANT=$(VARIANT))$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s)) $(if $(SEED),--seed $(SEED)) $(if $(SEARCH),--search $(SEARCH))
 
 # make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder]: make
 # check on every .c file of the folder, each built and run apart, under a

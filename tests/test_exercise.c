@@ -60,6 +60,10 @@ static front_fn use_front;
 /* The graded variant (VARIANT=) the next check() runs under, or NULL. */
 static const char *use_variant;
 
+/* Search scenes per check after the fixed ones (the search of make check,
+ * bounded by a count so that the suite is repeatable): 0, none. */
+static int search_scenes;
+
 /* Check fn as lesson l's exercise; the report is kept for messages. */
 static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
                   const struct raster_params *params)
@@ -72,7 +76,7 @@ static void check(struct run *run, const struct lesson *l, rasterize_fn fn,
     struct check_options o = {
         .file = "test.c", .out_dir = run->dir, .open_cmd = "make exercise LESSON=NN",
         .params = params ? *params : (struct raster_params){ .subpixel_bits = SUBPIXEL_BITS },
-        .out = out,
+        .out = out, .seed = 1, .search_scenes = search_scenes,
     };
     exercise_use(l, fn);
     exercise_use_clip(use_clip);
@@ -487,6 +491,39 @@ Test(exercise, the_exercise_explorer_runs_the_students_code_per_triangle)
     scene_free(&s);
 }
 
+/* The search's scenes, for every lesson's aim: each one has triangles, and
+ * written as a counterexample is written it reads back to as many (every
+ * s and t, every coordinate and texture within the format), the same
+ * scene for the same seed. */
+Test(exercise, the_search_scenes_are_scenes_the_format_reads_back)
+{
+    static const search_gen gens[] = { search_ties, search_coverage, search_colour, search_textures, search_world };
+    static const struct search_for aims[] = { { 0 }, { .tiles = true }, { .samples = true }, { .perspective = true } };
+    for (size_t g = 0; g < sizeof gens / sizeof gens[0]; g++)
+        for (size_t a = 0; a < sizeof aims / sizeof aims[0]; a++)
+            for (uint64_t seed = 0; seed < 150; seed++) {
+                struct scene s, again, back;
+                char what[256], what2[256], err[256];
+                cr_assert(gens[g](&aims[a], seed * 7919 + a, &s, what, sizeof what));
+                cr_assert(gens[g](&aims[a], seed * 7919 + a, &again, what2, sizeof what2));
+                cr_expect_str_eq(what, what2);
+                int n = s.world.camera_line ? s.world.ntris : s.ntris;
+                cr_expect_gt(n, 0, "%s", what);
+                cr_expect_eq(again.ntris, s.ntris, "%s", what);
+                char *text = NULL;
+                size_t len = 0;
+                FILE *f = open_memstream(&text, &len);
+                cr_assert(f && scene_write(&s, f));
+                fclose(f);
+                cr_assert(scene_parse(&back, "back.scene", text, len, err, sizeof err), "%s: %s", what, err);
+                cr_expect_eq(back.world.camera_line ? back.world.ntris : back.ntris, n, "%s", what);
+                free(text);
+                scene_free(&back);
+                scene_free(&again);
+                scene_free(&s);
+            }
+}
+
 /* Lesson 09's textured scenes: every triangle under an image texture, and
  * each scene written as a counterexample is written reads back to the same
  * triangles under the same textures (builtin:NAME, the same wrap). */
@@ -825,7 +862,7 @@ Test(exercise, make_check_works_from_a_clean_clone, .timeout = 280)
     snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09 FILE=lessons/09-textures/answer.c", dir);
     st = shell(cmd, &log);
     cr_expect_eq(st, 0, "make check on lesson 09's answer:\n%s", log);
-    cr_expect_not_null(strstr(log, "all 12 checks pass"), "%s", log);
+    cr_expect_not_null(strstr(log, "all 13 checks pass"), "%s", log);
     snprintf(cmd, sizeof cmd, "cd %s/t && make check LESSON=09", dir);
     st = shell(cmd, &log);
     cr_expect_neq(st, 0, "make check passes lesson 09's untouched skeleton:\n%s", log);
@@ -995,19 +1032,33 @@ Test(exercise, the_quoted_tolerances_are_the_checks)
  * the copy, and keep `diff -u` of the two as tests/mutations/NN-what.patch
  * (a graded variant V's answer-V.c: NN-V--what.patch, checked under V),
  * under a first line that says the mistake and a line "check: NAME" naming
- * the check that must fail first on it (make check on the copy says which). */
+ * the check that must fail first on it (make check on the copy says which).
+ * A patch whose check is "none (a correct design)" is a correct solution of
+ * another making than the answer's: it must pass every check. */
+#define MUTATION_SEARCH 64       /* search scenes per check: the first, fixed by seed 1 */
 Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it, .timeout = 240)
 {
-    int n = 0, caught = 0, per_lesson[10] = { 0 };
+    int n = 0, caught = 0, per_lesson[10] = { 0 }, designs = 0, accepted = 0;
     for (const struct exercise_mutation *m = all_mutations; m->lesson; m++, n++) {
         const struct lesson *l = lesson_nn(m->lesson);
         cr_assert_not_null(l, "%s: no lesson %s", m->name, m->lesson);
         struct run run;
         use_clip = m->clip;
         use_variant = m->variant;
+        search_scenes = MUTATION_SEARCH;
         check(&run, l, m->fn, NULL);
+        search_scenes = 0;
         use_clip = NULL;
         use_variant = NULL;
+        if (strncmp(m->check, "none", 4) == 0) {       /* a correct design: every check passes */
+            cr_expect(run.ok, "tests/mutations/%s.patch: a correct design, failed %s:\n%s", m->name, run.r.failed,
+                      run.report);
+            designs++;
+            accepted += run.ok;
+            n--;
+            run_free(&run);
+            continue;
+        }
         bool ok = !run.ok && strcmp(run.r.failed, m->check) == 0 && run.r.counterexample[0];
         cr_expect(ok, "tests/mutations/%s.patch: expected the check \"%s\" to fail first, %s:\n%s", m->name,
                   m->check, run.ok ? "all passed" : run.r.failed, run.report);
@@ -1015,13 +1066,46 @@ Test(exercise, every_mistake_of_the_mutation_suite_fails_the_check_that_names_it
         per_lesson[m->lesson[1] - '0'] += ok;
         run_free(&run);
     }
-    fprintf(stderr, "mistakes caught %d of %d\n", caught, n);
+    fprintf(stderr, "mistakes caught %d of %d, correct designs accepted %d of %d\n", caught, n, accepted, designs);
     cr_expect_eq(caught, n, "mistakes caught %d of %d", caught, n);
+    cr_expect_eq(accepted, designs, "correct designs accepted %d of %d", accepted, designs);
     for (int i = 0; all_exercises[i].lesson; i++) {
         int k = all_exercises[i].lesson[1] - '0';
         cr_expect_geq(per_lesson[k], 8, "lesson %s: %d mistakes caught, fewer than 8", all_exercises[i].lesson,
                       per_lesson[k]);
     }
+}
+
+/* The search is seeded: the same seed finds the same counterexample, the
+ * report prints the seed, and the fixed scenes alone (no search) miss the
+ * mistakes only the search is there for. */
+Test(exercise, the_search_is_seeded_and_repeatable, .timeout = 120)
+{
+    const struct exercise_mutation *m = mutation("03-bias-twice");
+    const struct lesson *l = lesson_nn("03");
+    struct run a, b, none;
+    char *text[2] = { NULL, NULL };
+    search_scenes = MUTATION_SEARCH;
+    check(&a, l, m->fn, NULL);
+    check(&b, l, m->fn, NULL);
+    search_scenes = 0;
+    check(&none, l, m->fn, NULL);
+    cr_expect(none.ok, "the fixed scenes alone find it:\n%s", none.report);
+    struct run *runs[2] = { &a, &b };
+    for (int i = 0; i < 2; i++) {
+        cr_assert_not(runs[i]->ok, "%s", runs[i]->report);
+        cr_expect_str_eq(runs[i]->r.failed, "fill-rule ties");
+        cr_expect(runs[i]->r.found_by_search);
+        cr_expect_not_null(strstr(runs[i]->report, "make check SEED=1 "), "%s", runs[i]->report);
+        text[i] = strdup(test_read_text(runs[i]->r.counterexample));
+        cr_assert_not_null(text[i]);
+    }
+    cr_expect_str_eq(text[0], text[1], "two runs of one seed, two counterexamples");
+    free(text[0]);
+    free(text[1]);
+    run_free(&a);
+    run_free(&b);
+    run_free(&none);
 }
 
 /* A wrong colour is marked by the diff at the very step that writes it,

@@ -207,6 +207,36 @@ Test(texture, builtin_textures_are_opaque_powers_of_two)
     cr_expect(strstr(why, "builtin:bricks") != NULL, "the message lists them: %s", why);
 }
 
+/* noise-WxH: any shape the format allows, neighbours far apart; other
+ * sizes and spellings are no texture */
+Test(texture, builtin_noise_is_every_shape_the_format_allows)
+{
+    static const int sizes[][2] = { { 1, 1 }, { 1, 64 }, { 64, 1 }, { 4096, 2 }, { 2, 4096 }, { 32, 8 } };
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        char name[40], why[256];
+        snprintf(name, sizeof name, "noise-%dx%d", sizes[i][0], sizes[i][1]);
+        int w, h;
+        uint32_t *im;
+        cr_assert(texture_builtin(name, &w, &h, &im, why, sizeof why), "%s: %s", name, why);
+        cr_expect(w == sizes[i][0] && h == sizes[i][1], "%s: %d x %d", name, w, h);
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x + 1 < w; x++) {
+                uint32_t a = im[(size_t)y * (size_t)w + (size_t)x], b = im[(size_t)y * (size_t)w + (size_t)x + 1];
+                int dr = (int)(a >> 16 & 255) - (int)(b >> 16 & 255);
+                cr_assert(a >> 24 == 255u && (dr >= 96 || dr <= -96), "%s: texels (%d, %d) and (%d, %d) %06x %06x",
+                          name, x, y, x + 1, y, a & 0xffffffu, b & 0xffffffu);
+            }
+        free(im);
+    }
+    static const char *const bad[] = { "noise-3x4", "noise-8192x1", "noise-0x1", "noise-4x4x", "noise-04x4", "noise-4" };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int w, h;
+        uint32_t *im;
+        char why[256];
+        cr_expect(!texture_builtin(bad[i], &w, &h, &im, why, sizeof why), "%s read", bad[i]);
+    }
+}
+
 /* --- scenes -------------------------------------------------------------------------- */
 
 #define TRI24 "tri 1 1 1 1 1 1 0 0  30 2 1 1 1 1 1 0  3 20 1 1 1 1 0 1\n"

@@ -26,8 +26,14 @@
  *                                    reference
  *
  * Four floats here; with SSE, float[4] becomes one __m128 and each TODO one
- * or two intrinsics (_mm_add_ps, _mm_div_ss): write the scalar version
- * first, it is what the check reads either way. */
+ * or two intrinsics (_mm_add_ps, _mm_div_ss): that is the lesson's point,
+ * four lanes moved by one instruction. make check reads the lanes' values
+ * (the watch panel's too), which are the same either way: it cannot tell
+ * the scalar version from the SSE one. Write the scalar version first,
+ * check it, then the SSE one (#include <xmmintrin.h>) and check it again.
+ * The depth is 1 / lane 0 to float precision: _mm_rcp_ss's estimate alone
+ * is up to 4e-4 off, and where two surfaces cross at a shallow angle the
+ * check finds the band of pixels it gives to the farther one. */
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_pixel: the colour every lesson gives a pixel */
 

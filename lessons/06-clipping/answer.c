@@ -61,14 +61,22 @@ static double between(double v, double a, double b)
     return fmin(fmax(v, fmin(a, b)), fmax(a, b));
 }
 
-/* P0 + t (P1 - P0), formula (3), position and colour alike. */
+/* P0 + t (P1 - P0), formula (3), for everything a vertex carries alike:
+ * position, colour and texture coordinates (s, t). */
+static double mix(double a, double b, double t)
+{
+    return between(a + t * (b - a), a, b);
+}
+
 static struct pvert lerp(const struct pvert *p0, const struct pvert *p1, double t)
 {
     struct pvert n;
     for (int i = 0; i < 3; i++) {
-        n.pos[i] = between(p0->pos[i] + t * (p1->pos[i] - p0->pos[i]), p0->pos[i], p1->pos[i]);
-        n.rgb[i] = between(p0->rgb[i] + t * (p1->rgb[i] - p0->rgb[i]), p0->rgb[i], p1->rgb[i]);
+        n.pos[i] = mix(p0->pos[i], p1->pos[i], t);
+        n.rgb[i] = mix(p0->rgb[i], p1->rgb[i], t);
     }
+    for (int i = 0; i < 2; i++)
+        n.st[i] = mix(p0->st[i], p1->st[i], t);
     return n;
 }
 

@@ -75,7 +75,10 @@ static struct texel_rgb bilinear(const struct texture *tex, int k, double s, dou
  *     du/dx = ds/dx W_0,  dv/dx = dt/dx H_0   (the same for y)
  *     rho = max(sqrt(du/dx^2 + dv/dx^2), sqrt(du/dy^2 + dv/dy^2))
  *
- * (log2 of rho squared is twice lambda.) Not clamped here. */
+ * (log2 of rho squared is twice lambda.) Not clamped here. d->beyond (a
+ * helper pixel of the quad beyond the horizon, 1/z <= 0) has no
+ * derivatives: the rasterizer then takes the last level itself and does not
+ * call lod(). */
 static double lod(const struct tex_deriv *d)
 {
     (void)d;
@@ -85,7 +88,11 @@ static double lod(const struct tex_deriv *d)
 /* TODO 4, README section 7, "Trilinear": lambda clamped to [0, last level] (lambda
  * <= 0 magnifies: level 0), then the bilinear taps st->bilinear at levels
  * k = floor(lambda) and k + 1 (the last level twice at the end), mixed by
- * f = lambda - k: (1 - f) of level k, f of level k + 1. */
+ * f = lambda - k: (1 - f) of level k, f of level k + 1. Where f is 0 (the
+ * last level, or lambda a whole number) level k + 1 weighs nothing: you may
+ * skip its tap, but a level the texture does not have is never read.
+ * make check counts the texels read for each pixel (exercise_texel): two
+ * taps of 4 at most, at two adjacent levels (or one level twice). */
 static struct texel_rgb trilinear(const struct texture *tex, double lambda, double s, double t,
                                   const struct tex_stages *st)
 {

@@ -37,6 +37,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "exercise/gen.h"
 #include "exercise/scenes.h"
 
 struct guard *check_guard;
@@ -49,7 +50,35 @@ struct check {
     enum check_kind kind;
     scene_gen gen;
     bool both_ways;
+    search_gen search;          /* its search after the fixed scenes, or NULL */
+    const char *trusts;         /* what it takes on trust, said with its verdict, or NULL */
 };
+
+/* What the search aims at in lesson l. */
+static struct search_for search_for(const struct lesson *l)
+{
+    return (struct search_for){ .tiles = l->exercise.tiles, .samples = l->exercise.samples != NULL,
+                                .perspective = l->perspective };
+}
+
+/* The seed of search scene k of the check called name: the run's seed,
+ * the check and k, mixed (the same scene on every run with that seed). */
+static uint64_t scene_seed(uint64_t seed, const char *name, int k)
+{
+    uint64_t h = 1469598103934665603u;      /* FNV-1a of the name */
+    for (const char *c = name; *c; c++)
+        h = (h ^ (uint8_t)*c) * 1099511628211u;
+    struct rng r = { seed ^ h };
+    r.s += (uint64_t)k * 0x632be59bd9b4e019u;
+    return rng_next(&r);
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 static void progress(const struct check_options *o, int n, int i, const char *name, int done, int total)
 {
@@ -190,10 +219,59 @@ static bool run_check(struct checker *C, int i, int n, const struct check *ck, s
         }
         scene_free(&s);
     }
+    int searched = 0, ncounts = 0;
+    for (const int *c = C->l->exercise.samples; c && *c; c++)
+        ncounts++;
+    const struct check_options *o = C->o;
+    struct search_for aim = search_for(C->l);
+    double end = now() + C->search_share;
+    while (ck->search && (o->search_seconds > 0 || o->search_scenes > 0)
+           && (o->search_scenes <= 0 || searched < o->search_scenes) && (o->search_seconds <= 0 || now() < end)) {
+        uint64_t seed = scene_seed(o->seed, ck->name, searched);
+        ck->search(&aim, seed, &s, what, sizeof what);
+        size_t len = strlen(what);
+        snprintf(what + len, sizeof what - len, " (search scene %d, seed %llu)", searched + 1,
+                 (unsigned long long)o->seed);
+        /* each at one sample count in turn, as the random scenes */
+        C->only_count = ncounts > 1 ? C->l->exercise.samples[searched % ncounts] : 0;
+        if (check_guard) {
+            check_guard->check = i;
+            check_guard->scene = total + searched;
+            check_guard->searching = true;
+            check_guard->search_seed = seed;
+            alarm(SCENE_SECONDS);
+        }
+        struct verdict v;
+        bool passed = evaluate(C, &s, &v);
+        if (check_guard) {
+            alarm(0);
+            check_guard->searching = false;
+        }
+        searched++;
+        r->searched++;
+        if (!passed) {
+            if (C->o->progress)
+                fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
+            r->found_by_search = true;
+            report_failure(C, ck->name, &s, what, r);
+            fprintf(out, "\n  found by the search (scene %d after the check's %d fixed ones, seed %llu): the\n"
+                    "  counterexample file shows it again; make check SEED=%llu searches the same scenes\n",
+                    searched, total, (unsigned long long)o->seed, (unsigned long long)o->seed);
+            scene_free(&s);
+            return false;
+        }
+        scene_free(&s);
+    }
     if (C->o->progress)
         fprintf(out, "\r  %d/%d %-31s ", i + 1, n, ck->name);
-    fprintf(out, "ok (%d scene%s, %llu triangles)\n", total, total == 1 ? "" : "s",
-            (unsigned long long)(C->triangles - tris0));
+    if (searched)
+        fprintf(out, "ok (%d scene%s and %d searched, %llu triangles)\n", total, total == 1 ? "" : "s", searched,
+                (unsigned long long)(C->triangles - tris0));
+    else
+        fprintf(out, "ok (%d scene%s, %llu triangles)\n", total, total == 1 ? "" : "s",
+                (unsigned long long)(C->triangles - tris0));
+    if (ck->trusts)
+        fprintf(out, "      (%s)\n", ck->trusts);
     return true;
 }
 
@@ -209,6 +287,13 @@ static bool gen_user(int i, struct scene *s, char *what, size_t n)
     scene_copy(s, &user_loaded[i]);
     snprintf(what, n, "your scene %s", user_scenes[i]);
     return true;
+}
+
+/* No fixed scenes: a check that is its search alone. */
+static bool gen_none(int i, struct scene *s, char *what, size_t n)
+{
+    (void)i, (void)s, (void)what, (void)n;
+    return false;
 }
 
 /* The checks of lesson l, in order; false when a SCENE= file does not load. */
@@ -247,40 +332,43 @@ static bool plan_checks(const struct lesson *l, const struct check_options *o, s
     }
     struct check *c = P->checks;
     if (user_count)
-        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user, true };
-    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single, false };
-    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false };
-    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false };
-    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false };
+        c[P->n++] = (struct check){ "your scene", CK_ALL, gen_user, true, NULL, NULL };
+    c[P->n++] = (struct check){ "single triangle", CK_COVERAGE, gen_single, false, NULL, NULL };
+    c[P->n++] = (struct check){ "fill-rule ties", CK_COVERAGE, gen_ties, false, search_ties, NULL };
+    c[P->n++] = (struct check){ "watertight meshes", CK_COVERAGE, gen_meshes, false, NULL, NULL };
+    c[P->n++] = (struct check){ "random triangles", CK_COVERAGE, gen_random, false, search_coverage, NULL };
     if (l->exercise.tiles)
-        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false };
+        c[P->n++] = (struct check){ "tiles and blocks", CK_ALL, gen_tiles, false, NULL, NULL };
     c[P->n++] = (struct check){ l->perspective ? "colour and depth (perspective)" : "colour and depth (linear)",
-                                CK_COLOUR, gen_colour, false };
+                                CK_COLOUR, gen_colour, false, search_colour, NULL };
     const struct exercise_variant *variant = exercise_current_variant();
     if (variant && variant->from_bottom_right)
-        c[P->n++] = (struct check){ "walked from the bottom-right", CK_ORDER, gen_property, false };
+        c[P->n++] = (struct check){ "walked from the bottom-right", CK_ORDER, gen_property, false, NULL, NULL };
     if (l->exercise.no_pixel_mul)
-        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false };
+        c[P->n++] = (struct check){ "no multiplication per pixel", CK_PROPERTY, gen_property, false, NULL,
+                                    "counted from your COUNTs and your calls of edge_value() and pixel_centre():\n"
+                                    "       a product you write by hand in the loop is not seen" };
     if (l->exercise.full_blocks)
-        c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false };
+        c[P->n++] = (struct check){ "corner classes", CK_PROPERTY, gen_property, false, NULL, NULL };
     if (l->exercise.textures) {     /* textured scenes, simplest first: colour and the sampler's faults */
-        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false };
-        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false };
-        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false };
-        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false };
-        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false };
-        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false };
-        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false };
+        c[P->n++] = (struct check){ "texels magnified", CK_ALL, gen_tex_magnify, false, NULL, NULL };
+        c[P->n++] = (struct check){ "texels minified", CK_ALL, gen_tex_minify, false, NULL, NULL };
+        c[P->n++] = (struct check){ "repeat, clamp, s and t below 0", CK_ALL, gen_tex_wrap, false, NULL, NULL };
+        c[P->n++] = (struct check){ "a texture that is not square", CK_ALL, gen_tex_nonsquare, false, NULL, NULL };
+        c[P->n++] = (struct check){ "grazing floors and walls", CK_ALL, gen_tex_floor, false, NULL, NULL };
+        c[P->n++] = (struct check){ "tiny triangles", CK_ALL, gen_tex_tiny, false, NULL, NULL };
+        c[P->n++] = (struct check){ "textured 3-D scenes", CK_ALL, gen_tex_world, false, NULL, NULL };
+        c[P->n++] = (struct check){ "textures of every shape", CK_ALL, gen_none, false, search_textures, NULL };
     }
     if (l->exercise.clip) {     /* 3-D scenes through the front end, simplest first */
-        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false };
-        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false };
-        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two, false };
-        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far, false };
-        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge, true };
-        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside, true };
-        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor, true };
-        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras, true };
+        c[P->n++] = (struct check){ "no clipping needed", CK_ALL, gen_no_clip, false, NULL, NULL };
+        c[P->n++] = (struct check){ "one vertex behind near", CK_ALL, gen_behind_one, false, NULL, NULL };
+        c[P->n++] = (struct check){ "two vertices behind near", CK_ALL, gen_behind_two, false, NULL, NULL };
+        c[P->n++] = (struct check){ "crossing far", CK_ALL, gen_crossing_far, false, NULL, NULL };
+        c[P->n++] = (struct check){ "shared edges, clipped", CK_ALL, gen_shared_edge, true, NULL, NULL };
+        c[P->n++] = (struct check){ "closed box from inside", CK_ALL, gen_box_inside, true, NULL, NULL };
+        c[P->n++] = (struct check){ "floor past the guard band", CK_ALL, gen_floor, true, NULL, NULL };
+        c[P->n++] = (struct check){ "random cameras", CK_ALL, gen_random_cameras, true, search_world, NULL };
     }
     return true;
 }
@@ -301,7 +389,10 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     struct plan P;
     if (!plan_checks(l, o, &P))
         return false;
-    int n = P.n;
+    int n = P.n, searching = 0;
+    for (int i = 0; i < n; i++)
+        searching += P.checks[i].search != NULL;
+    C.search_share = searching ? o->search_seconds / searching : 0;
     const struct exercise_variant *variant = exercise_current_variant();
     if (variant)
         fprintf(out, "make check, lesson %s, variant %s (%s): %s\n", l->id, variant->name, variant->what, o->file);
@@ -324,11 +415,14 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     plan_free();
     target_free(&C.want);
     target_free(&C.got);
+    target_free(&C.own);
     for (int i = 0; i < CHECK_SPARES; i++) {
         target_free(&C.spare_want[i]);
         target_free(&C.spare_got[i]);
     }
     free(C.mask);
+    free(C.tie);
+    free(C.zexact);
     return ok;
 }
 
@@ -374,7 +468,9 @@ static void report_crash(const struct lesson *l, const struct check_options *o, 
     snprintf(r->failed, sizeof r->failed, "%s", ck->name);
     struct scene s;
     char what[200];
-    if (!ck->gen(g->scene, &s, what, sizeof what)) {
+    struct search_for aim = search_for(l);
+    if (g->searching ? !ck->search(&aim, g->search_seed, &s, what, sizeof what)
+                     : !ck->gen(g->scene, &s, what, sizeof what)) {
         plan_free();
         return;
     }

@@ -24,6 +24,8 @@
  * process that runs it, so a crash still says which scene did it. */
 struct guard {
     int check, scene, tri;
+    bool searching;             /* scene is the search's, made from search_seed */
+    uint64_t search_seed;
     struct check_result result;
 };
 extern struct guard *check_guard;     /* NULL unless guarded */
@@ -35,7 +37,8 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL, CK_ORDER };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_ORDER,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_ORDER, WRONG_TILES,
+    WRONG_READS,
 };
 
 struct verdict {
@@ -60,6 +63,12 @@ struct verdict {
      * dv/dy in level-0 texels), lambda = log2(rho) and the code's */
     double deriv[4], want_lambda, got_lambda;
     struct texel_fault texel;       /* WRONG_TEXEL: the texel read outside its level */
+    /* WRONG_TILES: the tile (bx, by)-(bx1, by1) narrated outside the
+     * triangle's box of want_n tiles;
+     * WRONG_READS: got_n texels of got_class levels read for pixel (x, y),
+     * levels the bits of got_mask, where want_n (4 per level read) and
+     * two adjacent levels at most are the filter's */
+    int box[4];                     /* WRONG_TILES: the triangle's box, x0, y0, x1, y1 */
 };
 
 /* Everything one check run needs. */
@@ -69,6 +78,11 @@ struct checker {
     struct raster_params p;
     enum check_kind kind;
     struct target want, got;
+    /* a 3-D scene: the exact rule on the code's own screen triangles (its
+     * clipper's polygons, fanned its way), which compare() accepts where
+     * it differs from want by the snapping of another fan alone */
+    struct target own;
+    bool use_own;
     /* pictures of other sizes and sample counts, the most recent first,
      * kept between scenes: lesson 08 draws each scene at 4, 8 and 1
      * samples, and random scenes change size (no reallocation each time) */
@@ -85,6 +99,9 @@ struct checker {
     bool order_any;
     int order_x, order_y;
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
+    uint8_t *tie;               /* pixels whose nearest surface two triangles tie for (either colour is right) */
+    double *zexact;             /* the exact depth of the surface nearest at each pixel */
+    double search_share;        /* seconds of search for each check that searches */
     uint64_t evaluations;       /* scenes drawn, for the report */
     uint64_t triangles;
 };

@@ -15,6 +15,7 @@
 #include "exercise.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "front/front.h"
@@ -92,6 +93,45 @@ static bool same_both_ways(const struct poly *r, const struct poly *in, const st
     return false;
 }
 
+/* Per world triangle: did the student's clipper give the lesson's polygons,
+ * vertex for vertex, though perhaps starting at another (a cyclic
+ * sequence: Sutherland-Hodgman written for the edge arriving at each
+ * vertex gives them rotated one place)? Its fan then differs from the
+ * lesson's, and the pictures by the snapping of the fan's slivers alone. */
+static bool *as_lesson;
+static int as_lesson_n;
+
+bool exercise_clip_as_lesson(int tri)
+{
+    return tri >= 0 && tri < as_lesson_n && as_lesson[tri];
+}
+
+static bool same_vertex(const struct pvert *a, const struct pvert *b)
+{
+    for (int c = 0; c < 3; c++)
+        if (fabs(a->pos[c] - b->pos[c]) > 1e-9 * fmax(1, fabs(b->pos[c])) || fabs(a->rgb[c] - b->rgb[c]) > 1e-9)
+            return false;
+    for (int c = 0; c < 2; c++)
+        if (fabs(a->st[c] - b->st[c]) > 1e-9 * fmax(1, fabs(b->st[c])))
+            return false;
+    return true;
+}
+
+/* Is a the polygon b, starting at any of its vertices? */
+static bool same_cycle(const struct poly *a, const struct poly *b)
+{
+    if (a->n != b->n)
+        return false;
+    for (int k = 0; k < b->n || (k == 0 && b->n == 0); k++) {
+        bool same = true;
+        for (int i = 0; i < a->n && same; i++)
+            same = same_vertex(&a->v[i], &b->v[(i + k) % b->n]);
+        if (same)
+            return true;
+    }
+    return false;
+}
+
 /* The student's clipper against one plane, looked at: false when its
  * polygon cannot be used (dropped). */
 static bool student_clip(struct poly *out, const struct poly *in, const struct plane *pl, int tri)
@@ -119,13 +159,17 @@ static bool student_clip(struct poly *out, const struct poly *in, const struct p
         }
         for (int c = 0; c < 3; c++)
             v->rgb[c] = fmin(fmax(v->rgb[c], 0), 1);
-        for (int c = 0; c < 2; c++)     /* s and t, which the exercise's clipper need not carry */
+        for (int c = 0; c < 2; c++)     /* s and t, held finite and in range */
             v->st[c] = isfinite(v->st[c]) ? fmin(fmax(v->st[c], -SCENE_ST_MAX), SCENE_ST_MAX) : 0;
     }
     if (both_ways && fault.what == CLIP_OK && !same_both_ways(&r, in, pl, &f)) {
         f.what = CLIP_ORDER;
         first_fault(f);
     }
+    struct poly lesson;
+    clip_polygon(&lesson, in, pl, NULL);
+    if (tri >= 0 && tri < as_lesson_n && !same_cycle(&r, &lesson))
+        as_lesson[tri] = false;
     *out = r;
     return true;
 }
@@ -162,11 +206,17 @@ static int clip_pipeline(const struct frustum *v, enum cull cull, const struct w
 
 bool exercise_front(struct scene *s)
 {
+    fault = (struct clip_fault){ .what = CLIP_OK };
+    as_lesson_n = 0;
     if (current_front)
         return current_front(s);
     if (!current_clip)
         return front_scene(s);
-    fault = (struct clip_fault){ .what = CLIP_OK };
     world_base = s->world.tris;
+    bool *a = realloc(as_lesson, sizeof *a * (size_t)(s->world.ntris > 0 ? s->world.ntris : 1));
+    as_lesson_n = a ? s->world.ntris : 0;
+    as_lesson = a ? a : as_lesson;
+    for (int i = 0; i < as_lesson_n; i++)
+        as_lesson[i] = true;
     return front_scene_with(s, clip_pipeline);
 }

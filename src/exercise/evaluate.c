@@ -121,6 +121,37 @@ static void watch_order(struct checker *C, const struct trace_event *ev, struct 
     C->order_y = ev->y;
 }
 
+/* The texels read for one written pixel (lesson 09), counted inside
+ * exercise_texel(): the trilinear filter reads two bilinear taps of 4
+ * texels, at two adjacent levels (or one level twice). A bilinear tap of
+ * more texels, or a mix of more levels, draws the same picture slower. */
+#define TRILINEAR_READS 8
+static void watch_reads(const struct trace_event *ev, struct verdict *v)
+{
+    const struct texel_reads *r = exercise_texel_reads();
+    int levels = __builtin_popcount(r->levels);
+    uint32_t low = r->levels & -r->levels;
+    bool adjacent = levels < 2 || r->levels == (low | low << 1);
+    if (r->n > TRILINEAR_READS || levels > 2 || !adjacent)
+        *v = (struct verdict){ .what = WRONG_READS, .x = ev->x, .y = ev->y,
+                               .got_n = (int)(r->n < 1000000 ? r->n : 1000000), .want_n = TRILINEAR_READS,
+                               .got_class = levels, .got_mask = r->levels };
+    exercise_texel_reads_clear();
+}
+
+/* A tile narrated (lesson 07): one of the tiles of the triangle's box.
+ * Walking every tile of the screen for every triangle draws the same
+ * picture, and takes the time of the screen instead of the triangle's. */
+static void watch_tile(struct checker *C, const struct trace_event *ev, struct verdict *v)
+{
+    const struct tri_setup *t = C->t;
+    if (ev->x1 < t->minx || ev->x > t->maxx || ev->y1 < t->miny || ev->y > t->maxy)
+        *v = (struct verdict){ .what = WRONG_TILES, .x = ev->x, .y = ev->y, .bx = ev->x, .by = ev->y,
+                               .bx1 = ev->x1, .by1 = ev->y1,
+                               .want_n = (t->maxx / 64 - t->minx / 64 + 1) * (t->maxy / 64 - t->miny / 64 + 1),
+                               .box = { t->minx, t->miny, t->maxx, t->maxy } };
+}
+
 /* The narration, watched for the lesson's property. */
 static void watch(void *ctx, const struct trace_event *ev)
 {
@@ -131,6 +162,15 @@ static void watch(void *ctx, const struct trace_event *ev)
     if (C->kind == CK_ORDER) {
         watch_order(C, ev, v);
         return;
+    }
+    if (C->l->exercise.textures && ev->kind == TRACE_PIXEL_WRITE) {
+        watch_reads(ev, v);
+        return;
+    }
+    if (C->l->exercise.tiles && ev->kind == TRACE_BLOCK && ev->aux[0] == 64 && ev->aux[1] == 0) {
+        watch_tile(C, ev, v);
+        if (v->what != WRONG_NONE)
+            return;
     }
     if (C->l->exercise.lod_line > 0 && ev->kind == TRACE_STEP && ev->line == C->l->exercise.lod_line) {
         watch_lod(C, ev, v);
@@ -209,6 +249,19 @@ static void texel_pixel(const struct checker *C, struct verdict *v)
     }
 }
 
+/* The lesson's clipped polygon, starting at another vertex, fanned from
+ * there: the other fan's slivers, their vertices snapped to 1/256 pixel,
+ * tilt their planes of depth and colour by as much as a sliver is thin.
+ * Where the code's clipper gave the lesson's polygons (as cyclic
+ * sequences), its pixel i is right when it is the exact rule's on the
+ * code's own triangles (the exact plane of the triangle drawn). */
+static bool own_close(const struct checker *C, size_t i)
+{
+    const struct target *G = &C->got, *O = &C->own;
+    return O->color && O->count[i] == C->want.count[i]
+        && pixel_close(O->color[i], O->depth[i], G->color[i], G->depth[i]);
+}
+
 /* The first pixel, in reading order, where the pictures differ. */
 static bool compare(const struct checker *C, int tri, struct verdict *v)
 {
@@ -228,7 +281,8 @@ static bool compare(const struct checker *C, int tri, struct verdict *v)
             what = WRONG_COUNT;
         else if (want_mask != got_mask)
             what = WRONG_MASK;
-        else if (colour && W->count[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i]))
+        else if (colour && W->count[i] && !C->tie[i] && !pixel_close(W->color[i], W->depth[i], G->color[i], G->depth[i])
+                 && !(C->use_own && own_close(C, i)))
             what = pixel_close(W->color[i], W->depth[i], G->color[i], W->depth[i]) ? WRONG_DEPTH : WRONG_COLOUR;
         if (what != WRONG_NONE) {
             *v = (struct verdict){
@@ -251,6 +305,91 @@ const struct lesson_variant *check_exact(const struct lesson *l)
     return l->exercise.textures ? &l->variants[0] : exercise_exact(l->perspective);
 }
 
+/* The parameters triangle i of s is drawn with: its texture, and the
+ * scene's checker (texture checker N), which every lesson shades. */
+static struct raster_params tri_params(const struct raster_params *p, const struct scene *s, int i)
+{
+    struct raster_params out = lesson_params_tri(p, s, i);
+    out.checker = s->checker;
+    return out;
+}
+
+/* Two surfaces whose exact depths at a pixel centre differ by less than
+ * this (relative) tie for it: code that computes depth in float (lesson
+ * 04's lanes keep 1/z to about 1e-5) may give it to either, and both
+ * colours are right. Exactly equal depths (a triangle drawn twice) are no
+ * tie: the first one drawn keeps the pixel. */
+#define DEPTH_TIE 4e-5
+/* A pixel centre this near a border of the checker's squares (in squares,
+ * relative to s N and t N) lies on it: float texture coordinates may put
+ * it in either square. */
+#define CHECKER_TIE 2e-4
+
+struct tie_run {
+    struct checker *C;
+    const struct tri_setup *t;
+    int checker;
+    bool perspective;
+};
+
+static bool on_border(double v)
+{
+    return fabs(v - round(v)) <= CHECKER_TIE * fmax(1, fabs(v));
+}
+
+/* Before triangle t is drawn: the pixels it ties for with the surface
+ * drawn there, and those it takes whose checker square is a toss-up. */
+static void tie_pixel(void *ctx, int x, int y)
+{
+    struct tie_run *r = ctx;
+    struct checker *C = r->C;
+    size_t i = (size_t)y * (size_t)C->want.w + (size_t)x;
+    double z, rgb[3], st[2];
+    reference_shade(r->t, x, y, r->perspective, &z, rgb, st);
+    bool border = r->checker > 0 && (on_border(st[0] * r->checker) || on_border(st[1] * r->checker));
+    if (!C->want.count[i]) {
+        C->tie[i] = border;
+        C->zexact[i] = z;
+        return;
+    }
+    double old = C->zexact[i], d = z - old;
+    if (z != old && fabs(d) <= DEPTH_TIE * fabs(old))
+        C->tie[i] = 1;
+    else if (d < 0)
+        C->tie[i] = border;     /* nearer than both: its own */
+    if (d < 0)
+        C->zexact[i] = z;
+}
+
+/* No ties yet on a picture of s's size; false when out of memory. */
+static bool tie_start(struct checker *C, const struct scene *s)
+{
+    size_t n = (size_t)s->w * (size_t)s->h;
+    uint8_t *tie = realloc(C->tie, n);
+    if (tie)
+        C->tie = tie;
+    double *zexact = realloc(C->zexact, sizeof *zexact * n);
+    if (zexact)
+        C->zexact = zexact;
+    if (!tie || !zexact)
+        return false;
+    memset(C->tie, 0, n);
+    return true;
+}
+
+/* The picture of the code's own screen triangles, cleared. */
+static bool own_start(struct checker *C, const struct scene *s)
+{
+    struct target *O = &C->own;
+    if (O->color && O->w == s->w && O->h == s->h) {
+        O->background = scene_background(s);
+        target_clear(O);
+        return true;
+    }
+    target_free(O);
+    return target_init(O, s->w, s->h, scene_background(s));
+}
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
 {
@@ -261,13 +400,18 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     if (!mask)
         return true;
     C->mask = mask;
+    if (!tie_start(C, s))
+        return true;
+    bool colour = C->kind == CK_COLOUR || C->kind == CK_ALL;
     C->evaluations++;
     const struct lesson_variant *exact = check_exact(C->l);
     bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL || C->kind == CK_ORDER;
     for (int i = 0; i < s->ntris; i++) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[i].v, s->w, s->h, C->p.subpixel_bits);
-        C->p = lesson_params_tri(&C->p, s, i);
+        C->p = tri_params(&C->p, s, i);
+        if (colour && samples == 1)
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker, C->l->perspective });
         exact->rasterize(&t, &C->p, &C->want, NULL);
         if (property) {
             memset(C->mask, 0, (size_t)s->w * (size_t)s->h);
@@ -319,20 +463,32 @@ bool exercise_projected(struct scene *out, const struct scene *s)
     return false;
 }
 
+/* compare() after world triangle w: where the code's clipper gave the
+ * lesson's polygons, the exact plane of the triangles it drew is right. */
+static bool compare_world(struct checker *C, int w, struct verdict *v)
+{
+    C->use_own = exercise_clip_as_lesson(w);
+    bool same = compare(C, w, v);
+    C->use_own = false;
+    return same;
+}
+
 /* Draw screen triangles [*i, end of world triangle w) of s with fn into fb. */
 static void draw_world_tri(struct checker *C, const struct scene *s, int w, int *i,
-                           const struct lesson_variant *v, struct target *fb, bool watch_faults)
+                           const struct lesson_variant *v, struct target *fb, bool watch_faults, bool ties)
 {
     struct raster_params p = C->p;
     p.at = &(struct run_place){ .scene = s };
     for (; *i < s->ntris && s->world.from[*i] == w; ++*i) {
         struct tri_setup t;
         tri_setup_bits(&t, s->tris[*i].v, s->w, s->h, C->p.subpixel_bits);
-        p = lesson_params_tri(&p, s, *i);
+        p = tri_params(&p, s, *i);
         struct trace tr = { .sink = NULL };
         trace_begin(&tr, (uint32_t)*i, TRACE_UNLIMITED);
         if (watch_faults && check_guard)
             check_guard->tri = *i;
+        if (ties)               /* the exact picture: its ties first */
+            reference_coverage(&t, tie_pixel, &(struct tie_run){ C, &t, s->checker, true });
         v->rasterize(&t, &p, fb, watch_faults ? &tr : NULL);
         if (watch_faults)
             C->triangles++;
@@ -353,13 +509,14 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         return true;
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
+    ok = ok && tie_start(C, s) && own_start(C, s);
     C->evaluations += ok;
     const struct lesson_variant *exact = C->l->exercise.textures ? check_exact(C->l) : exercise_exact(true);
     const struct clip_fault *cf = exercise_clip_fault();
     int a = 0, b = 0;
     for (int w = 0; ok && w < s->world.ntris; w++) {
         int a0 = a, b0 = b;
-        draw_world_tri(C, &want, w, &a, exact, &C->want, false);
+        draw_world_tri(C, &want, w, &a, exact, &C->want, false, true);
         struct verdict base = { .world = true, .tri = w, .samples = 1 };
         if (cf->what != CLIP_OK && cf->tri == w) {
             *v = base;
@@ -369,7 +526,9 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
             break;
         }
         exercise_fault_clear();
-        draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true);
+        int b0_own = b;
+        draw_world_tri(C, &got, w, &b0_own, exact, &C->own, false, false);
+        draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true, false);
         const struct exercise_fault *f = exercise_fault();
         if (f->any) {
             *v = base;
@@ -380,7 +539,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
             v->what = WRONG_TEXEL, v->texel = *exercise_texel_fault();
             texel_pixel(C, v);
             ok = false;
-        } else if (!compare(C, w, v)) {
+        } else if (!compare_world(C, w, v)) {
             v->world = true;
             ok = false;
         }

@@ -16,6 +16,7 @@ static const struct lesson *current_lesson;
 static struct trace *current_tr;
 static struct exercise_fault fault;
 static struct texel_fault texel_fault;
+static struct texel_reads texel_reads;
 
 static const struct exercise_variant *current_variant;
 
@@ -60,6 +61,17 @@ void exercise_fault_clear(void)
 {
     memset(&fault, 0, sizeof fault);
     memset(&texel_fault, 0, sizeof texel_fault);
+    exercise_texel_reads_clear();
+}
+
+const struct texel_reads *exercise_texel_reads(void)
+{
+    return &texel_reads;
+}
+
+void exercise_texel_reads_clear(void)
+{
+    memset(&texel_reads, 0, sizeof texel_reads);
 }
 
 const struct texel_fault *exercise_texel_fault(void)
@@ -71,6 +83,9 @@ uint32_t exercise_texel(const struct texture *tex, int k, int64_t i, int64_t j)
 {
     bool level = k >= 0 && k < tex->nlevels;
     const struct texture_level *l = level ? &tex->level[k] : NULL;
+    texel_reads.n++;
+    if (level)
+        texel_reads.levels |= 1u << k;
     if (l && i >= 0 && j >= 0 && i < l->w && j < l->h)
         return l->texel[(size_t)j * (size_t)l->w + (size_t)i];
     if (!texel_fault.any)

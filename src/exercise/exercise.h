@@ -81,6 +81,11 @@ struct clip_fault {
 };
 const struct clip_fault *exercise_clip_fault(void);
 
+/* Since the last exercise_front(): did every polygon the student's clipper
+ * made of world triangle tri equal the lesson's clipper's, vertex for
+ * vertex, as a cyclic sequence (perhaps starting at another vertex)? */
+bool exercise_clip_as_lesson(int tri);
+
 /* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
  * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
  * count a new vertex made one way and not, to the last bit, the other as
@@ -123,6 +128,17 @@ struct texel_fault {
 };
 const struct texel_fault *exercise_texel_fault(void);
 
+/* The texels read through exercise_texel() since exercise_texel_reads_clear()
+ * (or exercise_fault_clear()): how many, and the levels read (bit k: level
+ * k; a level the texture does not have is not a bit). Lesson 09's check
+ * holds them, per written pixel, to the filter's taps. */
+struct texel_reads {
+    uint64_t n;
+    uint32_t levels;
+};
+const struct texel_reads *exercise_texel_reads(void);
+void exercise_texel_reads_clear(void);
+
 /* --- make check ---------------------------------------------------------------- */
 
 struct check_options {
@@ -134,6 +150,13 @@ struct check_options {
     FILE *out;                      /* the report (stdout) */
     bool progress;                  /* show progress on long checks (a terminal) */
     const char *program;            /* the exercise program, for the debugger command */
+    /* the search after each check's fixed scenes: scenes made from seed,
+     * until one fails, search_seconds (for the whole lesson, shared by its
+     * checks) are spent or search_scenes (per check) are drawn; no search
+     * when both are 0 */
+    uint64_t seed;
+    double search_seconds;
+    int search_scenes;
 };
 
 struct check_result {
@@ -143,6 +166,8 @@ struct check_result {
     int x, y;                       /* its first wrong pixel */
     uint64_t step;                  /* the step that shows it in the explorer */
     int ntris;                      /* triangles in the counterexample */
+    uint64_t searched;              /* scenes the search drew */
+    bool found_by_search;           /* the counterexample's scene is the search's */
 };
 
 /* Run every check of lesson l on the code given to exercise_use, in order,

@@ -4,6 +4,7 @@
 #define TRISTEP_EXERCISE_GEN_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "scene/scene.h"
 
@@ -32,5 +33,35 @@ static inline double rng_range(struct rng *r, double lo, double hi)
 
 /* An empty scene of w x h pixels. */
 void check_scene_start(struct scene *s, int w, int h);
+
+/* What scenes.c's generators build with (the search's too, search.c): a
+ * coordinate on the 1/256 grid, a pixel centre or an integer, at random;
+ * a vertex, one of random colour and depth in [zmin, zmax]; a triangle
+ * added with its coordinates held to the limits, walked the other way
+ * round when flip; a jittered grid of nx x ny cells over [x0, x1] x [y0,
+ * y1], each cut in two. */
+double gen_grid(struct rng *r, double v);
+struct vertex gen_vtx(double x, double y, double z, double r, double g, double b);
+struct vertex gen_rvtx(struct rng *r, double x, double y, double zmin, double zmax);
+bool gen_add(struct scene *s, struct vertex a, struct vertex b, struct vertex c);
+bool gen_add_flipped(struct scene *s, struct vertex a, struct vertex b, struct vertex c, bool flip);
+void gen_grid_mesh(struct scene *s, struct rng *r, int nx, int ny, double x0, double y0, double x1, double y1,
+                   double jitter);
+
+/* A scene written as a scene file's text and read by scene_parse (so that
+ * its textures are the built-in ones a counterexample names again):
+ * started with its size and a texture line (NULL: none), a textured
+ * triangle (x y z r g b s t for each vertex), ended into s. */
+struct gen_text {
+    char *buf;
+    size_t len;
+    FILE *f;
+};
+struct tv {
+    double x, y, z, r, g, b, s, t;
+};
+bool gen_text_start(struct gen_text *x, int w, int h, const char *texture);
+void gen_tri(struct gen_text *x, struct tv a, struct tv b, struct tv c);
+bool gen_text_end(struct gen_text *x, struct scene *s);
 
 #endif

@@ -5,6 +5,7 @@
  *
  *     exercise-NN [--file NAME] [--exercise-variant V] [LESSON PROGRAM OPTIONS]      the explorer
  *     exercise-NN --check [--file NAME] [--exercise-variant V] [--check-scene FILE]... [--out DIR] [--open CMD]
+ *                 [--seed N] [--search SECONDS]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +26,8 @@ int main(int argc, char **argv)
 {
     const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL, *variant = NULL;
     bool check = false;
+    unsigned long long seed = 1;
+    double search = 1.5;        /* seconds of search for the whole lesson */
     const char **scenes = calloc((size_t)argc + 1, sizeof *scenes);
     char **rest = calloc((size_t)argc + 3, sizeof *rest);
     if (!scenes || !rest)
@@ -47,6 +50,10 @@ int main(int argc, char **argv)
             open_cmd = argv[++i];
         else if (strcmp(a, "--exercise-variant") == 0 && has_value)
             variant = argv[++i];
+        else if (strcmp(a, "--seed") == 0 && has_value)
+            seed = strtoull(argv[++i], NULL, 0);
+        else if (strcmp(a, "--search") == 0 && has_value)
+            search = strtod(argv[++i], NULL);
         else {
             variant_given |= strcmp(a, "--variant") == 0 || strncmp(a, "--variant=", 10) == 0;
             rest[nrest++] = argv[i];
@@ -57,13 +64,15 @@ int main(int argc, char **argv)
         if (strcmp(argv[i], "--help") == 0) {
             /* the exercise's own options, then the lesson program's */
             printf("Usage: %s [--file NAME] [LESSON PROGRAM OPTION]...      the explorer on your code\n"
-                   "       %s --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD]\n"
+                   "       %s --check [--file NAME] [--check-scene FILE]... [--out DIR] [--open CMD] [--seed N] [--search SECONDS]\n"
                    "The lesson's program with your exercise_rasterize() as the variant \"exercise\", or its checks.\n\n"
                    "  --file NAME             the name of the file compiled in (shown and put in commands; default exercise.c)\n"
                    "  --check                 run the lesson's checks on your code (make check), not the explorer\n"
                    "  --check-scene FILE      with --check: check this scene of your own first (make check SCENE=FILE)\n"
                    "  --out DIR               with --check: write counterexamples under DIR/NAME/ (default build/check)\n"
                    "  --open CMD              with --check: the command printed to open a counterexample\n"
+                   "  --seed N                with --check: the search's seed (default 1: the same scenes every run)\n"
+                   "  --search SECONDS        with --check: how long the search after the fixed scenes runs (default 1.5)\n"
                    "  --exercise-variant V    the graded variant V of the exercise (make check VARIANT=V):\n",
                    argv[0], argv[0]);
             for (const struct exercise_variant *v = LESSON.exercise.variants; v && v->name; v++)
@@ -99,6 +108,7 @@ int main(int argc, char **argv)
             .file = file, .scenes = scenes, .out_dir = out_dir, .open_cmd = open_cmd,
             .params = { .subpixel_bits = SUBPIXEL_BITS }, .out = stdout,
             .progress = isatty(STDOUT_FILENO), .program = argv[0],
+            .seed = seed, .search_seconds = search > 0 && search < 3600 ? search : 0,
         };
         struct check_result r;
         bool ok = exercise_check_guarded(&LESSON, &o, &r);

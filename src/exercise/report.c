@@ -210,6 +210,19 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
                 v->want_c & 0xffffffu, v->got_c & 0xffffffu);
         break;
     }
+    case WRONG_TILES:
+        fprintf(out, "      your code visited tile (%d, %d)-(%d, %d), outside the triangle's box\n"
+                "      (%d, %d)-(%d, %d): only the %d tile%s of the box can hold a pixel of it (the picture is\n"
+                "      right, the time is the screen's, not the triangle's)\n", v->bx, v->by, v->bx1, v->by1,
+                v->box[0], v->box[1], v->box[2], v->box[3], v->want_n, v->want_n == 1 ? "" : "s");
+        break;
+    case WRONG_READS:
+        fprintf(out, "      your sampler read %d texel%s from %d level%s (mask %#x) for pixel (%d, %d);\n"
+                "      the trilinear filter reads two bilinear taps of 4 texels, at two adjacent levels\n"
+                "      (or one level twice): %d at most (counted inside exercise_texel(); the picture may be right)\n",
+                v->got_n, v->got_n == 1 ? "" : "s", v->got_class, v->got_class == 1 ? "" : "s", v->got_mask,
+                v->x, v->y, v->want_n);
+        break;
     case WRONG_NONE:
         break;
     }
@@ -276,6 +289,7 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         struct trace tr = { .sink = follow, .ctx = f };
         trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
         struct raster_params p = lesson_params_tri(&C->p, s, v->tri);
+        p.checker = s->checker;
         exercise_variant.rasterize(&t, &p, &fb, &tr);
         bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
         if (!missing && f->written)

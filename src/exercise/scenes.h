@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "scene/scene.h"
 
@@ -37,5 +38,18 @@ bool gen_tex_minify(int i, struct scene *s, char *what, size_t n);      /* level
 bool gen_tex_floor(int i, struct scene *s, char *what, size_t n);       /* grazing floors and walls */
 bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n);        /* helper pixels */
 bool gen_tex_world(int i, struct scene *s, char *what, size_t n);       /* 3-D: OBJ vt, clipped s and t */
+
+/* The search (search.c): scene `seed` of a generator aimed at what a lesson
+ * decides, made from the seed alone (true: always a scene). */
+struct search_for {
+    bool tiles, samples, perspective;       /* the lesson's (struct lesson_exercise, lesson.h) */
+};
+typedef bool (*search_gen)(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);
+
+bool search_ties(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);
+bool search_coverage(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);
+bool search_colour(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);
+bool search_textures(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);  /* lesson 09 */
+bool search_world(const struct search_for *l, uint64_t seed, struct scene *s, char *what, size_t n);     /* lesson 06 */
 
 #endif

@@ -20,14 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A scene being written: its text. */
-struct text {
-    char *buf;
-    size_t len;
-    FILE *f;
-};
-
-static bool text_start(struct text *x, int w, int h, const char *texture)
+bool gen_text_start(struct gen_text *x, int w, int h, const char *texture)
 {
     x->buf = NULL;
     x->len = 0;
@@ -40,12 +33,7 @@ static bool text_start(struct text *x, int w, int h, const char *texture)
     return true;
 }
 
-/* A textured vertex: x y z r g b s t. */
-struct tv {
-    double x, y, z, r, g, b, s, t;
-};
-
-static void tri(struct text *x, struct tv a, struct tv b, struct tv c)
+void gen_tri(struct gen_text *x, struct tv a, struct tv b, struct tv c)
 {
     const struct tv *v[3] = { &a, &b, &c };
     fputs("tri", x->f);
@@ -57,7 +45,7 @@ static void tri(struct text *x, struct tv a, struct tv b, struct tv c)
 
 /* The text read as a scene; a scene of no triangles if it were wrong (it
  * is not: the tests check every scene of every check). */
-static bool text_end(struct text *x, struct scene *s)
+bool gen_text_end(struct gen_text *x, struct scene *s)
 {
     fclose(x->f);
     char err[256];
@@ -84,7 +72,7 @@ static struct tv Vc(double x, double y, double z, double r, double g, double b, 
  * coordinates (s0, t0) + (ds, dt) spread over it: the level of detail of
  * a w-texel-wide texture is about log2(w ds / 44) along x. `turn` lays the
  * spread along y instead (rho from the y derivatives). */
-static void spread(struct text *x, double s0, double t0, double ds, double dt, double z0, double z1, bool turn,
+static void spread(struct gen_text *x, double s0, double t0, double ds, double dt, double z0, double z1, bool turn,
                    bool coloured)
 {
     struct tv a = V(2.3, 2.6, z0, s0, t0), b = V(46.1, 3.9, z0, s0 + ds, t0), c = V(4.7, 33.2, z1, s0, t0 + dt);
@@ -93,41 +81,41 @@ static void spread(struct text *x, double s0, double t0, double ds, double dt, d
     if (coloured) {
         a.g = 0.6, b.b = 0.5, c.r = 0.7;
     }
-    tri(x, a, b, c);
+    gen_tri(x, a, b, c);
 }
 
 /* --- texels magnified: the bilinear tap at level 0 ------------------------------- */
 
 bool gen_tex_magnify(int i, struct scene *s, char *what, size_t n)
 {
-    struct text x;
+    struct gen_text x;
     switch (i) {
     case 0:
-        text_start(&x, 40, 30, "builtin:rgby");
-        tri(&x, V(2.3, 2.1, 1, 0, 0), V(37.6, 3.4, 1, 1, 0), V(5.2, 27.8, 1, 0, 1));
+        gen_text_start(&x, 40, 30, "builtin:rgby");
+        gen_tri(&x, V(2.3, 2.1, 1, 0, 0), V(37.6, 3.4, 1, 1, 0), V(5.2, 27.8, 1, 0, 1));
         snprintf(what, n, "builtin:rgby (2 x 2 texels) magnified, a texel some 18 pixels wide");
         break;
     case 1:
-        text_start(&x, 40, 30, "builtin:rgby");
-        tri(&x, Vc(1.7, 28.4, 1, 1, 0.8, 0.6, 0.1, 1.9), Vc(38.2, 26.9, 3, 0.5, 1, 1, 1.9, 1.7),
+        gen_text_start(&x, 40, 30, "builtin:rgby");
+        gen_tri(&x, Vc(1.7, 28.4, 1, 1, 0.8, 0.6, 0.1, 1.9), Vc(38.2, 26.9, 3, 0.5, 1, 1, 1.9, 1.7),
             Vc(20.6, 1.3, 2, 1, 1, 0.4, 0.8, 0.05));
         snprintf(what, n, "builtin:rgby magnified under coloured vertices, depths 1 to 3 (perspective)");
         break;
     case 2:
-        text_start(&x, 48, 36, "builtin:checker-numbers");
-        tri(&x, V(1.5, 1.5, 1, 0.30, 0.40), V(46.3, 3.2, 1, 0.344, 0.40), V(3.1, 34.6, 1, 0.30, 0.4515));
+        gen_text_start(&x, 48, 36, "builtin:checker-numbers");
+        gen_tri(&x, V(1.5, 1.5, 1, 0.30, 0.40), V(46.3, 3.2, 1, 0.344, 0.40), V(3.1, 34.6, 1, 0.30, 0.4515));
         snprintf(what, n, "builtin:checker-numbers magnified, a texel some 4 pixels wide, on the digits of a cell");
         break;
     case 3:
-        text_start(&x, 48, 36, "builtin:bricks");
-        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(45.5, 3.5, 4, 0.13, 0.05), V(43.5, 33.5, 2, 0.13, 0.08));
-        tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(43.5, 33.5, 2, 0.13, 0.08), V(3.5, 32.5, 1.5, 0.10, 0.08));
+        gen_text_start(&x, 48, 36, "builtin:bricks");
+        gen_tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(45.5, 3.5, 4, 0.13, 0.05), V(43.5, 33.5, 2, 0.13, 0.08));
+        gen_tri(&x, V(2.5, 2.5, 1, 0.10, 0.05), V(43.5, 33.5, 2, 0.13, 0.08), V(3.5, 32.5, 1.5, 0.10, 0.08));
         snprintf(what, n, "builtin:bricks magnified on two triangles sharing an edge, depths 1 to 4");
         break;
     default:
         return false;
     }
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- minified: levels of detail chosen one by one ---------------------------------- */
@@ -153,92 +141,92 @@ bool gen_tex_minify(int i, struct scene *s, char *what, size_t n)
     };
     if (i >= (int)(sizeof m / sizeof m[0]))
         return false;
-    struct text x;
-    text_start(&x, 48, 36, m[i].texture);
+    struct gen_text x;
+    gen_text_start(&x, 48, 36, m[i].texture);
     struct rng r = { 0x70d5u + (uint64_t)i };
     spread(&x, rng_range(&r, -2, 2), rng_range(&r, -2, 2), m[i].ds, m[i].dt, 1, m[i].z1, m[i].turn, m[i].coloured);
     snprintf(what, n, "%s minified: s spans %g, t %g over some 44 pixels%s", m[i].texture, m[i].ds, m[i].dt,
              i == 7 ? " (lambda beyond the last level)" : "");
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- repeat and clamp, s and t below 0 and beyond 1 ------------------------------- */
 
 bool gen_tex_wrap(int i, struct scene *s, char *what, size_t n)
 {
-    struct text x;
+    struct gen_text x;
     switch (i) {
     case 0:
-        text_start(&x, 40, 30, "builtin:rgby repeat");
-        tri(&x, V(1.5, 1.5, 1, -2.25, -1.75), V(38.5, 2.5, 1, 0.75, -1.75), V(2.5, 28.5, 1, -2.25, 0.75));
+        gen_text_start(&x, 40, 30, "builtin:rgby repeat");
+        gen_tri(&x, V(1.5, 1.5, 1, -2.25, -1.75), V(38.5, 2.5, 1, 0.75, -1.75), V(2.5, 28.5, 1, -2.25, 0.75));
         snprintf(what, n, "builtin:rgby repeated, s from -2.25 to 0.75, t from -1.75 to 0.75");
         break;
     case 1:
-        text_start(&x, 40, 30, "builtin:rgby clamp");
-        tri(&x, V(1.5, 1.5, 1, -0.75, -0.6), V(38.5, 2.5, 1, 1.75, -0.6), V(2.5, 28.5, 1, -0.75, 1.6));
+        gen_text_start(&x, 40, 30, "builtin:rgby clamp");
+        gen_tri(&x, V(1.5, 1.5, 1, -0.75, -0.6), V(38.5, 2.5, 1, 1.75, -0.6), V(2.5, 28.5, 1, -0.75, 1.6));
         snprintf(what, n, "builtin:rgby clamped, s from -0.75 to 1.75, t from -0.6 to 1.6");
         break;
     case 2:
-        text_start(&x, 48, 36, "builtin:checker-numbers repeat");
-        tri(&x, V(2.5, 1.5, 1, -1.03, -2.02), V(45.5, 2.5, 1, -0.97, -2.02), V(3.5, 34.5, 1, -1.03, -1.975));
+        gen_text_start(&x, 48, 36, "builtin:checker-numbers repeat");
+        gen_tri(&x, V(2.5, 1.5, 1, -1.03, -2.02), V(45.5, 2.5, 1, -0.97, -2.02), V(3.5, 34.5, 1, -1.03, -1.975));
         snprintf(what, n, "builtin:checker-numbers repeated, magnified where s = -1 and t = -2 (the corner of four copies)");
         break;
     case 3:
-        text_start(&x, 48, 36, "builtin:checker-numbers clamp");
-        tri(&x, V(2.5, 1.5, 1, 0.96, -0.04), V(45.5, 2.5, 1, 1.04, -0.04), V(3.5, 34.5, 1, 0.96, 0.035));
+        gen_text_start(&x, 48, 36, "builtin:checker-numbers clamp");
+        gen_tri(&x, V(2.5, 1.5, 1, 0.96, -0.04), V(45.5, 2.5, 1, 1.04, -0.04), V(3.5, 34.5, 1, 0.96, 0.035));
         snprintf(what, n, "builtin:checker-numbers clamped, magnified across s = 1 and t = 0");
         break;
     case 4:
-        text_start(&x, 48, 36, "builtin:bricks repeat");
-        tri(&x, V(1.5, 2.5, 1, -700.6, -300.2), V(46.5, 1.5, 2, -700.3, -300.2), V(4.5, 34.5, 1, -700.6, -299.9));
+        gen_text_start(&x, 48, 36, "builtin:bricks repeat");
+        gen_tri(&x, V(1.5, 2.5, 1, -700.6, -300.2), V(46.5, 1.5, 2, -700.3, -300.2), V(4.5, 34.5, 1, -700.6, -299.9));
         snprintf(what, n, "builtin:bricks repeated, s near -700 and t near -300");
         break;
     case 5:
-        text_start(&x, 48, 36, "builtin:checker-numbers repeat");
+        gen_text_start(&x, 48, 36, "builtin:checker-numbers repeat");
         spread(&x, -6.3, -3.2, 4.2, 1.9, 1, 1, false, false);
         snprintf(what, n, "builtin:checker-numbers repeated and minified (lambda about 4.6), s and t below 0");
         break;
     case 6:
-        text_start(&x, 48, 36, "builtin:grid clamp");
+        gen_text_start(&x, 48, 36, "builtin:grid clamp");
         spread(&x, -1.6, -1.1, 3.3, 2.9, 1, 1, true, true);
         snprintf(what, n, "builtin:grid clamped and minified, s from -1.6 to 1.7, t from -1.1 to 1.8");
         break;
     default:
         return false;
     }
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- a texture that is not square ------------------------------------------------- */
 
 bool gen_tex_nonsquare(int i, struct scene *s, char *what, size_t n)
 {
-    struct text x;
+    struct gen_text x;
     switch (i) {
     case 0:
-        text_start(&x, 40, 30, "builtin:plaid");
-        tri(&x, V(1.5, 1.5, 1, 0, 0), V(38.5, 2.5, 1, 0.9, 0), V(2.5, 28.5, 1, 0, 3.1));
+        gen_text_start(&x, 40, 30, "builtin:plaid");
+        gen_tri(&x, V(1.5, 1.5, 1, 0, 0), V(38.5, 2.5, 1, 0.9, 0), V(2.5, 28.5, 1, 0, 3.1));
         snprintf(what, n, "builtin:plaid (32 x 8 texels) magnified: a texel 1.3 pixels wide and 1.2 tall");
         break;
     case 1:
-        text_start(&x, 48, 36, "builtin:plaid");
+        gen_text_start(&x, 48, 36, "builtin:plaid");
         spread(&x, 0.1, 0.2, 5.1, 1.3, 1, 1, false, false);
         snprintf(what, n, "builtin:plaid minified along s (lambda about 1.9)");
         break;
     case 2:
-        text_start(&x, 48, 36, "builtin:plaid");
+        gen_text_start(&x, 48, 36, "builtin:plaid");
         spread(&x, 0.05, -3.4, 0.7, 9.3, 1, 1, true, true);
         snprintf(what, n, "builtin:plaid minified along t (lambda about 1.1), t below 0");
         break;
     case 3:
-        text_start(&x, 48, 36, "builtin:plaid clamp");
-        tri(&x, V(1.5, 1.5, 1, -0.2, -0.3), V(46.5, 2.5, 3, 1.25, -0.3), V(2.5, 34.5, 1, -0.2, 1.4));
+        gen_text_start(&x, 48, 36, "builtin:plaid clamp");
+        gen_tri(&x, V(1.5, 1.5, 1, -0.2, -0.3), V(46.5, 2.5, 3, 1.25, -0.3), V(2.5, 34.5, 1, -0.2, 1.4));
         snprintf(what, n, "builtin:plaid clamped, s from -0.2 to 1.25, t from -0.3 to 1.4, depths 1 to 3");
         break;
     default:
         return false;
     }
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- grazing floors: the level of detail changes across the triangle ------------- */
@@ -249,16 +237,16 @@ bool gen_tex_floor(int i, struct scene *s, char *what, size_t n)
                                             "builtin:grid" };
     if (i >= 4)
         return false;
-    struct text x;
-    text_start(&x, 64, 48, textures[i]);
+    struct gen_text x;
+    gen_text_start(&x, 64, 48, textures[i]);
     if (i % 2 == 0) {
         /* a floor: far (depth 40) along the top, near (1) along the bottom */
         struct tv a = V(-30.3, 5.2, 40, 0, 0), b = V(94.6, 5.7, 40, 8, 0), c = V(62.1, 47.6, 1, 8, 24),
                   d = V(1.4, 47.3, 1, 0, 24);
         if (i == 2)
             b.s = c.s = 3, c.t = d.t = 40;
-        tri(&x, a, b, c);
-        tri(&x, a, c, d);
+        gen_tri(&x, a, b, c);
+        gen_tri(&x, a, c, d);
         snprintf(what, n, "%s on a floor receding from depth 1 to 40: the level of detail from 0 to 8", textures[i]);
     } else {
         /* a wall: near on the left, far (depth 60) on the right */
@@ -266,11 +254,11 @@ bool gen_tex_floor(int i, struct scene *s, char *what, size_t n)
                   d = V(0.3, 47.8, 1, 0, 1.5);
         if (i == 1)
             b.s = c.s = 1.4, c.t = d.t = 1.3;
-        tri(&x, a, b, c);
-        tri(&x, a, c, d);
+        gen_tri(&x, a, b, c);
+        gen_tri(&x, a, c, d);
         snprintf(what, n, "%s on a wall seen at a grazing angle, depths 1 to 60", textures[i]);
     }
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- tiny triangles: quads with helper pixels -------------------------------------- */
@@ -280,8 +268,8 @@ bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n)
     if (i >= 3)
         return false;
     struct rng r = { 0x717e9u + (uint64_t)i };
-    struct text x;
-    text_start(&x, 48, 36, i == 1 ? "builtin:grid" : "builtin:checker-numbers");
+    struct gen_text x;
+    gen_text_start(&x, 48, 36, i == 1 ? "builtin:grid" : "builtin:checker-numbers");
     if (i == 0) {
         /* a grid of 4 x 4 pixel cells, two triangles each, the texture
          * spread over it at lambda about 2.5 */
@@ -290,8 +278,8 @@ bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n)
                 double x0 = 4.25 + 4 * cx, y0 = 4.75 + 4 * cy, k = 0.09;
                 struct tv a = V(x0, y0, 1, k * cx, k * cy), b = V(x0 + 4, y0, 1, k * cx + k, k * cy),
                           c = V(x0 + 4, y0 + 4, 1, k * cx + k, k * cy + k), d = V(x0, y0 + 4, 1, k * cx, k * cy + k);
-                tri(&x, a, b, c);
-                tri(&x, a, c, d);
+                gen_tri(&x, a, b, c);
+                gen_tri(&x, a, c, d);
             }
         snprintf(what, n, "96 triangles of 8 pixels, a sheet of 4 x 4 pixel squares, minified");
     } else {
@@ -307,12 +295,12 @@ bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n)
                 v[q] = V(floor((cx + dx) * 256) / 256, floor((cy + dy) * 256) / 256, rng_range(&r, 1, 3),
                          s0 + sc * dx, t0 + sc * dy);
             }
-            tri(&x, v[0], v[1], v[2]);
+            gen_tri(&x, v[0], v[1], v[2]);
         }
         snprintf(what, n, "%d textured triangles %s a pixel across, each minified its own way", count,
                  i == 1 ? "of some 2 to 5 pixels" : "smaller than");
     }
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }
 
 /* --- 3-D: an OBJ's own texture coordinates, clipping that carries s and t ------ */
@@ -333,11 +321,11 @@ bool gen_tex_world(int i, struct scene *s, char *what, size_t n)
         return false;
     /* a floor from under the eye to far away, cut by near: the new
      * vertices carry s and t, interpolated as positions are */
-    struct text x;
-    text_start(&x, 64, 48, NULL);
+    struct gen_text x;
+    gen_text_start(&x, 64, 48, NULL);
     fprintf(x.f, "camera  0 1 0   0 0.4 -4   0 1 0   60  0.5 60\ntexture builtin:checker-numbers\n"
                  "tri3 -6 0 2 1 1 1 0 0   6 0 2 1 1 1 3 0   6 0 -40 1 1 1 3 10.5\n"
                  "tri3 -6 0 2 1 1 1 0 0   6 0 -40 1 1 1 3 10.5   -6 0 -40 1 1 1 0 10.5\n");
     snprintf(what, n, "a 3-D floor under builtin:checker-numbers from behind the eye to depth 40, cut by near");
-    return text_end(&x, s);
+    return gen_text_end(&x, s);
 }

@@ -88,8 +88,9 @@ static inline uint32_t texture_fetch(const struct texture *t, int k, int64_t i, 
  * message (no file name, no newline) in why. */
 bool texture_read_png(const char *path, int *w, int *h, uint32_t **image, char *why, size_t n);
 
-/* The textures made by code (textures.c), by name ("checker-numbers"):
- * the same arguments and results as texture_read_png. */
+/* The textures made by code (textures.c), by name ("checker-numbers"), and
+ * "noise-WxH" (W, H powers of two in 1..4096: hashed texels of high
+ * contrast, any shape): the same arguments and results as texture_read_png. */
 bool texture_builtin(const char *name, int *w, int *h, uint32_t **image, char *why, size_t n);
 
 struct builtin_texture {

@@ -118,9 +118,47 @@ static const struct {
     void (*make)(uint32_t *im, int w, int h);
 } makers[] = { { 256, 256, checker_numbers }, { 256, 256, bricks }, { 256, 256, grid }, { 2, 2, rgby }, { 32, 8, plaid } };
 
+/* noise-WxH: texels of hashed colours, any two neighbours far apart, at any
+ * size the format allows (1 x 1 to 4096 x 4096): the textures of every
+ * shape that make check's search draws. */
+static bool noise_size(const char *name, int *w, int *h)
+{
+    long a, b;
+    char tail;
+    if (sscanf(name, "noise-%ldx%ld%c", &a, &b, &tail) != 2 || !texture_size_ok(a) || !texture_size_ok(b))
+        return false;
+    char canon[40];
+    snprintf(canon, sizeof canon, "noise-%ldx%ld", a, b);
+    if (strcmp(canon, name) != 0)
+        return false;
+    *w = (int)a, *h = (int)b;
+    return true;
+}
+
+static void noise(uint32_t *im, int w, int h)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t k = ((uint32_t)x * 73856093u) ^ ((uint32_t)y * 19349663u) ^ 0x5bd1e995u;
+            k ^= k >> 13, k *= 0x5bd1e995u, k ^= k >> 15;
+            /* a checkerboard's parity under the hash: neighbours differ by 128 or more in red */
+            unsigned r = ((unsigned)(x + y) & 1) * 160 + (k & 63), g = k >> 8 & 255, b = k >> 16 & 255;
+            im[(size_t)y * (size_t)w + (size_t)x] = rgb(r, g, b);
+        }
+}
+
 bool texture_builtin(const char *name, int *w, int *h, uint32_t **image, char *why, size_t n)
 {
     *image = NULL;
+    if (noise_size(name, w, h)) {
+        *image = malloc((size_t)*w * (size_t)*h * sizeof **image);
+        if (!*image) {
+            snprintf(why, n, "out of memory");
+            return false;
+        }
+        noise(*image, *w, *h);
+        return true;
+    }
     for (int i = 0; builtin_textures[i].name; i++)
         if (strcmp(builtin_textures[i].name, name) == 0) {
             *w = makers[i].w;
@@ -137,6 +175,6 @@ bool texture_builtin(const char *name, int *w, int *h, uint32_t **image, char *w
     for (int i = 0; builtin_textures[i].name && len >= 0 && (size_t)len < n; i++)
         len += snprintf(why + len, n - (size_t)len, " builtin:%s", builtin_textures[i].name);
     if (len >= 0 && (size_t)len < n)
-        snprintf(why + len, n - (size_t)len, ")");
+        snprintf(why + len, n - (size_t)len, " builtin:noise-WxH)");
     return false;
 }
