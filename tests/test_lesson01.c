@@ -168,7 +168,7 @@ static bool channel_ok(uint32_t rgba, int shift, double ref)
 }
 
 /* Every covered pixel's colour and depth, in both builds, against
- * reference_shade() (linear in screen space, as seed 002 interpolates). */
+ * reference_shade() (linear in screen space, as the 1994 tutorial interpolates). */
 Test(lesson01, colour_and_z_within_tolerance_of_the_reference)
 {
     const int w = 53, h = 37;

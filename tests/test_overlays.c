@@ -1,6 +1,6 @@
 /* test_overlays.c - the lessons' own drawings and watch constants.
  *
- * Lesson 01's TRIANGLE constants are checked against the seed's formulas
+ * Lesson 01's TRIANGLE constants are checked against the tutorial's formulas
  * worked out here from the literal vertices (never from the lesson's code);
  * the explorer is checked to call both hooks with the focus triangle, the
  * view shown and the last event, and each overlay to change the picture. */
@@ -36,7 +36,7 @@ static void assert_close(double got, double want, const char *what)
 }
 
 /* One triangle given with 1 on top and clockwise on screen (tri_setup keeps
- * that order), so 1, 2, 3 of the seed are A, B, C. */
+ * that order), so 1, 2, 3 of the tutorial are A, B, C. */
 struct case01 {
     double x[3], y[3];
     const char *kase;
@@ -110,7 +110,7 @@ Test(overlays, lesson03_constants_are_the_edge_coefficients)
     cr_assert(!t.swapped);
     char buf[1024];
     lesson_03_explorer.constants(&t, &(struct raster_params){ .subpixel_bits = 8 }, buf, sizeof buf);
-    /* I01 = Ay - By, J01 = Bx - Ax, in 1/256 px (seed 001, (6)-(8)) */
+    /* I01 = Ay - By, J01 = Bx - Ax, in 1/256 px (the edge-function notes, (6)-(8)) */
     double X[3] = { 2.5, 17, 6.75 }, Y[3] = { 1.25, 6, 12.5 };
     for (int k = 0; k < 3; k++) {
         int b = (k + 1) % 3;

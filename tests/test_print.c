@@ -509,3 +509,16 @@ Test(print, paper_numbers_are_six_points_or_none, .timeout = 60)
     cr_expect_lt(big, 6 * 1.5, "at zoom 48 black ink %.2f pt tall: not digits", big);
     cr_expect_eq(small, 0, "at zoom 32 the cells hold numbers %.2f pt tall, below 6 pt", small);
 }
+
+/* On paper the canvas's labels and names (drawn in interface pixels, then
+ * fitted to the page) are never smaller than the cell numbers' floor; the
+ * panel's text and the screen's are drawn at their own size. */
+Test(print, paper_labels_are_never_below_the_numbers_floor)
+{
+    struct explorer ex = { 0 };
+    struct painter p = { .ex = &ex, .s = 1.5 };
+    cr_expect_float_eq(text_px(&p, 10), 15, 1e-12, "on screen 10 px at scale 1.5");
+    p.text_min = 22;       /* 6 pt on a page that shrinks the figure 11/3 times */
+    cr_expect_float_eq(text_px(&p, 10), 22, 1e-12, "a label below the floor is raised to it");
+    cr_expect_float_eq(text_px(&p, 20), 30, 1e-12, "a label above the floor keeps its size");
+}

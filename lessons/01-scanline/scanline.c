@@ -1,6 +1,6 @@
 /* Lesson 01: scanline gradient filling.
  *
- * What it shows: the 1990s way to fill a triangle (seed 002, "Triangles -
+ * What it shows: the 1990s way to fill a triangle (the 1994 tutorial, "Triangles -
  * Rendering", 1994). Take the top vertex first, walk the left and the right
  * edge down the screen one scanline at a time, and fill the span between
  * them; colour and depth change by a constant amount from one pixel to the
@@ -15,7 +15,7 @@
  * exactly on an edge is decided by the top-left rule. With those, every
  * pixel is decided exactly as lesson 02 decides it by testing.
  *
- * The formulas of seed 002, numbered here in the order the text prints them
+ * The formulas of the 1994 tutorial, numbered here in the order the text prints them
  * (c is any vertex attribute: red, green, blue, z; 1 is the top vertex):
  *
  *        (c2-c1)(y3-y1) - (c3-c1)(y2-y1)
@@ -31,7 +31,7 @@
  *                                                  middle vertex's height
  *                                                  (Dx: formulas (2)-(4) with c = x)
  *
- * The seed prints (5) as "A = (1) + (y2-y1) * Dc13", meaning vertex 1 by
+ * The tutorial prints (5) as "A = (1) + (y2-y1) * Dc13", meaning vertex 1 by
  * "(1)", and gives case [B] only.
  *
  * The denominator of (1) is the cross product |12 x 13|: twice the signed
@@ -164,7 +164,7 @@ static void edge_step(struct edge *e)
 
 /* --- the triangle ---------------------------------------------------------------
  *
- * Seed 002's two cases, after rotating the vertices so that 1 is on top
+ * The 1994 tutorial's two cases, after rotating the vertices so that 1 is on top
  * (tri_setup made the order clockwise on screen, so 1 -> 2 runs down the
  * right side and 3 -> 1 up the left side):
  *
@@ -195,7 +195,7 @@ struct corners {
 };
 
 /* "1 is the top point (reordination cycling included)": the start of both
- * readings of seed 002, the exact walk and the exhibit. */
+ * readings of the 1994 tutorial, the exact walk and the exhibit. */
 static void corners_of(struct corners *k, const struct tri_setup *t,
                        const struct raster_params *p)
 {
@@ -330,7 +330,7 @@ static void rasterize(const struct tri_setup *t, const struct raster_params *p,
 
 /* --- exhibit: the printed loop, read literally ---------------------------------
  *
- * Seed 002's triangle() with float coordinates: the same corners and halves
+ * The 1994 tutorial's triangle() with float coordinates: the same corners and halves
  * as the exact walk above, but each edge starts at its top vertex itself,
  * not at the first pixel centre below it, x moves by a float increment per
  * row, and the row count of a segment is its float height truncated. The
@@ -430,7 +430,7 @@ static const struct lesson_variant variants[] = {
     { .name = "exact", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
       .what = "fixed-point edges, exact presteps, top-left rule: equal to the reference" },
     { .name = "source-float", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_source,
-      .what = "exhibit: seed 002's float stepping without prestep: gaps and overlaps" },
+      .what = "exhibit: the 1994 tutorial's float stepping without prestep: gaps and overlaps" },
 };
 
 const struct lesson lesson_01 = {

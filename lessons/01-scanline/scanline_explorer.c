@@ -11,7 +11,7 @@
  * but the colour view the current scanline with its two edge crossings.
  *
  * Everything here is worked out from the triangle's snapped vertices, the
- * way the seed's formulas read, not by running the walk again. */
+ * way the tutorial's formulas read, not by running the walk again. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -2,8 +2,8 @@
  *
  * What it shows: the simplest exact rasterizer. Visit every pixel of the
  * triangle's bounding box, evaluate the three edge functions at the pixel
- * centre, and keep the pixel when all three say "inside" (seed 003); decide
- * centres exactly on an edge with the top-left rule (seed 004). The edge
+ * centre, and keep the pixel when all three say "inside" (the lab text); decide
+ * centres exactly on an edge with the top-left rule (the fill-rule notes). The edge
  * values divided by twice the area are the barycentric weights alpha, beta,
  * gamma that interpolate colour and depth.
  *
@@ -11,7 +11,7 @@
  * pixel, the same for every pixel, which is what makes the fill rule easy
  * to state and what the later lessons speed up.
  *
- * The edge functions, in seed 003's names (setup has made them positive
+ * The edge functions, in the lab text's names (setup has made them positive
  * inside, see src/raster/raster.h):
  *
  *     F_ab(x, y) = (y_a - y_b) x + (x_b - x_a) y + x_a y_b - x_b y_a
@@ -47,9 +47,9 @@ enum { L_SETUP, L_BOX, L_LOOP, L_EDGES, L_TEST, L_BARY, L_COLOR, L_DRAW };
 /* How a centre exactly on an edge (F == 0) is decided. Only the first is
  * right; the other two are the exhibits of this lesson. */
 enum fill_rule {
-    RULE_TOP_LEFT,      /* seed 004: on an edge counts only for top and left edges */
+    RULE_TOP_LEFT,      /* the fill-rule notes: on an edge counts only for top and left edges */
     RULE_INCLUSIVE,     /* F >= 0 on every edge: shared edges drawn twice */
-    RULE_STRICT,        /* 0 < alpha, beta, gamma (seed 003): shared edges dropped */
+    RULE_STRICT,        /* 0 < alpha, beta, gamma (the lab text): shared edges dropped */
 };
 
 static bool inside(const struct tri_setup *t, const int64_t F[3], enum fill_rule rule)
@@ -78,7 +78,7 @@ static void rasterize_rule(const struct tri_setup *t, const struct raster_params
     for (int y = t->miny; y <= t->maxy; y++) {
         NARRATE(tr, .kind = TRACE_ROW, .line = L_LOOP, .x = t->minx, .y = y, .x1 = t->maxx, .y1 = y);
         for (int x = t->minx; x <= t->maxx; x++) {
-            /* seed 003's edge equations, evaluated directly at the centre */
+            /* the lab text's edge equations, evaluated directly at the centre */
             int64_t F[3] = {
                 edge_value(t, EDGE_AB, x, y),   /* F_ab */
                 edge_value(t, EDGE_BC, x, y),   /* F_bc */
@@ -129,11 +129,11 @@ static void rasterize_strict(const struct tri_setup *t, const struct raster_para
 
 static const struct lesson_variant variants[] = {
     { .name = "top-left", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
-      .what = "the top-left rule decides centres on an edge (seed 004)" },
+      .what = "the top-left rule decides centres on an edge (the fill-rule notes)" },
     { .name = "inclusive", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_inclusive,
       .what = "exhibit: F >= 0 on every edge draws shared edges twice" },
     { .name = "strict", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_strict,
-      .what = "exhibit: 0 < alpha, beta, gamma (seed 003) leaves cracks" },
+      .what = "exhibit: 0 < alpha, beta, gamma (the lab text) leaves cracks" },
 };
 
 const struct lesson lesson_02 = {

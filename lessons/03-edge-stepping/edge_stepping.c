@@ -1,7 +1,7 @@
 /* Lesson 03: incremental edge functions.
  *
  * What it shows: lesson 02's loop without its multiplications. An edge
- * function is linear in x and y (seed 001, sections 2 and 3):
+ * function is linear in x and y (the edge-function notes, sections 2 and 3):
  *
  *     F01(Px, Py) = I01 * Px + J01 * Py + K01                          (6)
  *     F02(Px, Py) = I02 * Px + J02 * Py + K02                          (7)
@@ -36,9 +36,9 @@
  *     |    o----|----|--->o    |     F(x+1) = F(x) + 256 * I01
  *     +---------+    +---------+     (a centre is 256 units further on)
  *
- * Edge numbering is the seed's: 01 = AB, 02 = BC, 03 = CA. The coefficients
+ * Edge numbering is the notes': 01 = AB, 02 = BC, 03 = CA. The coefficients
  * come from the shared setup (src/raster/raster.h: t->I, t->J, t->K, t->bias,
- * the edge functions lesson 02 explains), here called by the seed's names.
+ * the edge functions lesson 02 explains), here called by the notes' names.
  */
 #include "lesson.h"
 #include "shade/shade.h"     /* shade_scaled: the colour every lesson gives a pixel */
@@ -179,7 +179,7 @@ static inline int64_t held(int64_t F, enum hold h)
     return h == EXACT ? F : (int64_t)(float)F;
 }
 
-/* Seed 001's loop with the fill rule. The bounding box comes from setup,
+/* The edge-function notes' loop with the fill rule. The bounding box comes from setup,
  * already clamped to the target:
  *
  *       minX                 maxX
@@ -200,7 +200,7 @@ step_edges(const struct tri_setup *t, const struct raster_params *p, struct targ
     if (t->empty)
         return;
 
-    /* The edge coefficients (6)-(8) in the seed's names, with the fill rule
+    /* The edge coefficients (6)-(8) in the notes' names, with the fill rule
      * folded into the constant: F + bias >= 0 is the whole inside test. */
     const int64_t I01 = t->I[EDGE_AB], J01 = t->J[EDGE_AB], b01 = t->bias[EDGE_AB];
     const int64_t I02 = t->I[EDGE_BC], J02 = t->J[EDGE_BC], b02 = t->bias[EDGE_BC];
@@ -296,7 +296,7 @@ static void rasterize_float(const struct tri_setup *t, const struct raster_param
 
 static const struct lesson_variant variants[] = {
     { .name = "stepping", .kind = VARIANT_ALGORITHM, .rasterize = rasterize,
-      .what = "integer edge values stepped by additions: exact (seed 001)" },
+      .what = "integer edge values stepped by additions: exact (the edge-function notes)" },
     { .name = "float", .kind = VARIANT_EXHIBIT, .rasterize = rasterize_float,
       .what = "exhibit: the same loop in single-precision float drifts on large triangles" },
 };

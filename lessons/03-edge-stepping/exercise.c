@@ -25,7 +25,7 @@
 enum { L_SETUP, L_BIAS, L_FIRST, L_CY, L_LOOP_Y, L_ROW, L_LOOP_X, L_TEST, L_RENDER,
        L_STEP_Y };
 
-/* The edges as the loop uses them: k = 0, 1, 2 are the seed's F01 (AB),
+/* The edges as the loop uses them: k = 0, 1, 2 are the notes' F01 (AB),
  * F02 (BC), F03 (CA). */
 struct edges {
     int64_t I[3], J[3];     /* formulas (6) to (8), 1/256 px */

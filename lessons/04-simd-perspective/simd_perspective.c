@@ -1,6 +1,6 @@
 /* Lesson 04: SIMD vectors of (1/z, w, u, v), perspective-correct.
  *
- * What it shows: seed 001, section 4. Screen-space barycentrics are not
+ * What it shows: the edge-function notes, section 4. Screen-space barycentrics are not
  * what a perspective camera needs: along a floor that recedes from the eye,
  * equal steps on the screen are ever larger steps on the floor. What IS
  * linear in screen space is 1/z (and a/z for any attribute a), so the lesson

@@ -1,6 +1,6 @@
 /* Lesson 05: q x q block classification.
  *
- * What it shows: seed 000, "block-based" half-space rasterization (after
+ * What it shows: the block notes, "block-based" half-space rasterization (after
  * Mileff, Nehez and Dudra, "Accelerated Half-Space Triangle Rasterization",
  * 2015). Instead of testing every pixel of the bounding box, cut the box into
  * blocks of q x q pixels and test only the four corners of each block against
@@ -60,7 +60,7 @@ enum { P_BLOCK };           /* the lesson's parameter rows: p->knob[P_BLOCK] is 
 
 /* --- the edges, as the block loop uses them ------------------------------- */
 
-/* Seed 001's edge functions with the fill rule folded in (struct
+/* The edge-function notes' edge functions with the fill rule folded in (struct
  * biased_edges, src/raster/raster.h): a pixel is covered when F0k + bias_k
  * >= 0 for k = 1, 2, 3 (bias 0 on a top or left edge, -1 otherwise). With
  * the bias in the constant, every test below, corner or pixel, is a plain
@@ -181,7 +181,7 @@ static void render_block(struct run *r, int x0, int y0, int x1, int y1)
 
 /* PARTIAL, one pixel at a time: the source's inner loop. The edge values
  * start at the block's corner and step by I0k to the right and J0k down
- * (formulas 9 and 10 of seed 001), exact in 64 bits. Every test and every
+ * (formulas 9 and 10 of the edge-function notes), exact in 64 bits. Every test and every
  * write is a step of the narration. */
 static void partial_block_pixels(struct run *r, int x0, int y0, int x1, int y1)
 {

@@ -56,7 +56,7 @@ static void corner_masks(const struct edges *e, int x0, int y0, int x1, int y1, 
  * the block's class from the three masks, BLOCK_EMPTY, BLOCK_FULL or
  * BLOCK_PARTIAL. Empty when all four corners are outside ONE edge (that
  * edge's mask is 0); full when every corner is inside EVERY edge (all three
- * masks 0xF: the seed's `||` there is a slip); partial otherwise. */
+ * masks 0xF: the block notes' `||` there is a slip); partial otherwise. */
 static enum block_class classify(const unsigned mask[3])
 {
     (void)mask;

@@ -1,6 +1,6 @@
 /* Lesson 07, stage 1: set-up, once per triangle (llvmpipe's lp_setup_tri.c).
  *
- * Planes of the perspective-correct attributes (seed 001, formula 23): 1/z,
+ * Planes of the perspective-correct attributes (the edge-function notes, formula 23): 1/z,
  * and 255 a / z for a = r, g, b, each linear in screen space:
  *
  *     P(x, y) = (P0 + Py (y - miny)) + Px (x - minx)

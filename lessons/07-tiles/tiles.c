@@ -37,7 +37,7 @@
  * register.
  *
  * Colour and depth as lesson 05: perspective-correct from the planes of 1/z
- * and a/z (seed 001, formula 23), z = 1 / (1/z) by a true division, the same
+ * and a/z (the edge-function notes, formula 23), z = 1 / (1/z) by a true division, the same
  * float operations in every twin so that they write the same bytes.
  */
 #include <stdlib.h>

@@ -40,7 +40,7 @@ struct pattern {
     int lo_x, hi_x, lo_y, hi_y;     /* smallest and largest dx, dy */
 };
 
-/* Seed 001's edge functions with the fill rule folded into the constant, as
+/* The edge-function notes' edge functions with the fill rule folded into the constant, as
  * in lesson 05: a sample is covered when F0k + bias_k + O_sk >= 0 for all
  * three edges, a plain sign test. O_sk = I0k dx_s + J0k dy_s is sample s's
  * offset on edge k: the same in every pixel, computed once per triangle. */

@@ -212,8 +212,8 @@ static void paint_triangle(struct painter *p)
             double dx = -(double)t->I[k], dy = -(double)t->J[k], d = hypot(dx, dy);
             if (d > 0)
                 dx /= d, dy /= d;
-            double tw = text_width(p, buf, 12);
-            double hw = tw / 2 + 6 * p->s, hh = 11 * p->s;
+            double tw = text_width(p, buf, 12), ks = text_px(p, 12) / (12 * p->s);
+            double hw = tw / 2 + 6 * p->s, hh = 11 * ks * p->s;
             double bx0 = L->ox + t->minx * L->zoom, bx1 = L->ox + (t->maxx + 1) * L->zoom;
             double by0 = L->oy + t->miny * L->zoom, by1 = L->oy + (t->maxy + 1) * L->zoom;
             double go = HUGE_VAL;
@@ -230,9 +230,9 @@ static void paint_triangle(struct painter *p)
             /* on the canvas, whatever the zoom */
             cxl = fmin(fmax(cxl, L->cx + hw), L->cx + L->cw - hw);
             cyl = fmin(fmax(cyl, L->cy + hh), L->cy + L->ch - hh);
-            double lx = cxl - tw / 2, ly = cyl - 8 * p->s;
+            double lx = cxl - tw / 2, ly = cyl - 8 * ks * p->s;
             set_rgba(cr, p->pal->shadow, 0.7);
-            cairo_rectangle(cr, lx - 4 * p->s, ly - 1 * p->s, tw + 8 * p->s, 18 * p->s);
+            cairo_rectangle(cr, lx - 4 * p->s, ly - 1 * p->s, tw + 8 * p->s, 18 * ks * p->s);
             cairo_fill(cr);
             draw_text(p, lx, ly, 0, buf, 12, p->pal->edge[k], false);
         }
@@ -269,7 +269,8 @@ static void paint_triangle(struct painter *p)
         lx = fmin(fmax(lx, L->cx + 2 * p->s), L->cx + L->cw - 16 * p->s);     /* on the canvas */
         ly = fmin(fmax(ly, L->cy + 2 * p->s), L->cy + L->ch - 22 * p->s);
         set_rgba(cr, p->pal->shadow, 0.6);
-        cairo_arc(cr, lx + 5 * p->s, ly + 10 * p->s, 10 * p->s, 0, 2 * G_PI);
+        double ks = text_px(p, 15) / (15 * p->s);    /* larger on paper, if need be */
+        cairo_arc(cr, lx + 5 * ks * p->s, ly + 10 * ks * p->s, 10 * ks * p->s, 0, 2 * G_PI);
         cairo_fill(cr);
         draw_text(p, lx, ly, 0, vertex_names[k], 15, p->pal->vertex[k], false);
     }

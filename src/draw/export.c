@@ -32,10 +32,11 @@ struct export_job {
  * margin of half an inch, centred. */
 static const double paper_size[PAPER_COUNT][2] = { { 0, 0 }, { 595, 842 }, { 612, 792 } };
 #define PAPER_MARGIN 36.0
-/* The smallest cell number on paper, in points: 6 pt is the usual floor of
- * a printed figure's labels (journals ask for 6 to 8 pt), and DejaVu Sans
- * Mono's digits are still clear at it. A cell too small to hold its numbers
- * at that size shows none on paper. */
+/* The smallest text on paper, in points: 6 pt is the usual floor of a
+ * printed figure's labels (journals ask for 6 to 8 pt), and DejaVu Sans
+ * Mono's digits are still clear at it. Labels and names are drawn at least
+ * that large; a cell too small to hold its numbers at that size shows none
+ * on paper. */
 #define PAPER_TEXT_MIN_PT 6.0
 
 /* Where the view of w x h goes on the page: its scale and offset. */

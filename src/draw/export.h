@@ -15,7 +15,8 @@ bool explorer_export(struct explorer *ex, const char *path, int w, int h,
                      char *err, size_t errlen);
 /* The same; a PDF on a page of paper (A4 or Letter, landscape for a wide
  * view), the view fitted within margins and its cell numbers legible in
- * print (at least 6 pt, over the edges with a halo, or left out). */
+ * print (at least 6 pt, over the edges with a halo, or left out), and its
+ * labels and names at least 6 pt too. */
 bool explorer_export_paper(struct explorer *ex, const char *path, int w, int h, enum paper paper,
                            char *err, size_t errlen);
 /* The page such a PDF has, in points, and its picture drawn on cr in

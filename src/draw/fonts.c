@@ -5,6 +5,7 @@
 #include "painter.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -144,11 +145,17 @@ cairo_font_face_t *mono_face(void)
 
 /* --- text ------------------------------------------------------------------------ */
 
+double text_px(const struct painter *p, double size)
+{
+    double px = size * p->s;
+    return fmax(px, p->text_min);
+}
+
 double draw_text(struct painter *p, double x, double y, double width, const char *str,
                  double size, uint32_t colour, bool markup)
 {
     PangoFontDescription *d = pango_font_description_from_string("DejaVu Sans Mono");
-    pango_font_description_set_absolute_size(d, size * p->s * PANGO_SCALE);
+    pango_font_description_set_absolute_size(d, text_px(p, size) * PANGO_SCALE);
     pango_layout_set_font_description(p->layout, d);
     pango_font_description_free(d);
     pango_layout_set_width(p->layout, width > 0 ? (int)(width * PANGO_SCALE) : -1);
@@ -173,7 +180,7 @@ double draw_text(struct painter *p, double x, double y, double width, const char
 double text_width(struct painter *p, const char *str, double size)
 {
     PangoFontDescription *d = pango_font_description_from_string("DejaVu Sans Mono");
-    pango_font_description_set_absolute_size(d, size * p->s * PANGO_SCALE);
+    pango_font_description_set_absolute_size(d, text_px(p, size) * PANGO_SCALE);
     pango_layout_set_font_description(p->layout, d);
     pango_font_description_free(d);
     pango_layout_set_width(p->layout, -1);

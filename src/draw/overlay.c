@@ -127,7 +127,7 @@ static void overlay_label(const struct lesson_canvas *c, double x, double y, con
     cairo_save(p->cr);
     cairo_set_matrix(p->cr, &o->screen);
     double sx = L->ox + x * L->zoom, sy = L->oy + y * L->zoom;
-    double tw = text_width(p, str, size), th = size * 1.3 * p->s;
+    double tw = text_width(p, str, size), th = text_px(p, size) * 1.3;
     set_rgba(p->cr, p->pal->shadow, 0.7);
     cairo_rectangle(p->cr, sx - 2 * p->s, sy, tw + 4 * p->s, th);
     cairo_fill(p->cr);

@@ -21,7 +21,9 @@ void explorer_paint(struct explorer *ex, cairo_t *cr, double w, double h)
     cairo_save(cr);
     set_rgb(cr, p.pal->bg);
     cairo_paint(cr);
+    p.text_min = ex->text_min;      /* on paper: the canvas's labels as large as its numbers */
     paint_canvas(&p);
+    p.text_min = 0;
     if (ex->part == PART_ALL) {     /* --figure-part canvas: the grid alone */
         paint_bar(&p);
         paint_panel(&p);

@@ -79,6 +79,7 @@ struct painter {
     PangoLayout *layout;
     double s;                       /* interface scale */
     const struct palette *pal;
+    double text_min;                /* on paper, while the canvas is drawn: its smallest text */
 };
 
 void paint_canvas(struct painter *p);
@@ -97,6 +98,10 @@ cairo_font_options_t *font_options(void);
 /* DejaVu Sans Mono as a cairo face, for the numbers in cells; NULL if missing. */
 cairo_font_face_t *mono_face(void);
 
+/* The height of text of `size` interface pixels in frame units: on the
+ * canvas on paper never below p->text_min, the cell numbers' floor, so that
+ * labels and names print at least as large as the numbers. */
+double text_px(const struct painter *p, double size);
 /* Draw text (Pango markup when markup) at (x, y) top-left, at most `width`
  * wide (0: no limit), `size` in interface pixels; returns its height. */
 double draw_text(struct painter *p, double x, double y, double width, const char *str,

@@ -251,7 +251,7 @@ bool target_copy(struct target *dst, const struct target *src)
 
 /* --- reference ------------------------------------------------------------------ */
 
-/* |P0P1 x P0P| (seed 001, formula 2), P given in 1/256 units. */
+/* |P0P1 x P0P| (the edge-function notes, formula 2), P given in 1/256 units. */
 static int64_t cross_at(int32_t x0, int32_t y0, int32_t x1, int32_t y1, int64_t px, int64_t py)
 {
     return ((int64_t)x1 - x0) * (py - y0) - (px - x0) * ((int64_t)y1 - y0);

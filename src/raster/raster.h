@@ -42,7 +42,7 @@ struct vertex {
  * bits = SUBPIXEL_BITS is the real thing; fewer bits is lesson 03's exhibit. */
 int32_t snap_coord(double v, int bits);
 
-/* The three edges, numbered as seed 001 numbers them:
+/* The three edges, numbered as the edge-function notes number them:
  *   edge 0: AB, F01    edge 1: BC, F02    edge 2: CA, F03
  * and the barycentric weight of a vertex is the edge value OPPOSITE it
  * divided by the doubled area: u (of A) = F02, v (of B) = F03, w (of C) = F01. */
@@ -53,8 +53,8 @@ enum { EDGE_AB, EDGE_BC, EDGE_CA };
  *
  *     F(P) = I * Px + J * Py + K,   I = Ay - By,  J = Bx - Ax,  K = Ax By - Ay Bx
  *
- * is the perp-dot product AB x AP of seed 001, formula (3), in 1/256 units: a
- * signed number (the seed writes it |AB x AP|, but those are not absolute
+ * is the perp-dot product AB x AP of the edge-function notes, formula (3), in 1/256 units: a
+ * signed number (the notes write it |AB x AP|, but those are not absolute
  * values: its sign says on which side of AB the point P lies). One unit of F
  * is 1/65536 of a square pixel; F01 + F02 + F03 = 2 * area. */
 struct tri_setup {
@@ -318,7 +318,7 @@ bool reference_edge_owns(enum fill_convention rule, int64_t I, int64_t J);
 double reference_pixel_area(const struct tri_setup *t, int px, int py);
 
 /* The oracle of every test: bounding box, every pixel centre evaluated
- * directly from the snapped vertices with the cross product of seed 001
+ * directly from the snapped vertices with the cross product of the edge-function notes
  * formula (2), nothing incremental, nothing clever. Calls cover(x, y) for
  * each covered pixel. */
 void reference_coverage(const struct tri_setup *t,

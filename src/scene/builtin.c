@@ -108,7 +108,7 @@ const struct builtin_scene builtin_scenes[] = {
         "tri  0 34 1  0.95 0.85 0.6 0 0   64 34 1  0.95 0.85 0.6 1 0   36 6 8  0.6 0.75 0.95 1 1\n"
         "tri  0 34 1  0.95 0.85 0.6 0 0   36 6 8  0.6 0.75 0.95 1 1   28 6 8  0.6 0.75 0.95 0 1\n"
     },
-    { "cases-a-b", "seed 002's two cases side by side: middle vertex left [A], right [B]",
+    { "cases-a-b", "the 1994 tutorial's two cases side by side: middle vertex left [A], right [B]",
         "# left: case [A], the middle vertex lies left of the long edge 1-2;\n"
         "# right: case [B], the middle vertex lies right of the long edge 1-3.\n"
         "# Vertices off the pixel centres, so every edge needs its prestep.\n"

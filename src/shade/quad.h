@@ -1,5 +1,5 @@
 /* quad.h - shading four pixels at once with SSE: lesson 04's planes of 1/z
- * and a/z (perspective-correct, formula 23 of seed 001) evaluated for a quad
+ * and a/z (perspective-correct, formula 23 of the edge-function notes) evaluated for a quad
  * of four neighbouring pixels of one row, their depth by a reciprocal, their
  * colour packed to 0xAARRGGBB, and their write with the depth test.
  *
