@@ -11,7 +11,7 @@ LESSONS  := $(notdir $(wildcard lessons/[0-9][0-9]-*))
 BUILD    ?= build
 B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
 PROGRAMS := $(LESSONS:%=$(B)/%)
-LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c,$(wildcard src/*.c src/*/*.c)))
+LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c src/exercise/runner.c,$(wildcard src/*.c src/*/*.c)))
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 LES_SRC  := $(filter-out $(EX_SRC),$(wildcard lessons/*/*.c))
 EXP_SRC  := $(wildcard lessons/*/*_explorer.c)
@@ -203,23 +203,62 @@ $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
-check: $(B)/exercise-$(LESSON)
-	@$< --check --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
 
-# make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder]: make
-# check on every .c file of the folder, each built and run apart, under a
-# time limit; one CSV row per file, whatever the file does; what each run
-# printed and its counterexample in OUT/<file> (src/exercise/grade.sh).
+# The judge and the runner (DESIGN.md, "Judging a student's code"): make
+# check and make grade compile the student's file against the student
+# library of its lesson alone, $(B)/student/NN/ (src/exercise/student-library.txt
+# says what each lesson's holds and why), into a runner; the judge,
+# $(B)/judge-NN, which never links student code, sends it scenes and
+# decides. The library: its objects compiled apart (each function in a
+# section of its own, so the final link drops what nothing calls), made
+# one object whose only global symbols are those the table lists; its
+# headers copied into include/ (what lessons/NN-name/answer.c includes,
+# and the lesson's forbid.h).
+SL_TABLE := src/exercise/student-library.txt
+sl_col    = $(shell awk -v n=$1 -v c=$2 '$$1 == n || $$1 == "all" { for (i = 2; i <= NF; i++) if ($$i ~ "^" c ":") { sub("^" c ":", "", $$i); printf "%s ", $$i } }' $(SL_TABLE))
+$(B)/student/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -ffunction-sections -fdata-sections -c $< -o $@
+# kept: make would drop them as intermediate
+.PRECIOUS: $(B)/student/obj/%.o $(B)/student/%/library.o $(B)/student/%/include.stamp
+sl_objs   = $(patsubst %.c,$(B)/student/obj/%.o,$(call sl_col,$1,file))
+$(B)/student/%/library.o: $(SL_TABLE) $$(call sl_objs,$$*)
+	@mkdir -p $(@D) && printf '%s\n' main $(call sl_col,$*,call) > $(@D)/allowed.txt
+	@ld -r -o $@.tmp $(filter %.o,$^) && objcopy --keep-global-symbols=$(@D)/allowed.txt $@.tmp $@ && rm -f $@.tmp
+$(B)/student/%/include.stamp: $(SL_TABLE) $$(wildcard lessons/$$*-*/answer.c) src/exercise/student.h $(wildcard src/*.h src/*/*.h lessons/*/*.h)
+	@rm -rf $(@D)/include && mkdir -p $(@D)/include && a=$$(ls lessons/$*-*/answer.c) && \
+	  for h in $$($(CC) -std=c17 -Isrc $(PKG_CFLAGS) $(STUDENT) -I$$(dirname $$a) -MM -MT x $$a | tr -d '\\' | tr ' ' '\n' | grep '\.h$$' | grep -v '^/'); do \
+	    case $$h in src/*) d=$(@D)/include/$${h#src/} ;; *) d=$(@D)/include/$$(basename $$h) ;; esac; \
+	    mkdir -p $$(dirname $$d) && cp $$h $$d; done && \
+	  { echo '/* forbid.h - what lesson $*'"'"'s exercise may not use of the headers (src/exercise/student-library.txt) */'; \
+	    for w in $(call sl_col,$*,poison); do printf '#undef %s\n#pragma GCC poison %s\n' $$w $$w; done; } > $(@D)/include/forbid.h && touch $@
+# the student's file, compiled as the runner's: the library's headers only
+SL_CC     = $(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -pthread $(SAN) $(TS_PORT) -DTRISTEP_NARRATE \
+            -I$(B)/student/$(LESSON)/include -include exercise/student.h -include forbid.h
+$(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FIRST)
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
+	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
+	@$(SL_CC) -c $(FILE) -o $@
+$(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
+	@$(LD_ALL) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
+$(B)/obj/judge-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -DEXERCISE_JUDGE -c $< -o $@
+$(B)/judge-$(LESSON): $(B)/obj/judge-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+	@$(LD_ALL) $^ $(LIBS) -o $@
+check: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/runner
+	@$< --check --runner $(B)/student/$(LESSON)/runner --log $(B)/student/$(LESSON)/log.txt $(if $(SEED),--seed $(SEED)) --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
+
+# make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder] [SEED=n]
+# [POINTS=file] [UNSAFE=1]: every submission of the folder compiled, linked
+# and checked in a sandbox of its own by the judge (src/exercise/grade.h),
+# one CSV row each, a results.json each in OUT/<folder>/.
 TIMEOUT  ?= 60
 OUT      ?= $(B)/grade/$(LESSON)
 CSV      ?= $(OUT).csv
-grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+GRADER   := $(shell git rev-parse HEAD 2>/dev/null || echo unknown)
+grade: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
 	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
-	@mkdir -p $(dir $(CSV)) && GRADE_LESSON=$(LESSON) GRADE_DIR='$(DIR)' GRADE_OUT='$(OUT)' \
-	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT) -I$(EX_LESSON)' GRADE_LD='$(LD_ALL)' \
-	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
-	  GRADE_LIBS='$(LIBS)' sh src/exercise/grade.sh
+	@$(if $(UNSAFE),,sh src/deps.sh grade &&) mkdir -p '$(dir $(CSV))' && $< --grade --dir '$(DIR)' --lib $(B)/student/$(LESSON) --out '$(OUT)' \
+	  --csv '$(CSV)' --timeout $(TIMEOUT) --commit $(GRADER) --cc '$(CC)' $(if $(SEED),--seed '$(SEED)') \
+	  $(if $(POINTS),--points '$(POINTS)') $(if $(ONE),--one) $(if $(UNSAFE),--unsafe)
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak

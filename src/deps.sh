@@ -8,6 +8,7 @@
 #   build   SDL2, cairo, Pango, DejaVu fonts  (make, make run, make figures)
 #   test    the above, Criterion, Xvfb, xdotool and ImageMagick's import  (make test)
 #   bench   the above, OSMesa for the llvmpipe peer  (make bench)
+#   grade   bubblewrap, the sandbox of make grade
 #   simde   SIMDe's headers  (make simde-test: the exactness driver through SIMDe)
 #   aarch64 Debian's aarch64 cross compiler and C library, qemu-user, SIMDe  (make aarch64)
 # With OUT, writes the compiler and linker flags as a makefile fragment
@@ -23,6 +24,7 @@ case $mode in
   test)  pc="$pc criterion"; deb="$deb libcriterion-dev xvfb xdotool x11-apps imagemagick"
          other="$other, Criterion, Xvfb, xdotool, ImageMagick" ;;
   bench) pc="$pc osmesa"; deb="$deb libosmesa6-dev"; other="$other, OSMesa (Mesa)" ;;
+  grade) pc=; deb="bubblewrap"; other="bubblewrap (bwrap), the sandbox of make grade" ;;
   simde) pc=; deb="libsimde-dev"; other="SIMDe (SIMD Everywhere, header-only)" ;;
   aarch64) pc=; deb="gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user libsimde-dev"
          other="Debian's or Ubuntu's aarch64 cross compiler, qemu-user and SIMDe" ;;
@@ -36,6 +38,7 @@ has_simde() {
 missing() {
   case $mode in
     simde) has_simde || printf 'SIMDe '; return ;;
+    grade) command -v bwrap >/dev/null 2>&1 || printf 'bwrap '; return ;;
     aarch64)
       command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 || printf 'aarch64-linux-gnu-gcc '
       [ -f /usr/aarch64-linux-gnu/lib/libc.a ] || printf 'libc6-dev-arm64-cross '

@@ -33,7 +33,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL };
 /* What went wrong, at the first triangle after which the pictures differ. */
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
-    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL,
+    WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_RUNNER,
 };
 
 struct verdict {
@@ -57,6 +57,7 @@ struct verdict {
      * dv/dy in level-0 texels), lambda = log2(rho) and the code's */
     double deriv[4], want_lambda, got_lambda;
     struct texel_fault texel;       /* WRONG_TEXEL: the texel read outside its level */
+    struct runner_fault runner;     /* WRONG_RUNNER: the runner crashed, hung or sent garbage */
 };
 
 /* Everything one check run needs. */
@@ -92,7 +93,16 @@ bool evaluate(struct checker *C, const struct scene *s, struct verdict *v);
 
 /* A 3-D scene's screen triangles as the exercise's front end makes them
  * (exercise_front), in a copy of s; false when out of memory. */
-bool exercise_projected(struct scene *out, const struct scene *s);
+bool exercise_projected(const struct checker *C, struct scene *out, const struct scene *s);
+
+/* The seam where the student's code draws (evaluate.c): in the runner, a
+ * process of its own, when one is configured (remote.h), ask for
+ * triangles first .. first + count - 1 of s (trace: enum wire_trace), then
+ * draw each through exercise_variant in order; student_end when done.
+ * In this process both do nothing. */
+bool student_begin(const struct checker *C, const struct scene *s, const struct raster_params *p,
+                   int first, int count, int trace);
+void student_end(void);
 
 /* x, then y, of each vertex of the scene in order: coordinate k. */
 double *scene_coord(struct scene *s, int k);

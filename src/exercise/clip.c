@@ -45,6 +45,11 @@ const struct clip_fault *exercise_clip_fault(void)
     return &fault;
 }
 
+void exercise_clip_fault_set(const struct clip_fault *f)
+{
+    fault = *f;
+}
+
 static bool on_kept_side(const struct plane *pl, double d)
 {
     return pl->keep > 0 ? d >= pl->at : d <= pl->at;

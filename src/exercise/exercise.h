@@ -33,6 +33,9 @@
  * exercise_rasterize, or any rasterizer: a lesson's own, an exhibit) and the
  * lesson it is an exercise of. */
 void exercise_use(const struct lesson *l, rasterize_fn fn);
+/* ... or, with draw, the results of the runner, a process of its own
+ * (remote.h; NULL: the code in this process again). */
+void exercise_use_remote(bool (*draw)(struct target *fb, struct trace *tr));
 
 /* Lesson 06's exercise (lesson_exercise.clip): the student's clipper against
  * one plane, exercise_clip() (student.h), and the front end around it. */
@@ -70,6 +73,8 @@ struct clip_fault {
     bool reversed;              /* ... made walking the polygon the other way */
 };
 const struct clip_fault *exercise_clip_fault(void);
+/* The fault as the runner reports it (the judge's copy, remote.c). */
+void exercise_clip_fault_set(const struct clip_fault *f);
 
 /* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
  * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
@@ -111,6 +116,19 @@ struct texel_fault {
     int w, h;                       /* the level's size (0 x 0: no such level) */
 };
 const struct texel_fault *exercise_texel_fault(void);
+/* Both faults as the runner reports them (the judge's copy, remote.c). */
+void exercise_fault_set(const struct exercise_fault *f, const struct texel_fault *t);
+
+/* What went wrong with the runner, the process that runs the student's
+ * code when the judge is another (remote.h), since the scene began: it
+ * crashed or ended, drew for too long, or sent what no drawing sends. */
+enum runner_wrong { RUNNER_OK, RUNNER_CRASHED, RUNNER_TIMEOUT, RUNNER_GARBAGE };
+struct runner_fault {
+    enum runner_wrong what;
+    int signal;                     /* RUNNER_CRASHED by a signal: which */
+    char why[200];                  /* in plain words */
+};
+const struct runner_fault *exercise_runner_fault(void);
 
 /* --- make check ---------------------------------------------------------------- */
 
@@ -123,6 +141,16 @@ struct check_options {
     FILE *out;                      /* the report (stdout) */
     bool progress;                  /* show progress on long checks (a terminal) */
     const char *program;            /* the exercise program, for the debugger command */
+    bool all;                       /* run every check, not only up to the first failure (grading) */
+};
+
+/* One check's outcome, for a score (make grade). */
+#define CHECKS_MAX 24
+struct check_outcome {
+    char name[48];
+    bool ran, passed;
+    enum runner_wrong runner;       /* failed because the runner crashed, hung or sent garbage */
+    long from, to;                  /* its part of the report: ftell(out) before and after */
 };
 
 struct check_result {
@@ -132,12 +160,15 @@ struct check_result {
     int x, y;                       /* its first wrong pixel */
     uint64_t step;                  /* the step that shows it in the explorer */
     int ntris;                      /* triangles in the counterexample */
+    struct check_outcome check[CHECKS_MAX];     /* every check planned, in order */
 };
 
 /* Run every check of lesson l on the code given to exercise_use, in order,
  * stopping at the first failure. Returns true when all pass. False also for
  * an unreadable SCENE file or an unwritable counterexample (said on o->out). */
 bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r);
+/* The checks exercise_check would run, by name (r->nchecks, r->check[i].name). */
+bool exercise_check_plan(const struct lesson *l, const struct check_options *o, struct check_result *r);
 /* The same in a process of its own: code that crashes, or loops for
  * SCENE_SECONDS on one scene, fails with the scene it was drawing (shrunk
  * when it crashes) and the command that shows where under a debugger. */
