@@ -338,7 +338,8 @@ bool exercise_projected(const struct checker *C, struct scene *out, const struct
     if (remote_active()) {      /* by the runner; its triangles then follow */
         struct raster_params p = C->p;
         p.samples = 0;
-        return student_begin(C, s, &p, 0, INT32_MAX, WIRE_TRACE_COUNT) && scene_copy(out, remote_projected());
+        return student_begin(C, s, &p, 0, INT32_MAX, WIRE_TRACE_COUNT) && remote_projected()
+               && scene_copy(out, remote_projected());
     }
     if (!scene_copy(out, s))
         return false;

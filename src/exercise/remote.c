@@ -356,7 +356,7 @@ bool remote_begin(const struct scene *s, const struct raster_params *p, int firs
         return false;
     in_scene = true;
     scene_w = s->w, scene_h = s->h;
-    if (s->world.camera_line && clip)
+    if (s->world.camera_line)   /* the runner's front end first */
         return read_projected(s);
     return true;
 }
