@@ -437,6 +437,11 @@ static void summarise(const char *log, const struct lesson *l, char *out, size_t
             snprintf(out, n, "uses %.*s, which lesson %.2s's exercise does not give (src/exercise/student-library.txt)",
                      (int)strcspn(p, "'"), p, l->id);
             found = true;
+        } else if ((p = strstr(line, "multiple definition of `"))) {
+            p += strlen("multiple definition of `");
+            snprintf(out, n, "defines %.*s, which the runner defines: a file defines the exercise's functions only",
+                     (int)strcspn(p, "'"), p);
+            found = true;
         } else if ((p = strstr(line, "fatal error: ")) && strstr(line, "No such file")) {
             p += strlen("fatal error: ");
             snprintf(out, n, "includes %.*s, which is not there: a submission is compiled alone, with its lesson's headers",
@@ -812,6 +817,21 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
     }
     if (G.seed_text)
         check_seed = grade_seed(G.seed_text);
+    /* the compiler by its real path: /usr/bin/cc is a link through /etc,
+     * which the sandbox does not hold */
+    static char cc_path[4096];
+    const char *path = getenv("PATH");
+    for (const char *p = strchr(G.cc, '/') ? "" : path ? path : "/usr/bin"; p;) {
+        const char *colon = strchr(p, ':');
+        char cand[4096];
+        snprintf(cand, sizeof cand, "%s%.*s%s%s", "", colon ? (int)(colon - p) : (int)strlen(p), p,
+                 *p ? "/" : "", G.cc);
+        if (realpath(cand, cc_path) && access(cc_path, X_OK) == 0) {
+            G.cc = cc_path;
+            break;
+        }
+        p = colon ? colon + 1 : NULL;
+    }
     /* the lesson's checks, by name, from a plan with nothing run */
     struct check_result plan;
     {
