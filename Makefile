@@ -1,6 +1,7 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
-#          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
+#          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder] [SEED=n] [POINTS=file] [UNSAFE=1]
+#          make gradescope LESSON=02 [SEED=n] [POINTS=file] (an autograder zip)
 #          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
@@ -54,7 +55,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade skeletons FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade grade-build gradescope skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -259,6 +260,24 @@ grade: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESS
 	@$(if $(UNSAFE),,sh src/deps.sh grade &&) mkdir -p '$(dir $(CSV))' && $< --grade --dir '$(DIR)' --lib $(B)/student/$(LESSON) --out '$(OUT)' \
 	  --csv '$(CSV)' --timeout $(TIMEOUT) --commit $(GRADER) --cc '$(CC)' $(if $(SEED),--seed '$(SEED)') \
 	  $(if $(POINTS),--points '$(POINTS)') $(if $(ONE),--one) $(if $(UNSAFE),--unsafe)
+
+grade-build: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
+
+# make gradescope LESSON=NN [SEED=n] [POINTS=file]: an autograder zip for
+# Gradescope, $(B)/gradescope-NN.zip: setup.sh and run_autograder
+# (src/exercise/gradescope/) and the repository's committed source, which
+# grades /autograder/submission as make grade does (ONE=1: it is one
+# student's folder) into /autograder/results/results.json.
+gradescope:
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
+	@rm -rf $(B)/gradescope-$(LESSON) && mkdir -p $(B)/gradescope-$(LESSON)/source && \
+	  git archive HEAD | tar -x -C $(B)/gradescope-$(LESSON)/source && \
+	  for f in setup.sh run_autograder; do sed 's/@LESSON@/$(LESSON)/g' src/exercise/gradescope/$$f > $(B)/gradescope-$(LESSON)/$$f; \
+	    chmod +x $(B)/gradescope-$(LESSON)/$$f; done && \
+	  printf '%s\n' "$(if $(SEED),SEED=$(SEED)) $(if $(POINTS),POINTS=points.txt)" > $(B)/gradescope-$(LESSON)/source/gradescope.options && \
+	  $(if $(POINTS),cp '$(POINTS)' $(B)/gradescope-$(LESSON)/source/points.txt &&) \
+	  rm -f $(B)/gradescope-$(LESSON).zip && (cd $(B)/gradescope-$(LESSON) && zip -qr ../gradescope-$(LESSON).zip setup.sh run_autograder source) && \
+	  echo "gradescope: $(B)/gradescope-$(LESSON).zip (setup.sh, run_autograder, the source at $$(git rev-parse --short HEAD))"
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak

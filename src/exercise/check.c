@@ -312,7 +312,9 @@ bool exercise_check(const struct lesson *l, const struct check_options *o, struc
     for (int i = 0; i < n; i++) {
         struct check_outcome *co = &r->check[i];
         snprintf(co->name, sizeof co->name, "%s", P.checks[i].name);
-        if (!ok && !o->all)
+        /* grading: a runner that hung is not given every check's time again */
+        bool hung = i > 0 && r->check[i - 1].ran && r->check[i - 1].runner == RUNNER_TIMEOUT;
+        if ((!ok && !o->all) || hung || (i > 0 && !r->check[i - 1].ran))
             continue;
         co->from = ftell(out);
         co->ran = true;
