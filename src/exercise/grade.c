@@ -359,6 +359,7 @@ struct row {
     char result[32];            /* pass, fail, compile error, link error, timed out, ... */
     char first[240];            /* the first failure, in plain words */
     char sha[65];
+    char stage[64];             /* the sandbox's files, removed after the run */
     bool judged;                /* the checks began */
     struct check_result r;
 };
@@ -465,14 +466,11 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(dir, sizeof dir, "%s/%s", G.out, s->safe);
     rm_tree(dir);
     snprintf(src, sizeof src, "%s/src", dir);
-    snprintf(build, sizeof build, "%s/build", dir);
-    if (mkdir(dir, 0755) != 0 || mkdir(src, 0755) != 0 || mkdir(build, 0755) != 0) {
+    if (mkdir(dir, 0755) != 0 || mkdir(src, 0755) != 0) {
         snprintf(row->result, sizeof row->result, "not graded");
         snprintf(row->first, sizeof row->first, "cannot create its folder under OUT");
         return;
     }
-    if (getuid() == 0 && !G.unsafe && chown(build, NOBODY, NOBODY) != 0)
-        return;
     snprintf(src + strlen(src), sizeof src - strlen(src), "/exercise.c");
     const char *why = s->problem;
     if (why || !copy_file(s->file, src, &why)) {
@@ -485,9 +483,29 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     double start = now();
     struct limits cl = { .cpu = (rlim_t)G.timeout, .as = (rlim_t)2 << 30, .fsize = (rlim_t)64 << 20,
                          .nproc = user_processes() + 64 };
-    char inc[1300], lib[1300], obj[1400], runner[1400];
-    snprintf(inc, sizeof inc, "%s/include", G.lib);
-    snprintf(lib, sizeof lib, "%s/library.o", G.lib);
+    /* what the sandbox binds, staged where its user may read it (a private
+     * folder of the grader's may not be): the headers, the library, the
+     * file, and the folder it builds in */
+    char *stage = row->stage;
+    snprintf(stage, sizeof row->stage, "/tmp/tristep-grade-XXXXXX");
+    char inc[1300], lib[1300], obj[1400], runner[1400], cmd[4000];
+    if (!mkdtemp(stage) || chmod(stage, 0711) != 0) {
+        snprintf(row->result, sizeof row->result, "not graded");
+        snprintf(row->first, sizeof row->first, "cannot create a folder in /tmp");
+        return;
+    }
+    snprintf(inc, sizeof inc, "%s/include", stage);
+    snprintf(lib, sizeof lib, "%s/library.o", stage);
+    snprintf(cmd, sizeof cmd, "cp -R '%s/include' '%s' && cp '%s/library.o' '%s' && cp '%s' '%s/exercise.c' && chmod -R a+rX '%s'",
+             G.lib, stage, G.lib, stage, src, stage, stage);
+    snprintf(src, sizeof src, "%s/exercise.c", stage);
+    snprintf(build, sizeof build, "%s/build", stage);
+    if (strchr(G.lib, '\'') || system(cmd) != 0 || mkdir(build, 0755) != 0
+        || (getuid() == 0 && !G.unsafe && chown(build, NOBODY, NOBODY) != 0)) {
+        snprintf(row->result, sizeof row->result, "not graded");
+        snprintf(row->first, sizeof row->first, "cannot stage its files in /tmp");
+        return;
+    }
     snprintf(obj, sizeof obj, "%s/file.o", build);
     snprintf(runner, sizeof runner, "%s/runner", build);
     const char *in_inc = G.unsafe ? inc : "/student/include", *in_src = G.unsafe ? src : "/sub/exercise.c";
@@ -885,6 +903,8 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
             }
             kill(-pid, SIGKILL);
         }
+        if (row->stage[0] && !strncmp(row->stage, "/tmp/tristep-grade-", 19))
+            rm_tree(row->stage);
         if (!row->result[0])
             snprintf(row->result, sizeof row->result, "judge failed");
         printf("%s\n", row->result);
