@@ -78,7 +78,7 @@ static char *tree_state(void)
 static int survivors(void)
 {
     char cmd[512];
-    snprintf(cmd, sizeof cmd, "ps -eo uid=,args= | awk '$1 == 65534 || index($0, \"%s\") { n++ } END { print n + 0 }'", dir);
+    snprintf(cmd, sizeof cmd, "ps -eo uid=,args= | awk '($1 == 65534 || index($0, \"%s\")) && !index($0, \"ps -eo\") && !index($0, \"awk\") { n++ } END { print n + 0 }'", dir);
     FILE *p = popen(cmd, "r");
     int n = -1;
     if (p && fscanf(p, "%d", &n) != 1)
