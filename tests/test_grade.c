@@ -9,13 +9,16 @@
  * files (a fork bomb, 4 GiB of memory, endless output, a child that
  * outlives its run) are make grade-hostile's (TRISTEP_HOSTILE=1). Run from
  * the repository's top folder, as make test does. */
-#define _POSIX_C_SOURCE 200809L   /* popen, mkdtemp */
+#define _GNU_SOURCE               /* popen, usleep, prctl */
 
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "testlib.h"
@@ -27,6 +30,7 @@ static void make_dir(void)
 {
     test_scratch_make();
     dir = test_scratch_dir();
+    prctl(PR_SET_CHILD_SUBREAPER, 1);     /* survivors() */
 }
 
 /* A file's text, copied (test_read_text's buffer is reused by the next read). */
@@ -63,7 +67,7 @@ static char *row_of(const char *csv, const char *name, char *row, size_t n)
 /* The project's files as git sees them (what a submission could change). */
 static char *tree_state(void)
 {
-    FILE *p = popen("git status --porcelain --untracked-files=all -- . ':!build' 2>&1; "
+    FILE *p = popen("git status --porcelain --untracked-files=all --ignored -- . ':!build' 2>&1; "
                     "git diff --stat 2>&1 | tail -n 1", "r");
     cr_assert_not_null(p);
     static char buf[1 << 16];
@@ -73,18 +77,41 @@ static char *tree_state(void)
     return strdup(buf);
 }
 
-/* Processes of nobody (the sandbox's user when the tests run as root) or
- * still in a run's folder. */
+/* The processes of the run that survive it. The test process is a
+ * subreaper (make_dir): whatever make grade started, in a sandbox or in a
+ * session of its own, is its descendant, and becomes its child when its
+ * parents end; so once make grade has returned, a child of this process is
+ * a survivor. Each is killed (so that the next test starts clean) and
+ * counted, after a moment for the ones the run killed to go. */
 static int survivors(void)
 {
-    char cmd[512];
-    snprintf(cmd, sizeof cmd, "ps -eo uid=,args= | awk '($1 == 65534 || index($0, \"%s\")) && !index($0, \"ps -eo\") && !index($0, \"awk\") { n++ } END { print n + 0 }'", dir);
-    FILE *p = popen(cmd, "r");
-    int n = -1;
-    if (p && fscanf(p, "%d", &n) != 1)
-        n = -1;
-    if (p)
-        pclose(p);
+    int n = 0;
+    for (int round = 0; round < 100; round++) {
+        n = 0;
+        DIR *d = opendir("/proc");
+        struct dirent *e;
+        while (d && (e = readdir(d))) {
+            char p[300], buf[512];
+            snprintf(p, sizeof p, "/proc/%s/stat", e->d_name);
+            FILE *f = e->d_name[0] >= '1' && e->d_name[0] <= '9' ? fopen(p, "r") : NULL;
+            size_t k = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+            if (f)
+                fclose(f);
+            buf[k] = '\0';
+            const char *paren = strrchr(buf, ')');
+            char state;
+            int ppid;
+            if (paren && sscanf(paren + 1, " %c %d", &state, &ppid) == 2 && ppid == getpid() && state != 'Z')
+                n++;
+        }
+        if (d)
+            closedir(d);
+        while (waitpid(-1, NULL, WNOHANG) > 0)
+            ;
+        if (!n)
+            return 0;
+        usleep(20000);
+    }
     return n;
 }
 
@@ -106,14 +133,14 @@ static char *answer_with(const char *answer, const char *top, const char *before
     return out;
 }
 
-/* make grade on sub/ into out/ and grade.csv: the CSV's text. */
-static char *grade(const char *extra)
+/* make grade LESSON=lesson on sub/ into out/ and grade.csv: the CSV's text. */
+static char *grade_lesson(const char *lesson, const char *extra)
 {
     char cmd[1024], path[256];
     const char *b = getenv("TRISTEP_BUILD");
     snprintf(cmd, sizeof cmd, "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory grade "
-             "B=%s LESSON=02 DIR=%s/sub OUT=%s/out CSV=%s/grade.csv TIMEOUT=30 %s > %s/log 2>&1",
-             b ? b : "build", dir, dir, dir, extra, dir);
+             "B=%s LESSON=%s DIR=%s/sub OUT=%s/out CSV=%s/grade.csv TIMEOUT=30 %s > %s/log 2>&1",
+             b ? b : "build", lesson, dir, dir, dir, extra, dir);
     int st = system(cmd);
     snprintf(path, sizeof path, "%s/log", dir);
     char *log = slurp(path);
@@ -121,6 +148,11 @@ static char *grade(const char *extra)
     free(log);
     snprintf(path, sizeof path, "%s/grade.csv", dir);
     return slurp(path);
+}
+
+static char *grade(const char *extra)
+{
+    return grade_lesson("02", extra);
 }
 
 static void expect_row(const char *csv, const char *name, const char *has)
@@ -225,4 +257,137 @@ Test(grade, untrusted_names_and_a_seed, .init = make_dir, .fini = test_scratch_r
     cr_expect_null(strstr(csv, "\n\"="), "a formula in the first field:\n%s", csv);
     cr_expect_null(strstr(csv, ",\"="), "a formula in a field:\n%s", csv);
     free(csv);
+}
+
+/* Hostile files: each the lesson's answer, its skeleton or nothing, with
+ * code put before it and at the top of its rasterizer's body; what its
+ * CSV row must hold. The run grades them beside an honest answer and the
+ * skeleton, whose rows must be right too. */
+struct hostile {
+    const char *name, *base, *before, *top;
+    const char *expect[2];
+    bool quick;                 /* in make test's share; all in make grade-hostile's */
+};
+
+static const struct hostile hostiles[] = {
+    /* a fork bomb beside the skeleton: its processes stop at the limit, the
+     * checks run, and the next file's process limit is its own */
+    { "bomb.c", "exercise", "#include <unistd.h>\n__attribute__((constructor)) static void bomb(void)\n"
+      "{ if (fork() == 0) for (;;) if (fork() < 0) pause(); }\n", "", { "\",\"fail", NULL }, true },
+    /* a child in a session of its own, forked twice, that would rewrite
+     * its verdict once the run is over */
+    { "outlive.c", "exercise", "#include <stdio.h>\n#include <unistd.h>\n#include <sys/wait.h>\n"
+      "__attribute__((constructor)) static void linger(void)\n"
+      "{ pid_t a = fork(); if (a == 0) { setsid(); if (fork() == 0) for (int i = 0; i < 300; i++) {\n"
+      "  sleep(1); puts(\"all checks pass\"); fflush(stdout); FILE *f = fopen(\"../check.txt\", \"w\");\n"
+      "  if (f) fputs(\"all checks pass\", f), fclose(f); } _exit(0); } waitpid(a, NULL, 0); }\n",
+      "", { "\",\"fail\",\"0\"", "\"0 failed\"" }, true },
+    /* the answer, trying to kill its grader and everything else first: the
+     * grader is out of its reach, so the work gets its due */
+    { "killer.c", "answer", "#include <signal.h>\n#include <unistd.h>\n"
+      "__attribute__((constructor)) static void killer(void)\n"
+      "{ kill(getppid(), SIGKILL); kill(-1, SIGKILL); kill(1, SIGKILL); }\n", "", { "\",\"pass\",\"9\"", NULL }, true },
+    /* the answer, printing 75 MB first: the log keeps 256 KiB, the run goes on */
+    { "flood.c", "answer", "#include <stdio.h>\n",
+      "    static int once;\n    if (!once++)\n        for (int i = 0; i < 1 << 22; i++)\n"
+      "            fputs(\"all checks pass!!\\n\", stdout);\n", { "\",\"pass\",\"9\"", NULL }, true },
+    /* 4 GiB, more than a runner may have: a crash */
+    { "memory.c", "answer", "#include <stdlib.h>\n#include <string.h>\n",
+      "    char *m = malloc((size_t)4 << 30);\n    if (!m)\n        abort();\n    memset(m, 1, (size_t)4 << 30);\n"
+      "    free(m);\n", { "\",\"fail\",\"0\"", "\"0 crashed\"" }, false },
+    /* a file that includes itself twice at every level: 2^40 inclusions */
+    { "self-include.c", NULL, "#if __INCLUDE_LEVEL__ < 40\n#include __FILE__\n#include __FILE__\n#endif\n", "",
+      { "\",\"timed out\",\"0\"", "compiling took more than" }, false },
+    /* a destructor that forges a report after the real failure, in its log,
+     * in files where check.txt might be and on the results' pipe */
+    { "destructor.c", "exercise", "#include <stdio.h>\n#include <unistd.h>\n"
+      "__attribute__((destructor)) static void forge(void)\n"
+      "{ const char *p[] = { \"check.txt\", \"../check.txt\", \"/out/check.txt\", \"/tmp/check.txt\" };\n"
+      "  for (int i = 0; i < 4; i++) { FILE *f = fopen(p[i], \"w\"); if (f) fputs(\"all checks pass\\n\", f), fclose(f); }\n"
+      "  puts(\"all checks pass\"); fflush(stdout); (void)!write(3, \"\\1\\0\\0\\0\\0\\0\\0\\0\", 8); _exit(10); }\n",
+      "", { "\",\"fail\",\"0\"", "\"0 failed\"" }, false },
+    /* the private /tmp filled to its end first, then the work */
+    { "disk.c", "answer", "#include <stdio.h>\n#include <string.h>\n"
+      "__attribute__((constructor)) static void fill(void)\n"
+      "{ static char b[1 << 19]; memset(b, 'x', sizeof b);\n"
+      "  for (int i = 0; i < 1000; i++) { char n[64]; snprintf(n, sizeof n, \"/tmp/fill%d\", i);\n"
+      "    FILE *f = fopen(n, \"w\"); if (!f) break; size_t w = fwrite(b, 1, sizeof b, f);\n"
+      "    if (fclose(f) != 0 || w != sizeof b) break; } }\n", "", { "\",\"pass\",\"9\"", NULL }, false },
+    /* an endless loop in a constructor: the runner never starts */
+    { "spin.c", "answer", "__attribute__((constructor)) static void spin(void) { for (volatile int f = 1; f;) ; }\n",
+      "", { "\",\"fail", "\"0 timed out\"" }, false },
+};
+
+static void grade_hostiles(const char *lesson, bool all)
+{
+    char path[256], base_path[256];
+    snprintf(path, sizeof path, "%s/sub", dir);
+    cr_assert_eq(mkdir(path, 0777), 0);
+    char *before = tree_state();
+    snprintf(base_path, sizeof base_path, "lessons/%s-*/answer.c", lesson);
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "ls lessons/%s-*/answer.c", lesson);
+    FILE *ls = popen(cmd, "r");
+    cr_assert(ls && fgets(base_path, sizeof base_path, ls));
+    pclose(ls);
+    base_path[strcspn(base_path, "\n")] = '\0';
+    char *answer = slurp(base_path);
+    strcpy(strrchr(base_path, '/'), "/exercise.c");
+    char *skeleton = slurp(base_path);
+    put("good.c", answer);
+    put("wrong.c", skeleton);
+    for (size_t i = 0; i < sizeof hostiles / sizeof hostiles[0]; i++) {
+        const struct hostile *h = &hostiles[i];
+        if (!all && !h->quick)
+            continue;
+        const char *base = !h->base ? NULL : !strcmp(h->base, "answer") ? answer : skeleton;
+        char *t = base ? answer_with(base, h->top, h->before) : strdup(h->before);
+        put(h->name, t);
+        free(t);
+    }
+    char *csv = grade_lesson(lesson, all ? "TIMEOUT=20" : "");
+    expect_row(csv, "good.c", "\",\"pass\",\"");
+    expect_row(csv, "wrong.c", "\",\"fail\",\"0\"");
+    for (size_t i = 0; i < sizeof hostiles / sizeof hostiles[0]; i++) {
+        const struct hostile *h = &hostiles[i];
+        if (!all && !h->quick)
+            continue;
+        for (int k = 0; k < 2 && h->expect[k]; k++)
+            expect_row(csv, h->name, !strcmp(lesson, "02") || k ? h->expect[k]
+                       : strstr(h->expect[k], "pass") ? "\",\"pass\",\"" : h->expect[k]);
+    }
+    /* the flood's log: its first 256 KiB and a line that says so */
+    struct stat st;
+    snprintf(path, sizeof path, "%s/out/flood/log.txt", dir);
+    cr_expect_eq(stat(path, &st), 0, "%s", path);
+    cr_expect(st.st_size >= 256 << 10 && st.st_size < (256 << 10) + 200, "flood's log: %lld bytes", (long long)st.st_size);
+    cr_expect_eq(survivors(), 0, "processes of the run survive it");
+    char *after = tree_state();
+    cr_expect_str_eq(after, before, "the project tree changed");
+    free(after);
+    free(before);
+    free(csv);
+    free(answer);
+    free(skeleton);
+}
+
+/* make test's share: a few hostile files of lesson 02. make grade-hostile
+ * (TRISTEP_HOSTILE="02 06 09", a list of lessons) grades them all, for each
+ * lesson of the list. */
+Test(grade, hostile_files, .init = make_dir, .fini = test_scratch_remove, .timeout = 1200)
+{
+    const char *list = getenv("TRISTEP_HOSTILE");
+    if (!list || !*list) {
+        grade_hostiles("02", false);
+        return;
+    }
+    char lessons[64];
+    snprintf(lessons, sizeof lessons, "%s", list);
+    for (char *save, *l = strtok_r(lessons, " ", &save); l; l = strtok_r(NULL, " ", &save)) {
+        if (l != lessons) {     /* a fresh folder for the next lesson */
+            test_scratch_remove();
+            make_dir();
+        }
+        grade_hostiles(l, true);
+    }
 }

@@ -8,10 +8,16 @@
  * can stop the run: a judge that runs past the submission's time is
  * killed, its checks so far kept (shared memory), the rest "timed out".
  * The sandbox (bubblewrap): no network, new namespaces (a process that
- * outlives the run dies with its namespace), read-only /usr (the
+ * outlives the run dies with its pid namespace), read-only /usr (the
  * toolchain) and the lesson's student library, the one file, a private
- * /tmp; limits on CPU time, memory, processes, file size. Run as root, the
- * sandboxed commands run as nobody (so that the process limit holds). */
+ * /tmp of 64 MiB; limits on CPU time, memory, processes, file size; what
+ * it prints goes through a pipe to a reader that keeps the first LOG_MAX
+ * bytes. Run as root, each submission's commands run as a user id of
+ * their own (so that the process limit counts its processes alone, and
+ * whatever is left of them is killed by that id). The grader is its
+ * processes' subreaper: whatever a submission leaves behind (even without
+ * the sandbox, UNSAFE=1, in a session of its own) becomes its child when
+ * its parent ends, and is killed before the next submission. */
 #define _GNU_SOURCE
 
 #include "grade.h"
@@ -37,13 +43,15 @@
 #include "exercise/gen.h"
 #include "exercise/remote.h"
 
-#define NOBODY 65534
 #define FILE_MAX (1 << 20)          /* a submission's size */
+#define LOG_MAX (256 << 10)         /* what is kept of a compile's or a run's prints */
+#define UID_BASE 1900000000u        /* run as root: a submission's user id, this + its judge's pid */
 
 static struct {
     const char *dir, *lib, *out, *csv, *points, *commit, *cc, *seed_text;
     double timeout;
     bool unsafe, one;
+    uid_t uid;                      /* the sandbox's (root only) */
 } G = { .cc = "cc", .timeout = 60, .commit = "unknown" };
 
 uint64_t grade_seed(const char *s)
@@ -241,9 +249,9 @@ static void apply_limits(void *ctx)
     r.rlim_cur = r.rlim_max = 256;
     setrlimit(RLIMIT_NOFILE, &r);
     prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (!G.unsafe && getuid() == 0) {   /* root is above every process limit: run as nobody */
+    if (G.uid) {    /* root is above every process limit: a user of its own */
         setgroups(0, NULL);
-        if (setgid(NOBODY) != 0 || setuid(NOBODY) != 0)
+        if (setgid(G.uid) != 0 || setuid(G.uid) != 0)
             _exit(126);
     }
     r.rlim_cur = r.rlim_max = L->nproc;
@@ -251,11 +259,11 @@ static void apply_limits(void *ctx)
 }
 
 /* Processes the user who runs the sandbox has now (the process limit
- * counts them all). */
-static rlim_t user_processes(void)
+ * counts them all), or, with uid, those of uid. */
+static rlim_t user_processes(uid_t uid)
 {
-    if (getuid() == 0 && !G.unsafe)
-        return 0;       /* nobody's */
+    if (G.uid && !uid)
+        return 0;       /* a user of its own: none yet */
     rlim_t n = 0;
     DIR *d = opendir("/proc");
     struct dirent *e;
@@ -263,7 +271,8 @@ static rlim_t user_processes(void)
         char p[300];
         struct stat st;
         snprintf(p, sizeof p, "/proc/%s", e->d_name);
-        if (e->d_name[0] >= '0' && e->d_name[0] <= '9' && stat(p, &st) == 0 && st.st_uid == getuid())
+        if (e->d_name[0] >= '0' && e->d_name[0] <= '9' && stat(p, &st) == 0
+            && st.st_uid == (uid ? uid : getuid()))
             n++;
     }
     if (d)
@@ -271,21 +280,127 @@ static rlim_t user_processes(void)
     return n;
 }
 
-static int nobody_processes(void)
+/* Kill every process of the user id uid (the sandbox's: nothing else runs
+ * as it), and wait until the kernel has let them go (until then they count
+ * against a process limit). */
+static void kill_user(uid_t uid)
 {
-    int n = 0;
-    DIR *d = opendir("/proc");
-    struct dirent *e;
-    while (d && (e = readdir(d))) {
-        char p[300];
-        struct stat st;
-        snprintf(p, sizeof p, "/proc/%s", e->d_name);
-        if (e->d_name[0] >= '0' && e->d_name[0] <= '9' && stat(p, &st) == 0 && st.st_uid == NOBODY)
-            n++;
+    for (int round = 0; round < 400 && user_processes(uid) > 0; round++) {
+        pid_t k = fork();
+        if (k == 0) {
+            if (setgid(uid) == 0 && setuid(uid) == 0)
+                kill(-1, SIGKILL);      /* as uid: every process of uid, and nothing else */
+            _exit(0);
+        }
+        if (k > 0)
+            waitpid(k, NULL, 0);
+        nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
     }
-    if (d)
-        closedir(d);
-    return n;
+}
+
+/* The children of this process (a subreaper: orphans of what it started
+ * become its children), killed and reaped until none is left. */
+static void kill_children(void)
+{
+    for (int round = 0; round < 1000; round++) {
+        int found = 0;
+        DIR *d = opendir("/proc");
+        struct dirent *e;
+        while (d && (e = readdir(d))) {
+            if (e->d_name[0] < '0' || e->d_name[0] > '9')
+                continue;
+            char p[300], buf[512];
+            snprintf(p, sizeof p, "/proc/%s/stat", e->d_name);
+            FILE *f = fopen(p, "r");
+            size_t k = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+            if (f)
+                fclose(f);
+            buf[k] = '\0';
+            const char *close_paren = strrchr(buf, ')');     /* the name may hold anything */
+            char state;
+            int ppid;
+            if (close_paren && sscanf(close_paren + 1, " %c %d", &state, &ppid) == 2 && ppid == getpid()) {
+                kill(atoi(e->d_name), SIGKILL);
+                found++;
+            }
+        }
+        if (d)
+            closedir(d);
+        while (waitpid(-1, NULL, WNOHANG) > 0)
+            found++;
+        if (!found && waitpid(-1, NULL, WNOHANG) < 0 && errno == ECHILD)
+            return;
+        nanosleep(&(struct timespec){ 0, 2000000 }, NULL);
+    }
+}
+
+/* A pipe whose reader keeps the first LOG_MAX bytes written to it in the
+ * file path (then a line that says so, the rest dropped): the write end,
+ * or -1. The reader is a child of ours; *reader its pid. */
+static int log_pipe(const char *path, pid_t *reader)
+{
+    int fds[2];
+    *reader = -1;
+    int file = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (file < 0 || pipe2(fds, O_CLOEXEC) != 0) {
+        if (file >= 0)
+            close(file);
+        return -1;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[1]);
+        struct stat st;
+        size_t kept = fstat(file, &st) == 0 ? (size_t)st.st_size : 0;
+        char buf[1 << 14];
+        ssize_t n;
+        bool cut = false;
+        while ((n = read(fds[0], buf, sizeof buf)) != 0) {
+            if (n < 0) {
+                if (errno == EINTR)
+                    continue;
+                break;
+            }
+            size_t keep = kept < LOG_MAX ? LOG_MAX - kept : 0;
+            if ((size_t)n < keep)
+                keep = (size_t)n;
+            if (keep && write(file, buf, keep) != (ssize_t)keep)
+                break;
+            kept += keep;
+            if (keep < (size_t)n && !cut) {
+                static const char note[] = "\n[the rest of the output is not kept: more than 256 KiB]\n";
+                if (write(file, note, sizeof note - 1) < 0)
+                    break;
+                cut = true;
+            }
+        }
+        _exit(0);
+    }
+    close(fds[0]);
+    close(file);
+    if (pid < 0) {
+        close(fds[1]);
+        return -1;
+    }
+    *reader = pid;
+    return fds[1];
+}
+
+/* The reader's end: it has its last bytes once every writer is gone. */
+static void log_done(int fd, pid_t reader)
+{
+    if (fd >= 0)
+        close(fd);
+    if (reader <= 0)
+        return;
+    for (int k = 0; k < 400; k++) {
+        if (waitpid(reader, NULL, WNOHANG) == reader)
+            return;
+        nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
+    }
+    kill(reader, SIGKILL);      /* a writer still holds it: it is killed next */
+    waitpid(reader, NULL, 0);
 }
 
 /* argv of a command in the sandbox: binds given as pairs "--ro-bind" or
@@ -330,9 +445,8 @@ static int sandbox_argv(char **argv, const char *const *binds, const char *const
 /* Run argv with limits, its output into out, for at most `seconds`: its
  * exit status, or -1 when it ran out of time (killed with everything it
  * started). */
-static int run_limited(char **argv, const char *out, struct limits *L, double seconds)
+static int run_limited(char **argv, int fd, struct limits *L, double seconds)
 {
-    int fd = open(out, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
     fflush(NULL);
     pid_t pid = fork();
     if (pid == 0) {
@@ -347,8 +461,6 @@ static int run_limited(char **argv, const char *out, struct limits *L, double se
         execvp(argv[0], argv);
         _exit(127);
     }
-    if (fd >= 0)
-        close(fd);
     if (pid < 0)
         return 127;
     setpgid(pid, pid);
@@ -498,8 +610,12 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     sha256(src, row->sha);
     snprintf(clog, sizeof clog, "%s/compile.txt", dir);
     double start = now();
-    struct limits cl = { .cpu = (rlim_t)G.timeout, .as = (rlim_t)2 << 30, .fsize = (rlim_t)64 << 20,
-                         .nproc = user_processes() + 64 };
+    if (getuid() == 0 && !G.unsafe)
+        G.uid = UID_BASE + (uid_t)getpid();
+    /* CPU time above the wall time: a compile that takes too long is
+     * "timed out" whatever the machine's load, never a compiler killed */
+    struct limits cl = { .cpu = (rlim_t)(2 * G.timeout) + 1, .as = (rlim_t)2 << 30, .fsize = (rlim_t)64 << 20,
+                         .nproc = user_processes(0) + 64 };
     /* what the sandbox binds, staged where its user may read it (a private
      * folder of the grader's may not be): the headers, the library, the
      * file, and the folder it builds in */
@@ -518,7 +634,7 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(src, sizeof src, "%s/exercise.c", stage);
     snprintf(build, sizeof build, "%s/build", stage);
     if (strchr(G.lib, '\'') || system(cmd) != 0 || mkdir(build, 0755) != 0
-        || (getuid() == 0 && !G.unsafe && chown(build, NOBODY, NOBODY) != 0)) {
+        || (getuid() == 0 && !G.unsafe && chown(build, G.uid, G.uid) != 0)) {
         snprintf(row->result, sizeof row->result, "not graded");
         snprintf(row->first, sizeof row->first, "cannot stage its files in /tmp");
         return;
@@ -537,8 +653,11 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
                               "forbid.h", "-c", in_src, "-o", in_obj, NULL };
     char *argv[96];
     sandbox_argv(argv, binds, compile);
-    int st = run_limited(argv, clog, &cl, G.timeout);
+    pid_t reader;
+    int logfd = log_pipe(clog, &reader);
+    int st = run_limited(argv, logfd, &cl, G.timeout);
     if (st != 0) {
+        log_done(logfd, reader);
         snprintf(row->result, sizeof row->result, st < 0 ? "timed out" : "compile error");
         if (st < 0)
             snprintf(row->first, sizeof row->first, "compiling took more than %g s", G.timeout);
@@ -548,7 +667,8 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     }
     const char *link[] = { G.cc, "-Wl,--gc-sections", "-s", in_obj, in_lib, "-lm", "-pthread", "-o", in_runner, NULL };
     sandbox_argv(argv, binds, link);
-    st = run_limited(argv, clog, &cl, G.timeout - (now() - start));
+    st = run_limited(argv, logfd, &cl, G.timeout - (now() - start));
+    log_done(logfd, reader);
     if (st != 0) {
         snprintf(row->result, sizeof row->result, st < 0 ? "timed out" : "link error");
         if (st < 0)
@@ -563,16 +683,19 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(chk, sizeof chk, "%s/check.txt", dir);
     static struct limits rl;
     rl = (struct limits){ .cpu = (rlim_t)G.timeout + 1, .as = (rlim_t)1 << 30, .fsize = (rlim_t)1 << 20,
-                          .nproc = user_processes() + 32 };
+                          .nproc = user_processes(0) + 32 };
     const char *rbinds[] = { "--ro-bind", runner, "/runner", NULL };
     const char *rcmd[] = { G.unsafe ? runner : "/runner", NULL };
     static char *rargv[96];
     sandbox_argv(rargv, rbinds, rcmd);
-    remote_configure(&(struct remote_config){ .argv = rargv, .log = log, .limits = apply_limits,
+    int runlog = log_pipe(log, &reader);
+    remote_configure(&(struct remote_config){ .argv = rargv, .log = log, .log_fd = runlog, .limits = apply_limits,
                                               .limits_ctx = &rl, .scene_seconds = 10, .start_seconds = 10 });
     FILE *out = fopen(chk, "w");
-    if (!out)
+    if (!out) {
+        log_done(runlog, reader);
         return;
+    }
     char open_cmd[600];
     snprintf(open_cmd, sizeof open_cmd, "make exercise LESSON=%.2s FILE=<the file>", l->id);
     struct check_options o = { .file = "exercise.c", .out_dir = dir, .open_cmd = open_cmd,
@@ -581,6 +704,7 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     row->judged = true;
     bool ok = exercise_check(l, &o, &row->r);
     remote_shutdown();
+    log_done(runlog, reader);
     fclose(out);
     int failed_by_time = 0;
     for (int i = 0; i < row->r.nchecks; i++)
@@ -843,6 +967,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
         fprintf(stderr, "DIR=%s: no such folder\n", G.dir);
         return 2;
     }
+    prctl(PR_SET_CHILD_SUBREAPER, 1);       /* what a submission leaves behind becomes ours */
     if (!G.unsafe && system("bwrap --unshare-all --die-with-parent --ro-bind /usr /usr --symlink usr/bin /bin "
                             "--symlink usr/lib /lib --symlink usr/lib64 /lib64 true >/dev/null 2>&1") != 0) {
         fprintf(stderr, "make grade: bubblewrap (bwrap) cannot make a sandbox here (not installed, or no user\n"
@@ -919,11 +1044,11 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
                 nanosleep(&(struct timespec){ 0, 10000000 }, NULL);
             }
             kill(-pid, SIGKILL);
-            /* the killed sandbox's processes go away asynchronously, and
-             * count against the next one's process limit until they have */
+            /* what it left behind: its user id's processes (root), the
+             * orphans that became ours (any) */
             if (getuid() == 0 && !G.unsafe)
-                for (int k = 0; k < 400 && nobody_processes() > 0; k++)
-                    nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
+                kill_user(UID_BASE + (uid_t)pid);
+            kill_children();
         }
         if (row->stage[0] && !strncmp(row->stage, "/tmp/tristep-grade-", 19))
             rm_tree(row->stage);

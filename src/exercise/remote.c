@@ -186,7 +186,8 @@ static bool start_runner(void)
         close(in[0]), close(in[1]);
         return false;
     }
-    int log = cfg.log ? open(cfg.log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644) : -1;
+    int log = cfg.log_fd > 2 ? fcntl(cfg.log_fd, F_DUPFD_CLOEXEC, 10)
+              : cfg.log ? open(cfg.log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644) : -1;
     fflush(NULL);
     pid = fork();
     if (pid == 0) {

@@ -12,6 +12,7 @@
 struct remote_config {
     char **argv;                /* the runner's command: the program, or bwrap around it */
     const char *log;            /* where its prints go (appended); NULL: nowhere */
+    int log_fd;                 /* > 2: where its prints go instead of log (a pipe) */
     void (*limits)(void *ctx);  /* run in the child before the exec (setrlimit, ...) */
     void *limits_ctx;
     double scene_seconds;       /* a scene drawn for longer: an endless loop (0: 10 s) */
