@@ -231,13 +231,16 @@ $(B)/student/%/include.stamp: $(SL_TABLE) $$(wildcard lessons/$$*-*/answer.c) sr
 	    mkdir -p $$(dirname $$d) && cp $$h $$d; done && \
 	  { echo '/* forbid.h - what lesson $*'"'"'s exercise may not use of the headers (src/exercise/student-library.txt) */'; \
 	    for w in $(call sl_col,$*,poison); do printf '#undef %s\n#pragma GCC poison %s\n' $$w $$w; done; } > $(@D)/include/forbid.h && touch $@
-# the student's file, compiled as the runner's: the library's headers only
+# the student's file, compiled as the runner's: the library's headers only,
+# from a copy in a folder of its own (a quoted #include finds nothing beside
+# it, as in make grade's sandbox), #line keeping its name in the messages
 SL_CC     = $(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -pthread $(SAN) $(TS_PORT) -DTRISTEP_NARRATE \
             -I$(B)/student/$(LESSON)/include -include exercise/student.h -include forbid.h
 $(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
 	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
-	@$(SL_CC) -c $(FILE) -o $@
+	@mkdir -p $(@D)/src && { printf '#line 1 "%s"\n' "$$(printf '%s' '$(FILE)' | sed 's/[\\"]/\\&/g')"; cat '$(FILE)'; } > $(@D)/src/exercise.c && \
+	  $(SL_CC) -c $(@D)/src/exercise.c -o $@
 $(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
 	@$(LD_ALL) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
 $(B)/obj/judge-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -DEXERCISE_JUDGE -c $< -o $@
