@@ -256,7 +256,7 @@ check: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/runner
 TIMEOUT  ?= 60
 OUT      ?= $(B)/grade/$(LESSON)
 CSV      ?= $(OUT).csv
-GRADER   := $(shell git rev-parse HEAD 2>/dev/null || echo unknown)
+GRADER   := $(shell git rev-parse HEAD 2>/dev/null || cat gradescope.commit 2>/dev/null || echo unknown)
 grade: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
 	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
@@ -268,19 +268,19 @@ grade-build: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/
 
 # make gradescope LESSON=NN [SEED=n] [POINTS=file]: an autograder zip for
 # Gradescope, $(B)/gradescope-NN.zip: setup.sh and run_autograder
-# (src/exercise/gradescope/) and the repository's committed source, which
-# grades /autograder/submission as make grade does (ONE=1: it is one
-# student's folder) into /autograder/results/results.json.
+# (src/exercise/gradescope/) beside the repository's committed source, all
+# at the zip's top (Gradescope unpacks it into /autograder/source), whose
+# run_autograder grades /autograder/submission as make grade does (ONE=1:
+# it is one student's folder) into /autograder/results/results.json.
 gradescope:
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
-	@rm -rf $(B)/gradescope-$(LESSON) && mkdir -p $(B)/gradescope-$(LESSON)/source && \
-	  git archive HEAD | tar -x -C $(B)/gradescope-$(LESSON)/source && \
-	  for f in setup.sh run_autograder; do sed 's/@LESSON@/$(LESSON)/g' src/exercise/gradescope/$$f > $(B)/gradescope-$(LESSON)/$$f; \
-	    chmod +x $(B)/gradescope-$(LESSON)/$$f; done && \
-	  printf '%s\n' "$(if $(SEED),SEED=$(SEED)) $(if $(POINTS),POINTS=points.txt)" > $(B)/gradescope-$(LESSON)/source/gradescope.options && \
-	  $(if $(POINTS),cp '$(POINTS)' $(B)/gradescope-$(LESSON)/source/points.txt &&) \
-	  rm -f $(B)/gradescope-$(LESSON).zip && (cd $(B)/gradescope-$(LESSON) && zip -qr ../gradescope-$(LESSON).zip setup.sh run_autograder source) && \
-	  echo "gradescope: $(B)/gradescope-$(LESSON).zip (setup.sh, run_autograder, the source at $$(git rev-parse --short HEAD))"
+	@g=$(B)/gradescope-$(LESSON) && rm -rf $$g && mkdir -p $$g && git archive HEAD | tar -x -C $$g && \
+	  for f in setup.sh run_autograder; do sed 's/@LESSON@/$(LESSON)/g' src/exercise/gradescope/$$f > $$g/$$f; chmod +x $$g/$$f; done && \
+	  printf '%s\n' "$(if $(SEED),SEED=$(SEED)) $(if $(POINTS),POINTS=points.txt)" > $$g/gradescope.options && \
+	  git rev-parse HEAD > $$g/gradescope.commit && \
+	  $(if $(POINTS),cp '$(POINTS)' $$g/points.txt &&) \
+	  rm -f $$g.zip && (cd $$g && zip -qr ../$$(basename $$g).zip .) && \
+	  echo "gradescope: $$g.zip (setup.sh, run_autograder and the source at $$(git rev-parse --short HEAD), at the zip's top as Gradescope wants)"
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
 test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/tsan-tiles $(B)/tristep-soak $(B)/judge-02 $(B)/student/02/library.o $(B)/student/02/include.stamp

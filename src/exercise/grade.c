@@ -26,6 +26,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <ftw.h>
+#include <math.h>
 #include <grp.h>
 #include <signal.h>
 #include <stdio.h>
@@ -490,6 +491,7 @@ struct row {
     char sha[65];
     char stage[64];             /* the sandbox's files, removed after the run */
     bool judged;                /* the checks began */
+    double seconds;             /* the submission's whole run */
     struct check_result r;
 };
 
@@ -879,6 +881,10 @@ static const char *verdict_of(const struct row *row, const struct check_outcome 
     return c->runner == RUNNER_CRASHED ? "crashed" : c->runner == RUNNER_GARBAGE ? "garbage" : "failed";
 }
 
+/* OUT/<safe>/results.json in Gradescope's documented format: the score,
+ * the time, a summary as the output, and a test per check with its own
+ * score, max_score, status and output (its part of check.txt); the
+ * possible total in extra_data (Gradescope takes it from the assignment). */
 static void write_results(const struct sub *s, const struct row *row, const struct check_result *plan,
                           double *score, double *max)
 {
@@ -900,19 +906,20 @@ static void write_results(const struct sub *s, const struct row *row, const stru
         return;
     }
     char summary[600];
-    snprintf(summary, sizeof summary, "lesson %s: %s%s%s", plan->check[0].name[0] ? "" : "", row->result,
-             row->first[0] ? ": " : "", row->first);
-    fprintf(f, "{\n  \"score\": %g,\n  \"max_score\": %g,\n  \"output\": ", *score, *max);
+    snprintf(summary, sizeof summary, "%s%s%s", row->result, row->first[0] ? ": " : "", row->first);
+    fprintf(f, "{\n  \"score\": %g,\n  \"execution_time\": %.0f,\n  \"output\": ", *score, ceil(row->seconds));
     json_string(f, summary, strlen(summary));
-    fprintf(f, ",\n  \"tests\": [\n");
+    fprintf(f, ",\n  \"output_format\": \"text\",\n  \"stdout_visibility\": \"hidden\",\n"
+            "  \"extra_data\": {\"max_score\": %g, \"sha256\": \"%s\", \"seed\": \"%llu\"},\n  \"tests\": [\n",
+            *max, row->sha[0] ? row->sha : "", (unsigned long long)check_seed);
     for (int i = 0; i < plan->nchecks; i++) {
         const struct check_outcome *c = &row->r.check[i];
         double p = points_of(plan->check[i].name);
         bool passed = row->judged && c->passed;
         fprintf(f, "    {\"number\": \"%d\", \"name\": ", i + 1);
         json_string(f, plan->check[i].name, strlen(plan->check[i].name));
-        fprintf(f, ", \"score\": %g, \"max_score\": %g, \"status\": \"%s\", \"output\": ", passed ? p : 0, p,
-                passed ? "passed" : "failed");
+        fprintf(f, ", \"score\": %g, \"max_score\": %g, \"status\": \"%s\", \"visibility\": \"visible\", "
+                "\"output_format\": \"text\", \"output\": ", passed ? p : 0, p, passed ? "passed" : "failed");
         if (text && c->ran && c->from >= 0 && c->to > c->from && (size_t)c->to <= len)
             json_string(f, text + c->from, (size_t)(c->to - c->from));
         else
@@ -1022,6 +1029,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
         clean_text(subs[i].entry, shown, sizeof shown);
         printf("grade %s: ", shown);
         fflush(stdout);
+        double started = now();
         pid_t pid = fork();
         if (pid == 0) {
             setpgid(0, 0);
@@ -1054,6 +1062,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
             rm_tree(row->stage);
         if (!row->result[0])
             snprintf(row->result, sizeof row->result, "judge failed");
+        row->seconds = now() - started;
         printf("%s\n", row->result);
     }
     /* the table */
