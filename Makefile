@@ -1,7 +1,7 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s]
 #          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder] [SEED=n] [POINTS=file] [UNSAFE=1]
-#          make gradescope LESSON=02 [SEED=n] [POINTS=file] (an autograder zip)
+#          make gradescope LESSON=02 [SEED=n] [POINTS=file] (an autograder zip) | make grade-hostile [HOSTILE="02 06 09"]
 #          make skeletons (lessons/*/exercise.c from the answers)
 #          make soak [MINUTES=10] | make fuzz [SECONDS=N] | make aarch64 | make simde-test | make clean
 MAKEFLAGS += --no-builtin-rules   # no implicit "%: %.o" that would try to remake the .d files
@@ -55,7 +55,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade grade-build gradescope skeletons FORCE
+.PHONY: all run test figures bench soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench exercise check grade grade-build grade-hostile gradescope skeletons FORCE
 .SECONDEXPANSION:
 
 ifneq ($(MAKECMDGOALS),clean)
@@ -263,6 +263,14 @@ grade: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESS
 	@$(if $(UNSAFE),,sh src/deps.sh grade &&) mkdir -p '$(dir $(CSV))' && $< --grade --dir '$(DIR)' --lib $(B)/student/$(LESSON) --out '$(OUT)' \
 	  --csv '$(CSV)' --timeout $(TIMEOUT) --commit $(GRADER) --cc '$(CC)' $(if $(SEED),--seed '$(SEED)') \
 	  $(if $(POINTS),--points '$(POINTS)') $(if $(ONE),--one) $(if $(UNSAFE),--unsafe)
+
+# make grade-hostile [HOSTILE="02 06 09"]: make grade on every hostile file
+# of tests/test_grade.c (a fork bomb, 4 GiB, a flood of output, a file that
+# includes itself, a destructor that forges, a full disk, ...) beside honest
+# ones, for each lesson of the list: the long version of make test's share.
+HOSTILE  ?= 02 06 09
+grade-hostile: $(B)/tristep-tests   # (each make grade builds its lesson's judge)
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) TRISTEP_HOSTILE='$(HOSTILE)' $(B)/tristep-tests --filter 'grade/hostile_files'
 
 grade-build: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
 
