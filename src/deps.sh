@@ -70,6 +70,9 @@ if [ -n "$need" ]; then
     echo "  Debian/Ubuntu: apt-get install $deb" >&2
     case $mode in
       aarch64) echo "  (the aarch64 target uses Debian's cross packages; on an ARM64 machine, make test runs natively)" >&2 ;;
+      grade) echo "  Fedora: dnf install bubblewrap; Arch: pacman -S bubblewrap" >&2
+             echo "  (make grade's sandbox needs Linux's namespaces; where it cannot run, make grade UNSAFE=1" >&2
+             echo "  grades without isolation, and its CSV says so)" >&2 ;;
       simde) echo "  Fedora: dnf install simde-devel" >&2
              echo "  macOS (Homebrew): brew install simde" >&2 ;;
       *) echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel simde-devel xorg-x11-server-Xvfb xdotool ImageMagick mesa-libOSMesa-devel (Fedora 43 on: mesa-compat-libOSMesa-devel)" >&2
