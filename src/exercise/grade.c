@@ -139,7 +139,8 @@ static void locate(struct sub *s, const char *path)
         if (!s->file)
             s->problem = n ? "no exercise.c in the folder, and more than one .c file" : "no .c file in the folder";
     } else {
-        s->problem = "not a file or a folder (a symbolic link?)";
+        s->problem = S_ISLNK(st.st_mode) ? "a symbolic link, not a file or a folder (never followed)"
+                                         : "not a file or a folder";
     }
 }
 
@@ -206,8 +207,8 @@ static struct sub *list_class(int *n)
             if (asprintf(&p, "%s/%s", G.dir, e->d_name) < 0)
                 continue;
             struct stat st;
-            bool dir = lstat(p, &st) == 0 && S_ISDIR(st.st_mode);
-            if (!dir && !ends_c(e->d_name)) {     /* a README, a .zip: not a submission */
+            bool dir = lstat(p, &st) == 0 && S_ISDIR(st.st_mode), link = !dir && S_ISLNK(st.st_mode);
+            if (!dir && !link && !ends_c(e->d_name)) {     /* a README, a .zip: not a submission */
                 free(p);
                 continue;
             }

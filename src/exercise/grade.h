@@ -17,7 +17,15 @@
  *   S       seconds one submission may take in all (compile, link, checks)
  *   FILE    points per check, lines "POINTS check name" (default: grade.c's
  *           table); N: the seed of the random scenes (hidden scenes)
- *   --unsafe  no sandbox (where bubblewrap cannot run); the CSV says so */
+ *   --unsafe  no sandbox (where bubblewrap cannot run); the CSV says so
+ *
+ * What a submission's commands get (grade.c says how): bubblewrap's new
+ * namespaces (no network; a pid namespace, all of it killed at the end),
+ * read-only /usr and the lesson's student library, a private /tmp of
+ * 64 MiB, limits on CPU time, memory, processes and file size, and the
+ * first 256 KiB of what they print kept (compile.txt, log.txt). Run as
+ * root, each submission runs as a user id of its own; whatever is left of
+ * a run, sandboxed or not, is killed before the next one begins. */
 #ifndef TRISTEP_EXERCISE_GRADE_H
 #define TRISTEP_EXERCISE_GRADE_H
 
