@@ -463,7 +463,8 @@ static bool js_number(struct json *j, double *v)
 
 static bool js_value(struct json *j);
 
-static bool js_object_any(struct json *j)
+/* An object: member(j, key, ctx) reads each member's value. */
+static bool js_object(struct json *j, bool (*member)(struct json *, const char *, void *), void *ctx)
 {
     char key[256];
     js_ws(j);
@@ -476,14 +477,48 @@ static bool js_object_any(struct json *j)
         if (!js_string(j, key, sizeof key))
             return false;
         js_ws(j);
-        if (*j->p++ != ':' || !js_value(j))
-            return js_fail(j, "a member expected");
+        if (*j->p++ != ':')
+            return js_fail(j, "a colon expected");
+        if (!member(j, key, ctx))
+            return false;
         js_ws(j);
         if (*j->p == '}')
             return j->p++, true;
         if (*j->p++ != ',')
             return js_fail(j, "a comma expected");
     }
+}
+
+static bool js_any_member(struct json *j, const char *key, void *ctx)
+{
+    (void)key, (void)ctx;
+    return js_value(j);
+}
+
+/* An array: item(j, ctx) reads each item. */
+static bool js_array(struct json *j, bool (*item)(struct json *, void *), void *ctx)
+{
+    js_ws(j);
+    if (*j->p++ != '[')
+        return js_fail(j, "an array expected");
+    js_ws(j);
+    if (*j->p == ']')
+        return j->p++, true;
+    for (;;) {
+        if (!item(j, ctx))
+            return false;
+        js_ws(j);
+        if (*j->p == ']')
+            return j->p++, true;
+        if (*j->p++ != ',')
+            return js_fail(j, "a comma expected");
+    }
+}
+
+static bool js_any_item(struct json *j, void *ctx)
+{
+    (void)ctx;
+    return js_value(j);
 }
 
 static bool js_value(struct json *j)
@@ -494,22 +529,9 @@ static bool js_value(struct json *j)
     if (*j->p == '"')
         return js_string(j, s, 0);
     if (*j->p == '{')
-        return js_object_any(j);
-    if (*j->p == '[') {
-        j->p++;
-        js_ws(j);
-        if (*j->p == ']')
-            return j->p++, true;
-        for (;;) {
-            if (!js_value(j))
-                return false;
-            js_ws(j);
-            if (*j->p == ']')
-                return j->p++, true;
-            if (*j->p++ != ',')
-                return js_fail(j, "a comma expected");
-        }
-    }
+        return js_object(j, js_any_member, NULL);
+    if (*j->p == '[')
+        return js_array(j, js_any_item, NULL);
     for (const char *const *w = (const char *const[]){ "true", "false", "null", NULL }; *w; w++)
         if (!strncmp(j->p, *w, strlen(*w)))
             return j->p += strlen(*w), true;
@@ -527,119 +549,92 @@ static bool one_of(const char *v, const char *const *list)
 static const char *const formats[] = { "text", "html", "simple_format", "md", "ansi", NULL };
 static const char *const visibilities[] = { "hidden", "after_due_date", "after_published", "visible", NULL };
 
-/* One test of "tests": its documented keys only; its score and max_score
- * added up; passed counted. */
-static bool js_test(struct json *j, double *score, double *max, int *passed, int *ntests)
+/* A string member whose value must be one of list. */
+static bool js_enum(struct json *j, const char *const *list, const char *what)
 {
-    char key[64], v[256];
-    js_ws(j);
-    if (*j->p++ != '{')
-        return js_fail(j, "a test (an object) expected");
-    bool has_score = false, has_status = false;
-    double sc = 0, mx = 0;
-    for (;;) {
-        if (!js_string(j, key, sizeof key))
-            return false;
-        js_ws(j);
-        if (*j->p++ != ':')
-            return js_fail(j, "a colon expected");
-        if (!strcmp(key, "score") || !strcmp(key, "max_score")) {
-            double x;
-            if (!js_number(j, &x))
-                return false;
-            *(!strcmp(key, "score") ? (has_score = true, &sc) : &mx) = x;
-        } else if (!strcmp(key, "status")) {
-            if (!js_string(j, v, sizeof v) || !one_of(v, (const char *const[]){ "passed", "failed", NULL }))
-                return js_fail(j, "a status other than passed or failed");
-            has_status = true;
-            *passed += !strcmp(v, "passed");
-        } else if (!strcmp(key, "name") || !strcmp(key, "number") || !strcmp(key, "output")) {
-            if (!js_string(j, v, sizeof v))
-                return false;
-        } else if (!strcmp(key, "name_format") || !strcmp(key, "output_format")) {
-            if (!js_string(j, v, sizeof v) || !one_of(v, formats))
-                return js_fail(j, "a format Gradescope does not name");
-        } else if (!strcmp(key, "visibility")) {
-            if (!js_string(j, v, sizeof v) || !one_of(v, visibilities))
-                return js_fail(j, "a visibility Gradescope does not name");
-        } else if (!strcmp(key, "tags") || !strcmp(key, "extra_data")) {
-            if (!js_value(j))
-                return false;
-        } else {
-            return js_fail(j, "a key of a test that Gradescope does not document");
-        }
-        js_ws(j);
-        if (*j->p == '}')
-            break;
-        if (*j->p++ != ',')
-            return js_fail(j, "a comma expected");
+    char v[64];
+    return (js_string(j, v, sizeof v) && one_of(v, list)) || js_fail(j, what);
+}
+
+/* What a results.json adds up to: its score, its tests' scores, max_scores,
+ * passes and count. */
+struct results {
+    double score, sum, max, test_score, test_max;
+    int passed, ntests;
+    bool test_has_score, test_has_status;
+};
+
+/* A member of a test of "tests": the keys Gradescope documents, each of its type. */
+static bool js_test_member(struct json *j, const char *key, void *ctx)
+{
+    struct results *r = ctx;
+    char v[256];
+    if (!strcmp(key, "score") || !strcmp(key, "max_score")) {
+        r->test_has_score |= !strcmp(key, "score");
+        return js_number(j, !strcmp(key, "score") ? &r->test_score : &r->test_max);
     }
-    j->p++;
-    if (!has_score || !has_status || sc < 0 || sc > mx)
+    if (!strcmp(key, "status")) {
+        js_ws(j);
+        r->test_has_status = true;
+        r->passed += !strncmp(j->p, "\"passed\"", 8);
+        return js_enum(j, (const char *const[]){ "passed", "failed", NULL }, "a status other than passed or failed");
+    }
+    if (!strcmp(key, "name") || !strcmp(key, "number") || !strcmp(key, "output"))
+        return js_string(j, v, sizeof v);
+    if (!strcmp(key, "name_format") || !strcmp(key, "output_format"))
+        return js_enum(j, formats, "a format Gradescope does not name");
+    if (!strcmp(key, "visibility"))
+        return js_enum(j, visibilities, "a visibility Gradescope does not name");
+    if (!strcmp(key, "tags"))
+        return js_array(j, js_any_item, NULL);
+    if (!strcmp(key, "extra_data"))
+        return js_object(j, js_any_member, NULL);
+    return js_fail(j, "a key of a test that Gradescope does not document");
+}
+
+static bool js_test(struct json *j, void *ctx)
+{
+    struct results *r = ctx;
+    r->test_score = r->test_max = 0;
+    r->test_has_score = r->test_has_status = false;
+    if (!js_object(j, js_test_member, r))
+        return false;
+    if (!r->test_has_score || !r->test_has_status || r->test_score < 0 || r->test_score > r->test_max)
         return js_fail(j, "a test without its score and status, or scoring above its max_score");
-    *score += sc, *max += mx, ++*ntests;
+    r->sum += r->test_score, r->max += r->test_max, r->ntests++;
     return true;
 }
 
-/* A results.json's top: its documented keys only; the score, the sum of
- * its tests' scores and max_scores, how many tests passed. */
-static bool js_results(struct json *j, double *score, double *sum, double *max, int *passed, int *ntests)
+/* A member of the top: the keys Gradescope documents, each of its type. */
+static bool js_top_member(struct json *j, const char *key, void *ctx)
 {
-    char key[64], v[256];
-    *score = -1, *sum = *max = 0, *passed = *ntests = 0;
-    js_ws(j);
-    if (*j->p++ != '{')
-        return js_fail(j, "an object expected");
-    for (;;) {
-        if (!js_string(j, key, sizeof key))
-            return false;
-        js_ws(j);
-        if (*j->p++ != ':')
-            return js_fail(j, "a colon expected");
-        if (!strcmp(key, "score") || !strcmp(key, "execution_time")) {
-            double x;
-            if (!js_number(j, &x))
-                return false;
-            if (!strcmp(key, "score"))
-                *score = x;
-        } else if (!strcmp(key, "output")) {
-            if (!js_string(j, v, sizeof v))
-                return false;
-        } else if (!strcmp(key, "output_format") || !strcmp(key, "test_output_format")
-                   || !strcmp(key, "test_name_format")) {
-            if (!js_string(j, v, sizeof v) || !one_of(v, formats))
-                return js_fail(j, "a format Gradescope does not name");
-        } else if (!strcmp(key, "visibility") || !strcmp(key, "stdout_visibility")) {
-            if (!js_string(j, v, sizeof v) || !one_of(v, visibilities))
-                return js_fail(j, "a visibility Gradescope does not name");
-        } else if (!strcmp(key, "extra_data") || !strcmp(key, "leaderboard")) {
-            if (!js_value(j))
-                return false;
-        } else if (!strcmp(key, "tests")) {
-            js_ws(j);
-            if (*j->p++ != '[')
-                return js_fail(j, "tests: an array expected");
-            js_ws(j);
-            while (*j->p != ']') {
-                if (!js_test(j, sum, max, passed, ntests))
-                    return false;
-                js_ws(j);
-                if (*j->p == ',')
-                    j->p++;
-                else if (*j->p != ']')
-                    return js_fail(j, "a comma expected");
-            }
-            j->p++;
-        } else {
-            return js_fail(j, "a key Gradescope does not document");
-        }
-        js_ws(j);
-        if (*j->p == '}')
-            break;
-        if (*j->p++ != ',')
-            return js_fail(j, "a comma expected");
-    }
-    j->p++;
+    struct results *r = ctx;
+    char v[256];
+    double x;
+    if (!strcmp(key, "score"))
+        return js_number(j, &r->score);
+    if (!strcmp(key, "execution_time"))
+        return js_number(j, &x);
+    if (!strcmp(key, "output"))
+        return js_string(j, v, sizeof v);
+    if (!strcmp(key, "output_format") || !strcmp(key, "test_output_format") || !strcmp(key, "test_name_format"))
+        return js_enum(j, formats, "a format Gradescope does not name");
+    if (!strcmp(key, "visibility") || !strcmp(key, "stdout_visibility"))
+        return js_enum(j, visibilities, "a visibility Gradescope does not name");
+    if (!strcmp(key, "extra_data"))
+        return js_object(j, js_any_member, NULL);
+    if (!strcmp(key, "leaderboard"))
+        return js_array(j, js_any_item, NULL);
+    if (!strcmp(key, "tests"))
+        return js_array(j, js_test, r);
+    return js_fail(j, "a key Gradescope does not document");
+}
+
+static bool js_results(struct json *j, struct results *r)
+{
+    *r = (struct results){ .score = -1 };
+    if (!js_object(j, js_top_member, r))
+        return false;
     js_ws(j);
     return *j->p ? js_fail(j, "text after the object") : true;
 }
@@ -650,12 +645,11 @@ static void expect_results(const char *path, double score, double max, int passe
 {
     char *text = slurp(path);
     struct json j = { .p = text };
-    double sc, sum, mx;
-    int np, nt;
-    cr_expect(js_results(&j, &sc, &sum, &mx, &np, &nt), "%s: %s\n%s", path, j.err, text);
-    cr_expect(sc == score && sum == score && mx == max && np == passed && nt == ntests,
+    struct results r;
+    cr_expect(js_results(&j, &r), "%s: %s\n%s", path, j.err, text);
+    cr_expect(r.score == score && r.sum == score && r.max == max && r.passed == passed && r.ntests == ntests,
               "%s: score %g (tests' sum %g) of %g, %d of %d tests passed; expected %g of %g, %d of %d\n%s", path,
-              sc, sum, mx, np, nt, score, max, passed, ntests, text);
+              r.score, r.sum, r.max, r.passed, r.ntests, score, max, passed, ntests, text);
     free(text);
 }
 
