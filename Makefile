@@ -243,8 +243,8 @@ $(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FI
 	  $(SL_CC) -c $(@D)/src/exercise.c -o $@
 $(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
 	@$(LD_ALL) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
-$(B)/obj/judge-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$(LESSON) -DEXERCISE_JUDGE -c $< -o $@
-$(B)/judge-$(LESSON): $(B)/obj/judge-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+$(B)/obj/judge-%.o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -DEXERCISE_JUDGE -c $< -o $@
+$(B)/judge-%: $(B)/obj/judge-%.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
 check: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/runner
 	@$< --check --runner $(B)/student/$(LESSON)/runner --log $(B)/student/$(LESSON)/log.txt $(if $(SEED),--seed $(SEED)) --file $(FILE) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))

@@ -40,19 +40,19 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "exercise/class.h"
 #include "exercise/exercise.h"
 #include "exercise/gen.h"
 #include "exercise/remote.h"
+#include "exercise/sandbox.h"
 
 #define FILE_MAX (1 << 20)          /* a submission's size */
-#define LOG_MAX (256 << 10)         /* what is kept of a compile's or a run's prints */
 #define UID_BASE 1900000000u        /* run as root: a submission's user id, this + its judge's pid */
 
 static struct {
     const char *dir, *lib, *out, *csv, *points, *commit, *cc, *seed_text;
     double timeout;
     bool unsafe, one;
-    uid_t uid;                      /* the sandbox's (root only) */
 } G = { .cc = "cc", .timeout = 60, .commit = "unknown" };
 
 uint64_t grade_seed(const char *s)
@@ -72,416 +72,6 @@ static double now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* --- the class: who handed in what ------------------------------------------------ */
-
-struct sub {
-    char *entry;            /* its name in DIR, as it is (untrusted bytes) */
-    char *file;             /* the file graded, or NULL (problem says why) */
-    const char *problem;
-    char safe[64];          /* its folder under OUT: unique, safe */
-};
-
-static bool ends_c(const char *n)
-{
-    size_t k = strlen(n);
-    return k > 2 && strcmp(n + k - 2, ".c") == 0;
-}
-
-/* The exercise file in a student's folder: exercise.c (the least deep),
- * else its only .c file; never through a symbolic link. */
-static void find_file(const char *dir, int depth, char **best, int *best_depth, int *ncfiles, char **only)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    struct dirent *e;
-    while ((e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-            continue;
-        char *p;
-        if (asprintf(&p, "%s/%s", dir, e->d_name) < 0)
-            continue;
-        struct stat st;
-        if (lstat(p, &st) == 0 && S_ISDIR(st.st_mode) && depth < 6) {
-            find_file(p, depth + 1, best, best_depth, ncfiles, only);
-        } else if (lstat(p, &st) == 0 && S_ISREG(st.st_mode) && ends_c(e->d_name)) {
-            ++*ncfiles;
-            if (!*only)
-                *only = strdup(p);
-            if (!strcmp(e->d_name, "exercise.c") && (!*best || depth < *best_depth)) {
-                free(*best);
-                *best = strdup(p);
-                *best_depth = depth;
-            }
-        }
-        free(p);
-    }
-    closedir(d);
-}
-
-static void locate(struct sub *s, const char *path)
-{
-    struct stat st;
-    if (lstat(path, &st) != 0) {
-        s->problem = "cannot be read";
-    } else if (S_ISREG(st.st_mode)) {
-        s->file = strdup(path);
-    } else if (S_ISDIR(st.st_mode)) {
-        char *best = NULL, *only = NULL;
-        int depth = 0, n = 0;
-        find_file(path, 0, &best, &depth, &n, &only);
-        if (best || n == 1)
-            s->file = best ? best : only;
-        if (best)
-            free(only);
-        if (!s->file)
-            s->problem = n ? "no exercise.c in the folder, and more than one .c file" : "no .c file in the folder";
-    } else {
-        s->problem = S_ISLNK(st.st_mode) ? "a symbolic link, not a file or a folder (never followed)"
-                                         : "not a file or a folder";
-    }
-}
-
-/* A folder name of [A-Za-z0-9._-], no leading dot or dash, unique among
- * those given so far (a second "-2", ...): two names that read alike both
- * keep their row. */
-static void safe_name(struct sub *subs, int n, struct sub *s)
-{
-    char base[48];
-    size_t k = 0;
-    const char *name = s->entry;
-    size_t len = strlen(name);
-    if (!G.one && ends_c(name))
-        len -= 2;
-    for (size_t i = 0; i < len && k + 1 < sizeof base; i++) {
-        unsigned char c = (unsigned char)name[i];
-        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'
-                  || ((c == '.' || c == '-') && k > 0);
-        char ch = ok ? (char)c : '_';
-        if (ch == '_' && k > 0 && base[k - 1] == '_')
-            continue;
-        base[k++] = ch;
-    }
-    base[k] = '\0';
-    if (!k || strspn(base, "_") == k)
-        snprintf(base, sizeof base, "student");
-    for (int tries = 1;; tries++) {
-        if (tries == 1)
-            snprintf(s->safe, sizeof s->safe, "%s", base);
-        else
-            snprintf(s->safe, sizeof s->safe, "%s-%d", base, tries);
-        bool taken = false;
-        for (int i = 0; i < n && !taken; i++)
-            taken = &subs[i] != s && !strcmp(subs[i].safe, s->safe);
-        if (!taken)
-            return;
-    }
-}
-
-static int by_entry(const void *a, const void *b)
-{
-    return strcmp(((const struct sub *)a)->entry, ((const struct sub *)b)->entry);
-}
-
-static struct sub *list_class(int *n)
-{
-    *n = 0;
-    struct sub *subs = NULL;
-    if (G.one) {
-        subs = calloc(1, sizeof *subs);
-        subs[0].entry = strdup("submission");
-        locate(&subs[0], G.dir);
-        *n = 1;
-    } else {
-        DIR *d = opendir(G.dir);
-        if (!d)
-            return NULL;
-        struct dirent *e;
-        int cap = 0;
-        while ((e = readdir(d))) {
-            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-                continue;
-            char *p;
-            if (asprintf(&p, "%s/%s", G.dir, e->d_name) < 0)
-                continue;
-            struct stat st;
-            bool dir = lstat(p, &st) == 0 && S_ISDIR(st.st_mode), link = !dir && S_ISLNK(st.st_mode);
-            if (!dir && !link && !ends_c(e->d_name)) {     /* a README, a .zip: not a submission */
-                free(p);
-                continue;
-            }
-            if (*n == cap) {
-                cap = cap ? 2 * cap : 64;
-                subs = realloc(subs, (size_t)cap * sizeof *subs);
-            }
-            subs[*n] = (struct sub){ .entry = strdup(e->d_name) };
-            locate(&subs[*n], p);
-            free(p);
-            ++*n;
-        }
-        closedir(d);
-        if (*n)
-            qsort(subs, (size_t)*n, sizeof *subs, by_entry);
-    }
-    for (int i = 0; i < *n; i++)
-        safe_name(subs, i, &subs[i]);
-    return subs;
-}
-
-/* --- the sandbox ------------------------------------------------------------------ */
-
-struct limits {
-    rlim_t cpu, as, fsize, nproc;
-};
-
-static void apply_limits(void *ctx)
-{
-    const struct limits *L = ctx;
-    struct rlimit r;
-    r.rlim_cur = r.rlim_max = L->cpu;
-    setrlimit(RLIMIT_CPU, &r);
-    r.rlim_cur = r.rlim_max = L->as;
-    setrlimit(RLIMIT_AS, &r);
-    r.rlim_cur = r.rlim_max = L->fsize;
-    setrlimit(RLIMIT_FSIZE, &r);
-    r.rlim_cur = r.rlim_max = 0;
-    setrlimit(RLIMIT_CORE, &r);
-    r.rlim_cur = r.rlim_max = 256;
-    setrlimit(RLIMIT_NOFILE, &r);
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (G.uid) {    /* root is above every process limit: a user of its own */
-        setgroups(0, NULL);
-        if (setgid(G.uid) != 0 || setuid(G.uid) != 0)
-            _exit(126);
-    }
-    r.rlim_cur = r.rlim_max = L->nproc;
-    setrlimit(RLIMIT_NPROC, &r);
-}
-
-/* Processes the user who runs the sandbox has now (the process limit
- * counts them all), or, with uid, those of uid. */
-static rlim_t user_processes(uid_t uid)
-{
-    if (G.uid && !uid)
-        return 0;       /* a user of its own: none yet */
-    rlim_t n = 0;
-    DIR *d = opendir("/proc");
-    struct dirent *e;
-    while (d && (e = readdir(d))) {
-        char p[300];
-        struct stat st;
-        snprintf(p, sizeof p, "/proc/%s", e->d_name);
-        if (e->d_name[0] >= '0' && e->d_name[0] <= '9' && stat(p, &st) == 0
-            && st.st_uid == (uid ? uid : getuid()))
-            n++;
-    }
-    if (d)
-        closedir(d);
-    return n;
-}
-
-/* Kill every process of the user id uid (the sandbox's: nothing else runs
- * as it), and wait until the kernel has let them go (until then they count
- * against a process limit). */
-static void kill_user(uid_t uid)
-{
-    for (int round = 0; round < 400 && user_processes(uid) > 0; round++) {
-        pid_t k = fork();
-        if (k == 0) {
-            if (setgid(uid) == 0 && setuid(uid) == 0)
-                kill(-1, SIGKILL);      /* as uid: every process of uid, and nothing else */
-            _exit(0);
-        }
-        if (k > 0)
-            waitpid(k, NULL, 0);
-        nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
-    }
-}
-
-/* The children of this process (a subreaper: orphans of what it started
- * become its children), killed and reaped until none is left. */
-static void kill_children(void)
-{
-    for (int round = 0; round < 1000; round++) {
-        int found = 0;
-        DIR *d = opendir("/proc");
-        struct dirent *e;
-        while (d && (e = readdir(d))) {
-            if (e->d_name[0] < '0' || e->d_name[0] > '9')
-                continue;
-            char p[300], buf[512];
-            snprintf(p, sizeof p, "/proc/%s/stat", e->d_name);
-            FILE *f = fopen(p, "r");
-            size_t k = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
-            if (f)
-                fclose(f);
-            buf[k] = '\0';
-            const char *close_paren = strrchr(buf, ')');     /* the name may hold anything */
-            char state;
-            int ppid;
-            if (close_paren && sscanf(close_paren + 1, " %c %d", &state, &ppid) == 2 && ppid == getpid()) {
-                kill(atoi(e->d_name), SIGKILL);
-                found++;
-            }
-        }
-        if (d)
-            closedir(d);
-        while (waitpid(-1, NULL, WNOHANG) > 0)
-            found++;
-        if (!found && waitpid(-1, NULL, WNOHANG) < 0 && errno == ECHILD)
-            return;
-        nanosleep(&(struct timespec){ 0, 2000000 }, NULL);
-    }
-}
-
-/* A pipe whose reader keeps the first LOG_MAX bytes written to it in the
- * file path (then a line that says so, the rest dropped): the write end,
- * or -1. The reader is a child of ours; *reader its pid. */
-static int log_pipe(const char *path, pid_t *reader)
-{
-    int fds[2];
-    *reader = -1;
-    int file = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-    if (file < 0 || pipe2(fds, O_CLOEXEC) != 0) {
-        if (file >= 0)
-            close(file);
-        return -1;
-    }
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[1]);
-        struct stat st;
-        size_t kept = fstat(file, &st) == 0 ? (size_t)st.st_size : 0;
-        char buf[1 << 14];
-        ssize_t n;
-        bool cut = false;
-        while ((n = read(fds[0], buf, sizeof buf)) != 0) {
-            if (n < 0) {
-                if (errno == EINTR)
-                    continue;
-                break;
-            }
-            size_t keep = kept < LOG_MAX ? LOG_MAX - kept : 0;
-            if ((size_t)n < keep)
-                keep = (size_t)n;
-            if (keep && write(file, buf, keep) != (ssize_t)keep)
-                break;
-            kept += keep;
-            if (keep < (size_t)n && !cut) {
-                static const char note[] = "\n[the rest of the output is not kept: more than 256 KiB]\n";
-                if (write(file, note, sizeof note - 1) < 0)
-                    break;
-                cut = true;
-            }
-        }
-        _exit(0);
-    }
-    close(fds[0]);
-    close(file);
-    if (pid < 0) {
-        close(fds[1]);
-        return -1;
-    }
-    *reader = pid;
-    return fds[1];
-}
-
-/* The reader's end: it has its last bytes once every writer is gone. */
-static void log_done(int fd, pid_t reader)
-{
-    if (fd >= 0)
-        close(fd);
-    if (reader <= 0)
-        return;
-    for (int k = 0; k < 400; k++) {
-        if (waitpid(reader, NULL, WNOHANG) == reader)
-            return;
-        nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
-    }
-    kill(reader, SIGKILL);      /* a writer still holds it: it is killed next */
-    waitpid(reader, NULL, 0);
-}
-
-/* argv of a command in the sandbox: binds given as pairs "--ro-bind" or
- * "--bind", host path, sandbox path; the command after. */
-static int sandbox_argv(char **argv, const char *const *binds, const char *const *cmd)
-{
-    int n = 0;
-    if (!G.unsafe) {
-        static const char *const head[] = {
-            "bwrap", "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
-            "--ro-bind", "/usr", "/usr", "--proc", "/proc", "--dev", "/dev",
-            "--size", "67108864", "--tmpfs", "/tmp", "--setenv", "PATH", "/usr/bin:/bin",
-            "--setenv", "TMPDIR", "/tmp", "--chdir", "/tmp", NULL };
-        for (int i = 0; head[i]; i++)
-            argv[n++] = (char *)head[i];
-        static const char *const top[] = { "/lib", "/lib64", "/bin", "/sbin", NULL };
-        for (int i = 0; top[i]; i++) {
-            struct stat st;
-            if (lstat(top[i], &st) != 0)
-                continue;
-            if (S_ISLNK(st.st_mode)) {
-                static char targets[4][64];
-                ssize_t k = readlink(top[i], targets[i], sizeof targets[i] - 1);
-                if (k <= 0)
-                    continue;
-                targets[i][k] = '\0';
-                argv[n++] = "--symlink", argv[n++] = targets[i], argv[n++] = (char *)top[i];
-            } else {
-                argv[n++] = "--ro-bind", argv[n++] = (char *)top[i], argv[n++] = (char *)top[i];
-            }
-        }
-        for (int i = 0; binds[i]; i += 3)
-            argv[n++] = (char *)binds[i], argv[n++] = (char *)binds[i + 1], argv[n++] = (char *)binds[i + 2];
-        argv[n++] = "--";
-    }
-    for (int i = 0; cmd[i]; i++)
-        argv[n++] = (char *)cmd[i];
-    argv[n] = NULL;
-    return n;
-}
-
-/* Run argv with limits, its output into out, for at most `seconds`: its
- * exit status, or -1 when it ran out of time (killed with everything it
- * started). */
-static int run_limited(char **argv, int fd, struct limits *L, double seconds)
-{
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        setpgid(0, 0);
-        int null = open("/dev/null", O_RDONLY);
-        dup2(null, 0);
-        dup2(fd >= 0 ? fd : null, 1);
-        dup2(fd >= 0 ? fd : null, 2);
-        for (int k = 3; k < 1024; k++)
-            close(k);
-        apply_limits(L);
-        execvp(argv[0], argv);
-        _exit(127);
-    }
-    if (pid < 0)
-        return 127;
-    setpgid(pid, pid);
-    double end = now() + seconds;
-    int status = 0;
-    for (;;) {
-        pid_t w = waitpid(pid, &status, WNOHANG);
-        if (w == pid)
-            break;
-        if (now() > end) {
-            kill(-pid, SIGKILL);
-            kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
-            return -1;
-        }
-        nanosleep(&(struct timespec){ 0, 5000000 }, NULL);
-    }
-    kill(-pid, SIGKILL);    /* anything it left behind in its group */
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /* --- one submission --------------------------------------------------------------- */
@@ -614,11 +204,11 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(clog, sizeof clog, "%s/compile.txt", dir);
     double start = now();
     if (getuid() == 0 && !G.unsafe)
-        G.uid = UID_BASE + (uid_t)getpid();
+        sandbox_uid = UID_BASE + (uid_t)getpid();
     /* CPU time above the wall time: a compile that takes too long is
      * "timed out" whatever the machine's load, never a compiler killed */
     struct limits cl = { .cpu = (rlim_t)(2 * G.timeout) + 1, .as = (rlim_t)2 << 30, .fsize = (rlim_t)64 << 20,
-                         .nproc = user_processes(0) + 64 };
+                         .nproc = sandbox_processes(0) + 64 };
     /* what the sandbox binds, staged where its user may read it (a private
      * folder of the grader's may not be): the headers, the library, the
      * file, and the folder it builds in */
@@ -637,7 +227,7 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(src, sizeof src, "%s/exercise.c", stage);
     snprintf(build, sizeof build, "%s/build", stage);
     if (strchr(G.lib, '\'') || system(cmd) != 0 || mkdir(build, 0755) != 0
-        || (getuid() == 0 && !G.unsafe && chown(build, G.uid, G.uid) != 0)) {
+        || (getuid() == 0 && !G.unsafe && chown(build, sandbox_uid, sandbox_uid) != 0)) {
         snprintf(row->result, sizeof row->result, "not graded");
         snprintf(row->first, sizeof row->first, "cannot stage its files in /tmp");
         return;
@@ -657,10 +247,10 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     char *argv[96];
     sandbox_argv(argv, binds, compile);
     pid_t reader;
-    int logfd = log_pipe(clog, &reader);
-    int st = run_limited(argv, logfd, &cl, G.timeout);
+    int logfd = sandbox_log(clog, &reader);
+    int st = sandbox_run(argv, logfd, &cl, G.timeout);
     if (st != 0) {
-        log_done(logfd, reader);
+        sandbox_log_done(logfd, reader);
         snprintf(row->result, sizeof row->result, st < 0 ? "timed out" : "compile error");
         if (st < 0)
             snprintf(row->first, sizeof row->first, "compiling took more than %g s", G.timeout);
@@ -670,8 +260,8 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     }
     const char *link[] = { G.cc, "-Wl,--gc-sections", "-s", in_obj, in_lib, "-lm", "-pthread", "-o", in_runner, NULL };
     sandbox_argv(argv, binds, link);
-    st = run_limited(argv, logfd, &cl, G.timeout - (now() - start));
-    log_done(logfd, reader);
+    st = sandbox_run(argv, logfd, &cl, G.timeout - (now() - start));
+    sandbox_log_done(logfd, reader);
     if (st != 0) {
         snprintf(row->result, sizeof row->result, st < 0 ? "timed out" : "link error");
         if (st < 0)
@@ -686,17 +276,17 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     snprintf(chk, sizeof chk, "%s/check.txt", dir);
     static struct limits rl;
     rl = (struct limits){ .cpu = (rlim_t)G.timeout + 1, .as = (rlim_t)1 << 30, .fsize = (rlim_t)1 << 20,
-                          .nproc = user_processes(0) + 32 };
+                          .nproc = sandbox_processes(0) + 32 };
     const char *rbinds[] = { "--ro-bind", runner, "/runner", NULL };
     const char *rcmd[] = { G.unsafe ? runner : "/runner", NULL };
     static char *rargv[96];
     sandbox_argv(rargv, rbinds, rcmd);
-    int runlog = log_pipe(log, &reader);
-    remote_configure(&(struct remote_config){ .argv = rargv, .log = log, .log_fd = runlog, .limits = apply_limits,
+    int runlog = sandbox_log(log, &reader);
+    remote_configure(&(struct remote_config){ .argv = rargv, .log = log, .log_fd = runlog, .limits = sandbox_limits,
                                               .limits_ctx = &rl, .scene_seconds = 10, .start_seconds = 10 });
     FILE *out = fopen(chk, "w");
     if (!out) {
-        log_done(runlog, reader);
+        sandbox_log_done(runlog, reader);
         return;
     }
     char open_cmd[600];
@@ -707,7 +297,7 @@ static void grade_one(const struct lesson *l, const struct sub *s, struct row *r
     row->judged = true;
     bool ok = exercise_check(l, &o, &row->r);
     remote_shutdown();
-    log_done(runlog, reader);
+    sandbox_log_done(runlog, reader);
     fclose(out);
     int failed_by_time = 0;
     for (int i = 0; i < row->r.nchecks; i++)
@@ -780,81 +370,6 @@ static bool read_points(const char *path, const struct check_result *plan)
     return true;
 }
 
-/* Text as it may go into a CSV field or JSON string: valid UTF-8, no
- * control characters (each a space), invalid bytes as '?'. */
-static void clean_text(const char *in, char *out, size_t n)
-{
-    size_t k = 0;
-    const unsigned char *p = (const unsigned char *)in;
-    while (*p && k + 5 < n) {
-        int len = *p < 0x80 ? 1 : (*p >> 5) == 6 ? 2 : (*p >> 4) == 14 ? 3 : (*p >> 3) == 30 ? 4 : 0;
-        bool ok = len > 0;
-        for (int i = 1; i < len && ok; i++)
-            ok = (p[i] & 0xc0) == 0x80;
-        if (!ok) {
-            out[k++] = '?';
-            p++;
-            continue;
-        }
-        if (len == 1) {
-            out[k++] = *p < 0x20 || *p == 0x7f ? ' ' : (char)*p;
-        } else {
-            memcpy(out + k, p, (size_t)len);
-            k += (size_t)len;
-        }
-        p += len;
-    }
-    out[k] = '\0';
-}
-
-/* A CSV field: clean, quoted, a field a spreadsheet would read as a
- * formula (= + - @, or a tab or return first) led by a quote mark. */
-static void csv_field(FILE *f, const char *s, bool first)
-{
-    char c[1200];
-    clean_text(s, c, sizeof c);
-    if (!first)
-        fputc(',', f);
-    fputc('"', f);
-    if (strchr("=+-@\t\r", c[0]) && c[0])
-        fputc('\'', f);
-    for (const char *p = c; *p; p++) {
-        if (*p == '"')
-            fputc('"', f);
-        fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
-static void json_string(FILE *f, const char *s, size_t len)
-{
-    char *c = malloc(len * 4 + 8), *t = malloc(len + 1);
-    if (!c || !t) {
-        free(c), free(t);
-        fputs("\"\"", f);
-        return;
-    }
-    memcpy(t, s, len);
-    t[len] = '\0';
-    /* newlines kept: the output of a test is its report */
-    fputc('"', f);
-    for (char *line = t, *next; line; line = next) {
-        next = strchr(line, '\n');
-        if (next)
-            *next++ = '\0';
-        clean_text(line, c, len * 4 + 8);
-        for (const char *p = c; *p; p++) {
-            if (*p == '"' || *p == '\\')
-                fputc('\\', f);
-            fputc(*p, f);
-        }
-        if (next)
-            fputs("\\n", f);
-    }
-    fputc('"', f);
-    free(c);
-    free(t);
-}
 
 static char *slurp(const char *path, size_t *len)
 {
@@ -958,7 +473,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
         else if (!strcmp(a, "--timeout") && v)
             G.timeout = atof(argv[++i]);
         else if (!strcmp(a, "--unsafe"))
-            G.unsafe = true;
+            G.unsafe = sandbox_unsafe = true;
         else if (!strcmp(a, "--one"))
             G.one = true;
         else {
@@ -1014,7 +529,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
         return 2;
     mkdir(G.out, 0755);
     int n;
-    struct sub *subs = list_class(&n);
+    struct sub *subs = list_class(G.dir, G.one, &n);
     if (!subs || n == 0) {
         fprintf(stderr, "DIR=%s holds no .c file and no folder\n", G.dir);
         return 2;
@@ -1056,8 +571,8 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
             /* what it left behind: its user id's processes (root), the
              * orphans that became ours (any) */
             if (getuid() == 0 && !G.unsafe)
-                kill_user(UID_BASE + (uid_t)pid);
-            kill_children();
+                sandbox_kill_user(UID_BASE + (uid_t)pid);
+            sandbox_kill_children();
         }
         if (row->stage[0] && !strncmp(row->stage, "/tmp/tristep-grade-", 19))
             rm_tree(row->stage);
