@@ -214,7 +214,8 @@ exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SC
 # section of its own, so the final link drops what nothing calls), made
 # one object whose only global symbols are those the table lists; its
 # headers copied into include/ (what lessons/NN-name/answer.c includes,
-# and the lesson's forbid.h).
+# shade.h, which every lesson's whole rasterizer may use, and the
+# lesson's forbid.h).
 SL_TABLE := src/exercise/student-library.txt
 sl_col    = $(shell awk -v n=$1 -v c=$2 '$$1 == n || $$1 == "all" { for (i = 2; i <= NF; i++) if ($$i ~ "^" c ":") { sub("^" c ":", "", $$i); printf "%s ", $$i } }' $(SL_TABLE))
 $(B)/student/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -ffunction-sections -fdata-sections -c $< -o $@
@@ -225,11 +226,14 @@ $(B)/student/%/library.o: $(SL_TABLE) $$(call sl_objs,$$*)
 	@mkdir -p $(@D) && printf '%s\n' main $(call sl_col,$*,call) > $(@D)/allowed.txt
 	@ld -r -o $@.tmp $(filter %.o,$^) && objcopy --keep-global-symbols=$(@D)/allowed.txt $@.tmp $@ && rm -f $@.tmp
 $(B)/student/%/include.stamp: $(SL_TABLE) $$(wildcard lessons/$$*-*/answer.c) src/exercise/student.h $(wildcard src/*.h src/*/*.h lessons/*/*.h)
-	@rm -rf $(@D)/include && mkdir -p $(@D)/include && a=$$(ls lessons/$*-*/answer.c) && \
-	  for h in $$($(CC) -std=c17 -Isrc $(PKG_CFLAGS) $(STUDENT) -I$$(dirname $$a) -MM -MT x $$a | tr -d '\\' | tr ' ' '\n' | grep '\.h$$' | grep -v '^/'); do \
-	    case $$h in src/*) d=$(@D)/include/$${h#src/} ;; *) d=$(@D)/include/$$(basename $$h) ;; esac; \
+	@rm -rf $(@D)/include && mkdir -p $(@D)/include && a=$$(ls lessons/$*-*/answer.c) && loc= && \
+	  for h in $$({ $(CC) -std=c17 -Isrc $(PKG_CFLAGS) $(STUDENT) -I$$(dirname $$a) -MM -MT x $$a; \
+	               printf '#include "shade/shade.h"\n' | $(CC) -std=c17 -Isrc $(PKG_CFLAGS) -MM -MT x -x c -; } | \
+	             tr -d '\\' | tr ' ' '\n' | grep '\.h$$' | grep -v '^/' | sort -u); do \
+	    case $$h in src/*) d=$(@D)/include/$${h#src/} ;; *) d=$(@D)/include/$$(basename $$h); loc="$$loc $$(basename $$h)" ;; esac; \
 	    mkdir -p $$(dirname $$d) && cp $$h $$d; done && \
 	  { echo '/* forbid.h - what lesson $*'"'"'s exercise may not use of the headers (src/exercise/student-library.txt) */'; \
+	    for l in $$loc; do printf '#include "%s"   /* first: its names are poisoned after it */\n' $$l; done; \
 	    for w in $(call sl_col,$*,poison); do printf '#undef %s\n#pragma GCC poison %s\n' $$w $$w; done; } > $(@D)/include/forbid.h && touch $@
 # the student's file, compiled as the runner's: the library's headers only,
 # from a copy in a folder of its own (a quoted #include finds nothing beside

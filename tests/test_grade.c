@@ -707,3 +707,25 @@ Test(grade, gradescope_zip_in_a_scratch_root, .init = make_dir, .fini = test_scr
     free(after);
     free(before);
 }
+
+/* Without the sandbox (UNSAFE=1) too, nothing a submission starts outlives
+ * its run: a child in a session of its own, forked twice, is killed (the
+ * grader is its subreaper), and the CSV says the run was not isolated. */
+Test(grade, unsafe_leaves_no_process, .init = make_dir, .fini = test_scratch_remove, .timeout = 240)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/sub", dir);
+    cr_assert_eq(mkdir(path, 0777), 0);
+    char *skeleton = slurp("lessons/02-barycentric/exercise.c");
+    const struct hostile *h = &hostiles[1];
+    cr_assert_str_eq(h->name, "outlive.c");
+    char *t = answer_with(skeleton, h->top, h->before);
+    put(h->name, t);
+    free(t);
+    free(skeleton);
+    char *csv = grade("UNSAFE=1");
+    expect_row(csv, "outlive.c", "\",\"fail\",\"0\"");
+    expect_row(csv, "outlive.c", "\"UNSAFE: no sandbox\"");
+    cr_expect_eq(survivors(), 0, "processes of the run survive it");
+    free(csv);
+}
