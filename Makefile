@@ -218,7 +218,10 @@ exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(if $(SCENE),--scene $(SC
 # lesson's forbid.h).
 SL_TABLE := src/exercise/student-library.txt
 sl_col    = $(shell awk -v n=$1 -v c=$2 '$$1 == n || $$1 == "all" { for (i = 2; i <= NF; i++) if ($$i ~ "^" c ":") { sub("^" c ":", "", $$i); printf "%s ", $$i } }' $(SL_TABLE))
-$(B)/student/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DTRISTEP_NARRATE -ffunction-sections -fdata-sections -c $< -o $@
+# (never with the sanitizers: a runner runs under make grade's memory limit,
+# which their shadow memory does not fit; the judge is what they check)
+SL_BASE   = $(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -pthread $(TS_PORT) -DTRISTEP_NARRATE
+$(B)/student/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(SL_BASE) -MMD -MP -Isrc $(PKG_CFLAGS) -ffunction-sections -fdata-sections -c $< -o $@
 # kept: make would drop them as intermediate
 .PRECIOUS: $(B)/student/obj/%.o $(B)/student/%/library.o $(B)/student/%/include.stamp
 sl_objs   = $(patsubst %.c,$(B)/student/obj/%.o,$(call sl_col,$1,file))
@@ -238,7 +241,7 @@ $(B)/student/%/include.stamp: $(SL_TABLE) $$(wildcard lessons/$$*-*/answer.c) sr
 # the student's file, compiled as the runner's: the library's headers only,
 # from a copy in a folder of its own (a quoted #include finds nothing beside
 # it, as in make grade's sandbox), #line keeping its name in the messages
-SL_CC     = $(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -pthread $(SAN) $(TS_PORT) -DTRISTEP_NARRATE \
+SL_CC     = $(SL_BASE) \
             -I$(B)/student/$(LESSON)/include -include exercise/student.h -include forbid.h
 $(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FIRST)
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
@@ -246,7 +249,7 @@ $(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FI
 	@mkdir -p $(@D)/src && { printf '#line 1 "%s"\n' "$$(printf '%s' '$(FILE)' | sed 's/[\\"]/\\&/g')"; cat '$(FILE)'; } > $(@D)/src/exercise.c && \
 	  $(SL_CC) -c $(@D)/src/exercise.c -o $@
 $(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
-	@$(LD_ALL) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
+	@$(CC) $(LDFLAGS) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
 $(B)/obj/judge-%.o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -DEXERCISE_JUDGE -c $< -o $@
 $(B)/judge-%: $(B)/obj/judge-%.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@

@@ -158,6 +158,13 @@ struct sub *list_class(const char *dir, bool one, int *n)
     return subs;
 }
 
+void free_class(struct sub *subs, int n)
+{
+    for (int i = 0; subs && i < n; i++)
+        free(subs[i].entry), free(subs[i].file);
+    free(subs);
+}
+
 /* Text as it may go into a CSV field or JSON string: valid UTF-8, no
  * control characters (each a space), invalid bytes as '?'. */
 void clean_text(const char *in, char *out, size_t n)

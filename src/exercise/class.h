@@ -18,6 +18,7 @@ struct sub {
 /* The submissions of dir, sorted by name, n of them (one: dir is one
  * student's folder); NULL if dir cannot be read. */
 struct sub *list_class(const char *dir, bool one, int *n);
+void free_class(struct sub *subs, int n);
 
 /* Text as it may go into a CSV field or a JSON string: valid UTF-8, no
  * control characters (each a space), invalid bytes as '?'. */

@@ -529,14 +529,17 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
         return 2;
     mkdir(G.out, 0755);
     int n;
-    struct sub *subs = list_class(G.dir, G.one, &n);
+    struct sub *subs = list_class(G.dir, G.one, &n);      /* freed at every return from here on */
     if (!subs || n == 0) {
         fprintf(stderr, "DIR=%s holds no .c file and no folder\n", G.dir);
+        free_class(subs, n);
         return 2;
     }
     struct row *rows = mmap(NULL, sizeof *rows * (size_t)n, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    if (rows == MAP_FAILED)
+    if (rows == MAP_FAILED) {
+        free_class(subs, n);
         return 1;
+    }
     memset(rows, 0, sizeof *rows * (size_t)n);
     double t0 = now();
     for (int i = 0; i < n; i++) {
@@ -587,6 +590,7 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
     FILE *f = fopen(tmp, "w");
     if (!f) {
         fprintf(stderr, "CSV=%s: %s\n", G.csv, strerror(errno));
+        free_class(subs, n);
         return 1;
     }
     const char *head[] = { "student", "folder", "file", "result", "score", "max" };
@@ -634,9 +638,11 @@ int exercise_grade_main(const struct lesson *l, int argc, char **argv)
     }
     if (fclose(f) != 0 || rename(tmp, G.csv) != 0) {
         fprintf(stderr, "CSV=%s: %s\n", G.csv, strerror(errno));
+        free_class(subs, n);
         return 1;
     }
     printf("grade: %d submission%s in %.1f s, the table in %s%s\n", n, n == 1 ? "" : "s", now() - t0, G.csv,
            G.unsafe ? " (UNSAFE=1: graded without a sandbox)" : "");
+    free_class(subs, n);
     return 0;
 }
