@@ -115,6 +115,17 @@ static int survivors(void)
     return n;
 }
 
+/* What a run must leave: no process of its own, the project tree as it
+ * was (before: tree_state() then; freed). */
+static void expect_no_trace(char *before)
+{
+    cr_expect_eq(survivors(), 0, "processes of the run survive it");
+    char *after = tree_state();
+    cr_expect_str_eq(after, before, "the project tree changed");
+    free(after);
+    free(before);
+}
+
 static void put(const char *name, const char *text)
 {
     char path[512];
@@ -221,11 +232,7 @@ Test(grade, honest_files_and_cheats_side_by_side, .init = make_dir, .fini = test
     cr_expect_not_null(strstr(json, "\"score\": 9,\n"), "%s", json);
     cr_expect_not_null(strstr(json, "\"name\": \"fill-rule ties\", \"score\": 2, \"max_score\": 2, \"status\": \"passed\""), "%s", json);
     free(json);
-    cr_expect_eq(survivors(), 0, "processes of the run survive it");
-    char *after = tree_state();
-    cr_expect_str_eq(after, before, "the project tree changed");
-    free(after);
-    free(before);
+    expect_no_trace(before);
     free(csv);
 }
 
@@ -370,11 +377,7 @@ static void grade_hostiles(const char *lesson, bool all)
     snprintf(path, sizeof path, "%s/out/flood/log.txt", dir);
     cr_expect_eq(stat(path, &st), 0, "%s", path);
     cr_expect(st.st_size >= 256 << 10 && st.st_size < (256 << 10) + 200, "flood's log: %lld bytes", (long long)st.st_size);
-    cr_expect_eq(survivors(), 0, "processes of the run survive it");
-    char *after = tree_state();
-    cr_expect_str_eq(after, before, "the project tree changed");
-    free(after);
-    free(before);
+    expect_no_trace(before);
     free(csv);
     free(answer);
     free(skeleton);
@@ -709,11 +712,7 @@ Test(grade, gradescope_zip_in_a_scratch_root, .init = make_dir, .fini = test_scr
         cr_expect_not_null(strstr(json, "\"name\": \"fill-rule ties\""), "%s", json);
         free(json);
     }
-    cr_expect_eq(survivors(), 0, "processes of the run survive it");
-    char *after = tree_state();
-    cr_expect_str_eq(after, before, "the project tree changed");
-    free(after);
-    free(before);
+    expect_no_trace(before);
 }
 
 /* Without the sandbox (UNSAFE=1) too, nothing a submission starts outlives
