@@ -1,6 +1,7 @@
 # tristep: make | make run [LESSON=02] | make test [SANITIZE=1] | make figures | make bench
 #          make exercise LESSON=02 [FILE=x.c] [SCENE=s] [STEP=n] [SAMPLES=n] | make check LESSON=02 [FILE=x.c] [SCENE=s] [SEED=n] [SEARCH=s]
-#          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder]
+#          make grade LESSON=02 DIR=submissions/ [TIMEOUT=60] [CSV=file] [OUT=folder] [SEED=n] [POINTS=file] [UNSAFE=1]
+#          make gradescope LESSON=02 [SEED=n] [POINTS=file] (an autograder zip) | make grade-hostile [HOSTILE="02 06 09"]
 #          (check, exercise and grade take VARIANT=name: a lesson's graded variant, lessons/README.md)
 #          make student-kit [KIT=folder] (the course without its answers, to hand out) | make student-kit-test
 #          make bench-lines (lines beside llvmpipe) | make skeletons (lessons/*/exercise.c from the answers)
@@ -19,7 +20,7 @@ TESTS_SRC := $(filter-out $(if $(ANSWERS_HERE),,$(NEED_ANSWERS)),$(wildcard test
 BUILD    ?= build
 B        := $(BUILD)$(if $(PORT),/$(PORT),$(if $(FUZZ),/fuzz,$(if $(SANITIZE),/sanitize)))
 PROGRAMS := $(LESSONS:%=$(B)/%)
-LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c,$(wildcard src/*.c src/*/*.c)))
+LIB_OBJ  := $(patsubst %.c,$(B)/obj/%.o,$(filter-out src/cli/main.c src/exercise/main.c src/exercise/runner.c,$(wildcard src/*.c src/*/*.c)))
 EX_SRC   := $(wildcard lessons/*/exercise.c lessons/*/answer.c)
 VAR_SRC  := $(wildcard lessons/*/exercise-*.c lessons/*/answer-*.c)
 LES_SRC  := $(filter-out $(EX_SRC) $(VAR_SRC),$(wildcard lessons/*/*.c))
@@ -64,7 +65,7 @@ LIBS      = $(LDLIBS) $(PKG_LIBS) -pthread
 FIRST    := $(B)/config.mk $(if $(filter test,$(MAKECMDGOALS)),deps-test) $(if $(filter bench,$(MAKECMDGOALS)),deps-bench)
 
 all: $(PROGRAMS)
-.PHONY: all run test fresh-test figures bench bench-lines soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench deps-fuzz exercise check grade skeletons student-kit student-kit-test FORCE
+.PHONY: all run test fresh-test figures bench bench-lines soak fuzz fuzz-run aarch64 simde-test port-run clean deps-test deps-bench deps-fuzz exercise check grade grade-build grade-hostile gradescope skeletons student-kit student-kit-test FORCE
 .SECONDEXPANSION:
 
 ifneq ($(filter-out clean fresh-test,$(or $(MAKECMDGOALS),all)),)
@@ -255,23 +256,98 @@ $(B)/obj/main-exercise-$(LESSON).o: src/exercise/main.c | $(FIRST) ; @mkdir -p $
 $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/student-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
 	@$(LD_ALL) $^ $(LIBS) -o $@
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(EX_VARIANT) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
-check: $(B)/exercise-$(LESSON)
-	@$< --check --file $(FILE) $(EX_VARIANT) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(VARIANT), VARIANT=$(VARIANT))$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s)) $(if $(SEED),--seed $(SEED)) $(if $(SEARCH),--search $(SEARCH))
 
-# make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder]: make
-# check on every .c file of the folder, each built and run apart, under a
-# time limit; one CSV row per file, whatever the file does; what each run
-# printed and its counterexample in OUT/<file> (src/exercise/grade.sh).
+# The judge and the runner (DESIGN.md, "Judging a student's code"): make
+# check and make grade compile the student's file against the student
+# library of its lesson alone, $(B)/student/NN/ (src/exercise/student-library.txt
+# says what each lesson's holds and why), into a runner; the judge,
+# $(B)/judge-NN, which never links student code, sends it scenes and
+# decides. The library: its objects compiled apart (each function in a
+# section of its own, so the final link drops what nothing calls), made
+# one object whose only global symbols are those the table lists; its
+# headers copied into include/ (what lessons/NN-name/answer.c includes,
+# shade.h, which every lesson's whole rasterizer may use, and the
+# lesson's forbid.h).
+SL_TABLE := src/exercise/student-library.txt
+sl_col    = $(shell awk -v n=$1 -v c=$2 '$$1 == n || $$1 == "all" { for (i = 2; i <= NF; i++) if ($$i ~ "^" c ":") { sub("^" c ":", "", $$i); printf "%s ", $$i } }' $(SL_TABLE))
+# (never with the sanitizers: a runner runs under make grade's memory limit,
+# which their shadow memory does not fit; the judge is what they check)
+SL_BASE   = $(CC) $(CFLAGS) -std=c17 -Wall -Wextra -pedantic -pthread $(TS_PORT) -DTRISTEP_NARRATE
+$(B)/student/obj/%.o: %.c $(B)/cc.flag | $(FIRST) ; @mkdir -p $(@D) && $(SL_BASE) -MMD -MP -Isrc $(PKG_CFLAGS) -ffunction-sections -fdata-sections -c $< -o $@
+# kept: make would drop them as intermediate
+.PRECIOUS: $(B)/student/obj/%.o $(B)/student/%/library.o $(B)/student/%/include.stamp
+sl_objs   = $(patsubst %.c,$(B)/student/obj/%.o,$(call sl_col,$1,file))
+$(B)/student/%/library.o: $(SL_TABLE) $$(call sl_objs,$$*)
+	@mkdir -p $(@D) && printf '%s\n' main $(call sl_col,$*,call) > $(@D)/allowed.txt
+	@ld -r -o $@.tmp $(filter %.o,$^) && objcopy --keep-global-symbols=$(@D)/allowed.txt $@.tmp $@ && rm -f $@.tmp
+$(B)/student/%/include.stamp: $(SL_TABLE) $$(wildcard lessons/$$*-*/exercise.c) src/exercise/student.h $(wildcard src/*.h src/*/*.h lessons/*/*.h)
+	@rm -rf $(@D)/include && mkdir -p $(@D)/include && a=$$(ls lessons/$*-*/exercise.c) && loc= && \
+	  for h in $$({ $(CC) -std=c17 -Isrc $(PKG_CFLAGS) $(STUDENT) -I$$(dirname $$a) -MM -MT x $$a; \
+	               printf '#include "shade/shade.h"\n' | $(CC) -std=c17 -Isrc $(PKG_CFLAGS) -MM -MT x -x c -; } | \
+	             tr -d '\\' | tr ' ' '\n' | grep '\.h$$' | grep -v '^/' | sort -u); do \
+	    case $$h in src/*) d=$(@D)/include/$${h#src/} ;; *) d=$(@D)/include/$$(basename $$h); loc="$$loc $$(basename $$h)" ;; esac; \
+	    mkdir -p $$(dirname $$d) && cp $$h $$d; done && \
+	  { echo '/* forbid.h - what lesson $*'"'"'s exercise may not use of the headers (src/exercise/student-library.txt) */'; \
+	    for l in $$loc; do printf '#include "%s"   /* first: its names are poisoned after it */\n' $$l; done; \
+	    for w in $(call sl_col,$*,poison); do printf '#undef %s\n#pragma GCC poison %s\n' $$w $$w; done; } > $(@D)/include/forbid.h && touch $@
+# the student's file, compiled as the runner's: the library's headers only,
+# from a copy in a folder of its own (a quoted #include finds nothing beside
+# it, as in make grade's sandbox), #line keeping its name in the messages
+SL_CC     = $(SL_BASE) \
+            -I$(B)/student/$(LESSON)/include -include exercise/student.h -include forbid.h
+$(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FIRST)
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-* (LESSON=01 .. $(call nn,$(lastword $(LESSONS))/x))"; exit 2; }
+	@test -f "$(FILE)" || { echo "FILE=$(FILE): no such file"; exit 2; }
+	@mkdir -p $(@D)/src && { printf '#line 1 "%s"\n' "$$(printf '%s' '$(FILE)' | sed 's/[\\"]/\\&/g')"; cat '$(FILE)'; } > $(@D)/src/exercise.c && \
+	  $(SL_CC) -c $(@D)/src/exercise.c -o $@
+$(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
+	@$(CC) $(LDFLAGS) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
+$(B)/obj/judge-%.o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -DEXERCISE_JUDGE -c $< -o $@
+$(B)/judge-%: $(B)/obj/judge-%.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+	@$(LD_ALL) $^ $(LIBS) -o $@
+check: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/runner
+	@$< --check --runner $(B)/student/$(LESSON)/runner --log $(B)/student/$(LESSON)/log.txt $(if $(SEED),--seed $(SEED)) $(if $(SEARCH),--search $(SEARCH)) --file $(FILE) $(EX_VARIANT) --out $(B)/check --open 'make exercise LESSON=$(LESSON)$(if $(VARIANT), VARIANT=$(VARIANT))$(if $(filter command line,$(origin FILE)), FILE=$(FILE))' $(foreach s,$(SCENE),--check-scene $(s))
+
+# make grade LESSON=NN DIR=folder [TIMEOUT=s] [CSV=file] [OUT=folder] [SEED=n]
+# [POINTS=file] [UNSAFE=1]: every submission of the folder compiled, linked
+# and checked in a sandbox of its own by the judge (src/exercise/grade.h),
+# one CSV row each, a results.json each in OUT/<folder>/.
 TIMEOUT  ?= 60
 OUT      ?= $(B)/grade/$(LESSON)
 CSV      ?= $(OUT).csv
-grade: $(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a
+GRADER   := $(shell git rev-parse HEAD 2>/dev/null || cat gradescope.commit 2>/dev/null || echo unknown)
+grade: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
 	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
 	@test -n "$(DIR)" || { echo "make grade LESSON=NN DIR=folder: DIR is missing"; exit 2; }
-	@mkdir -p $(dir $(CSV)) && GRADE_LESSON=$(LESSON) GRADE_DIR='$(DIR)' GRADE_OUT='$(OUT)' \
-	  GRADE_CSV='$(CSV)' GRADE_TIME=$(TIMEOUT) GRADE_CC='$(CC_ALL) $(STUDENT) -I$(EX_LESSON)' GRADE_LD='$(LD_ALL)' \
-	  GRADE_OBJS='$(B)/obj/main-exercise-$(LESSON).o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a' \
-	  GRADE_LIBS='$(LIBS)' GRADE_VARIANT='$(VARIANT)' sh src/exercise/grade.sh
+	@$(if $(UNSAFE),,sh src/deps.sh grade &&) mkdir -p '$(dir $(CSV))' && $< --grade --dir '$(DIR)' --lib $(B)/student/$(LESSON) --out '$(OUT)' \
+	  --csv '$(CSV)' --timeout $(TIMEOUT) --commit $(GRADER) --cc '$(CC)' $(if $(SEED),--seed '$(SEED)') \
+	  $(if $(POINTS),--points '$(POINTS)') $(if $(ONE),--one) $(if $(UNSAFE),--unsafe) $(EX_VARIANT)
+
+# make grade-hostile [HOSTILE="02 06 09"]: make grade on every hostile file
+# of tests/test_grade.c (a fork bomb, 4 GiB, a flood of output, a file that
+# includes itself, a destructor that forges, a full disk, ...) beside honest
+# ones, for each lesson of the list: the long version of make test's share.
+HOSTILE  ?= 02 06 09
+grade-hostile: $(B)/tristep-tests   # (each make grade builds its lesson's judge)
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) TRISTEP_HOSTILE='$(HOSTILE)' $(B)/tristep-tests --filter 'grade/hostile_files'
+
+grade-build: $(B)/judge-$(LESSON) $(B)/student/$(LESSON)/library.o $(B)/student/$(LESSON)/include.stamp
+
+# make gradescope LESSON=NN [SEED=n] [POINTS=file]: an autograder zip for
+# Gradescope, $(B)/gradescope-NN.zip: setup.sh and run_autograder
+# (src/exercise/gradescope/) beside the repository's committed source, all
+# at the zip's top (Gradescope unpacks it into /autograder/source), whose
+# run_autograder grades /autograder/submission as make grade does (ONE=1:
+# it is one student's folder) into /autograder/results/results.json.
+gradescope:
+	@test -n "$(EX_LESSON)" || { echo "LESSON=$(LESSON): no lessons/$(LESSON)-*"; exit 2; }
+	@g=$(B)/gradescope-$(LESSON) && rm -rf $$g && mkdir -p $$g && git archive HEAD | tar -x -C $$g && \
+	  for f in setup.sh run_autograder; do sed 's/@LESSON@/$(LESSON)/g' src/exercise/gradescope/$$f > $$g/$$f; chmod +x $$g/$$f; done && \
+	  printf '%s\n' "$(if $(SEED),SEED=$(SEED)) $(if $(POINTS),POINTS=points.txt)" > $$g/gradescope.options && \
+	  git rev-parse HEAD > $$g/gradescope.commit && \
+	  $(if $(POINTS),cp '$(POINTS)' $$g/points.txt &&) \
+	  rm -f $$g.zip && (cd $$g && zip -qr ../$$(basename $$g).zip .) && \
+	  echo "gradescope: $$g.zip (setup.sh, run_autograder and the source at $$(git rev-parse --short HEAD), at the zip's top as Gradescope wants)"
 
 # A student kit: this tree without what gives the answers away (src/kit.sh
 # says what), in KIT; make run, exercise, check and test work there.
@@ -300,7 +376,7 @@ $(B)/obj/tests/%.o: tests/%.c $(B)/cc.flag $(B)/answers.flag | $(FIRST)
 	@mkdir -p $(@D) && $(CC_ALL) $(if $(ANSWERS_HERE),,-DTRISTEP_NO_ANSWERS) -DTRISTEP_NARRATE -c $< -o $@
 
 run: $(B)/$(filter $(LESSON)-%,$(LESSONS)) ; $<
-test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/lines-peer $(B)/tsan-tiles $(B)/tristep-soak
+test: deps-test all $(B)/tristep-tests $(B)/tristep-bench $(B)/lines-peer $(B)/tsan-tiles $(B)/tristep-soak $(B)/judge-02 $(B)/student/02/library.o $(B)/student/02/include.stamp
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp TRISTEP_BUILD=$(B) $(B)/tristep-tests --jobs=2
 	$(if $(and $(ANSWERS_HERE),$(if $(wildcard tests/left-out.txt),,1)),,@sh src/kit.sh left-out $(NEED_ANSWERS))
 	@$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)/sanitize/fuzz-replay

@@ -8,9 +8,12 @@
 #   build   SDL2, cairo, Pango, DejaVu fonts  (make, make run, make figures)
 #   test    everything make test runs, in one apt-get run: the above,
 #           Criterion, Xvfb, xdotool, ImageMagick's import, patch (the
-#           mutation suite), and what simde and aarch64 need
+#           mutation suite), bubblewrap (make grade), and what simde and
+#           aarch64 need
 #   bench   the build packages and OSMesa for the llvmpipe peer  (make bench)
 #   fuzz    the test packages, clang and its libFuzzer  (make fuzz)
+#   grade   the build packages and bubblewrap, the sandbox of make grade
+#           (make test grades too: its packages include bubblewrap)
 #   simde   SIMDe's headers  (make simde-test: the exactness driver through SIMDe)
 #   aarch64 Debian's aarch64 cross compiler and C library, qemu-user, SIMDe  (make aarch64)
 # With OUT, writes the compiler and linker flags as a makefile fragment
@@ -27,11 +30,12 @@ out=${2:-}
 
 case $mode in
   build) groups=build ;;
-  test)  groups="build test simde aarch64" ;;
+  test)  groups="build test grade simde aarch64" ;;
   bench) groups="build bench" ;;
   fuzz)  groups="build test fuzz" ;;
+  grade) groups="build grade" ;;
   simde|aarch64) groups=$mode ;;
-  *) echo "deps.sh: unknown mode $mode (build, test, bench, fuzz, simde, aarch64)" >&2; exit 2 ;;
+  *) echo "deps.sh: unknown mode $mode (build, test, bench, fuzz, grade, simde, aarch64)" >&2; exit 2 ;;
 esac
 
 # The Debian packages and the plain names of a group.
@@ -41,6 +45,7 @@ debs() {
     test)    echo "libcriterion-dev xvfb xdotool imagemagick patch" ;;
     bench)   echo "libosmesa6-dev" ;;
     fuzz)    echo "clang libclang-rt-dev" ;;
+    grade)   echo "bubblewrap" ;;
     simde)   echo "libsimde-dev" ;;
     aarch64) echo "gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user libsimde-dev" ;;
   esac
@@ -51,6 +56,7 @@ names() {
     test)    echo "Criterion, Xvfb, xdotool, ImageMagick, patch" ;;
     bench)   echo "OSMesa (Mesa)" ;;
     fuzz)    echo "clang with its libFuzzer runtime" ;;
+    grade)   echo "bubblewrap (bwrap), the sandbox of make grade" ;;
     simde)   echo "SIMDe (SIMD Everywhere, header-only)" ;;
     aarch64) echo "Debian's or Ubuntu's aarch64 cross compiler, qemu-user and SIMDe" ;;
   esac
@@ -72,6 +78,8 @@ missing_of() {
       pc criterion; has Xvfb; has xdotool; has import; has patch ;;
     bench)
       pc osmesa ;;
+    grade)
+      has bwrap ;;
     fuzz)    # clang, and a program linked with libFuzzer
       printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { return !d + !n; }\n' |
         clang -fsanitize=fuzzer -x c - -o /dev/null >/dev/null 2>&1 || printf 'clang+libFuzzer ' ;;
@@ -121,9 +129,12 @@ elif [ -n "$need" ]; then
   echo "  Debian/Ubuntu: apt-get install $deb" >&2
   case $mode in
     aarch64) echo "  (the aarch64 target uses Debian's cross packages; on an ARM64 machine, make test runs natively)" >&2 ;;
+    grade) echo "  Fedora: dnf install bubblewrap; Arch: pacman -S bubblewrap" >&2
+           echo "  (make grade's sandbox needs Linux's namespaces; where it cannot run, make grade UNSAFE=1" >&2
+           echo "  grades without isolation, and its CSV says so)" >&2 ;;
     simde) echo "  Fedora: dnf install simde-devel" >&2
            echo "  macOS (Homebrew): brew install simde" >&2 ;;
-    *) echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel simde-devel xorg-x11-server-Xvfb xdotool ImageMagick patch mesa-libOSMesa-devel (Fedora 43 on: mesa-compat-libOSMesa-devel)" >&2
+    *) echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel simde-devel xorg-x11-server-Xvfb xdotool ImageMagick patch bubblewrap mesa-libOSMesa-devel (Fedora 43 on: mesa-compat-libOSMesa-devel)" >&2
        echo "  macOS (Homebrew): brew install pkg-config sdl2 cairo pango criterion simde; brew install --cask font-dejavu (no OSMesa: make bench runs without the llvmpipe peer)" >&2 ;;
   esac
   exit 1

@@ -38,7 +38,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL, CK_ORDER };
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
     WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_ORDER, WRONG_TILES,
-    WRONG_READS,
+    WRONG_READS, WRONG_RUNNER,
 };
 
 struct verdict {
@@ -69,6 +69,7 @@ struct verdict {
      * levels the bits of got_mask, where want_n (4 per level read) and
      * two adjacent levels at most are the filter's */
     int box[4];                     /* WRONG_TILES: the triangle's box, x0, y0, x1, y1 */
+    struct runner_fault runner;     /* WRONG_RUNNER: the runner crashed, hung or sent garbage */
 };
 
 /* Everything one check run needs. */
@@ -115,7 +116,16 @@ bool evaluate(struct checker *C, const struct scene *s, struct verdict *v);
 
 /* A 3-D scene's screen triangles as the exercise's front end makes them
  * (exercise_front), in a copy of s; false when out of memory. */
-bool exercise_projected(struct scene *out, const struct scene *s);
+bool exercise_projected(const struct checker *C, struct scene *out, const struct scene *s);
+
+/* The seam where the student's code draws (evaluate.c): in the runner, a
+ * process of its own, when one is configured (remote.h), ask for
+ * triangles first .. first + count - 1 of s (trace: enum wire_trace), then
+ * draw each through exercise_variant in order; student_end when done.
+ * In this process both do nothing. */
+bool student_begin(const struct checker *C, const struct scene *s, const struct raster_params *p,
+                   int first, int count, int trace);
+void student_end(void);
 
 /* x, then y, of each vertex of the scene in order: coordinate k. */
 double *scene_coord(struct scene *s, int k);

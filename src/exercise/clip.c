@@ -46,6 +46,11 @@ const struct clip_fault *exercise_clip_fault(void)
     return &fault;
 }
 
+void exercise_clip_fault_set(const struct clip_fault *f)
+{
+    fault = *f;
+}
+
 static bool on_kept_side(const struct plane *pl, double d)
 {
     return pl->keep > 0 ? d >= pl->at : d <= pl->at;
@@ -104,6 +109,15 @@ static int as_lesson_n;
 bool exercise_clip_as_lesson(int tri)
 {
     return tri >= 0 && tri < as_lesson_n && as_lesson[tri];
+}
+
+void exercise_clip_as_lesson_set(const unsigned char *flags, int n)
+{
+    bool *a = realloc(as_lesson, sizeof *a * (size_t)(n > 0 ? n : 1));
+    as_lesson_n = a ? n : 0;
+    as_lesson = a ? a : as_lesson;
+    for (int i = 0; i < as_lesson_n; i++)
+        as_lesson[i] = flags[i] != 0;
 }
 
 static bool same_vertex(const struct pvert *a, const struct pvert *b)

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "exercise/remote.h"
+#include "exercise/wire.h"
 #include "front/front.h"    /* front_scene: the exact picture's triangles */
 
 static int samples_of(const struct target *fb)
@@ -390,8 +392,55 @@ static bool own_start(struct checker *C, const struct scene *s)
     return target_init(O, s->w, s->h, scene_background(s));
 }
 
+/* --- the seam: the student's code draws ----------------------------------------- */
+
+/* Where the student's code runs in another process (remote.h), ask it for
+ * triangles first .. first + count - 1 of s with params p, traced as
+ * `trace` says; each then comes back through the exercise variant's
+ * rasterize, in order. In this process: nothing to ask. */
+bool student_begin(const struct checker *C, const struct scene *s, const struct raster_params *p,
+                   int first, int count, int trace)
+{
+    if (!remote_active())
+        return true;
+    return remote_begin(s, p, first, count, trace, C->l->exercise.clip, C->both_ways,
+                       C->l->exercise.write_line);
+}
+
+void student_end(void)
+{
+    if (remote_active())
+        remote_end();
+}
+
+/* The runner crashed, hung or sent garbage drawing triangle tri of s. */
+static bool runner_failed(int tri, int samples, bool world, struct verdict *v)
+{
+    if (exercise_runner_fault()->what == RUNNER_OK)
+        return false;
+    *v = (struct verdict){ .what = WRONG_RUNNER, .tri = tri, .samples = samples, .world = world,
+                           .runner = *exercise_runner_fault() };
+    return true;
+}
+
+static bool evaluate_at_drawn(struct checker *C, const struct scene *s, struct verdict *v);
+
 /* The scene at one sample count, C->p.samples. */
 static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict *v)
+{
+    bool property = C->kind == CK_PROPERTY || C->kind == CK_ALL || C->kind == CK_ORDER;
+    struct raster_params p = C->p;
+    p.checker = s->checker;     /* the scene's checker, which every lesson shades */
+    if (!student_begin(C, s, &p, 0, s->ntris, property ? WIRE_TRACE_EVENTS : WIRE_TRACE_COUNT)) {
+        runner_failed(0, C->p.samples > 1 ? C->p.samples : 1, false, v);
+        return false;
+    }
+    bool ok = evaluate_at_drawn(C, s, v);
+    student_end();
+    return ok;
+}
+
+static bool evaluate_at_drawn(struct checker *C, const struct scene *s, struct verdict *v)
 {
     int samples = C->p.samples > 1 ? C->p.samples : 1;
     if (!prepare(&C->want, C->spare_want, s, samples) || !prepare(&C->got, C->spare_got, s, samples))
@@ -429,6 +478,8 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
             check_guard->tri = i;
         exercise_variant.rasterize(&t, &C->p, &C->got, &tr);
         C->triangles++;
+        if (runner_failed(i, samples, false, v))
+            return false;
         const struct exercise_fault *f = exercise_fault();
         if (f->any) {
             *v = (struct verdict){ .what = WRONG_OUTSIDE, .tri = i, .x = f->x, .y = f->y,
@@ -453,8 +504,15 @@ static bool evaluate_at(struct checker *C, const struct scene *s, struct verdict
     return true;
 }
 
-bool exercise_projected(struct scene *out, const struct scene *s)
+bool exercise_projected(const struct checker *C, struct scene *out, const struct scene *s)
 {
+    if (remote_active()) {      /* by the runner; its triangles then follow */
+        struct raster_params p = C->p;
+        p.samples = 0;
+        p.checker = s->checker;
+        return student_begin(C, s, &p, 0, INT32_MAX, WIRE_TRACE_COUNT) && remote_projected()
+               && scene_copy(out, remote_projected());
+    }
     if (!scene_copy(out, s))
         return false;
     if (exercise_front(out))
@@ -504,8 +562,15 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
     if (!scene_copy(&want, s))
         return true;    /* out of memory: said by the caller */
     exercise_clip_both_ways(C->both_ways);
-    if (!front_scene(&want) || !exercise_projected(&got, s)) {
+    if (!front_scene(&want)) {
         scene_free(&want);
+        return true;
+    }
+    if (!exercise_projected(C, &got, s)) {
+        scene_free(&want);
+        student_end();
+        if (runner_failed(0, 1, true, v))
+            return false;
         return true;
     }
     bool ok = prepare(&C->want, C->spare_want, s, 1) && prepare(&C->got, C->spare_got, s, 1);
@@ -530,7 +595,9 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         draw_world_tri(C, &got, w, &b0_own, exact, &C->own, false, false);
         draw_world_tri(C, &got, w, &b, &exercise_variant, &C->got, true, false);
         const struct exercise_fault *f = exercise_fault();
-        if (f->any) {
+        if (runner_failed(w, 1, true, v)) {
+            ok = false;
+        } else if (f->any) {
             *v = base;
             v->what = WRONG_OUTSIDE, v->x = f->x, v->y = f->y;
             ok = false;
@@ -545,6 +612,7 @@ static bool evaluate_world(struct checker *C, const struct scene *s, struct verd
         }
         v->want_tris = a - a0, v->got_tris = b - b0;
     }
+    student_end();
     scene_free(&want);
     scene_free(&got);
     return ok;

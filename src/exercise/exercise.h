@@ -33,6 +33,9 @@
  * exercise_rasterize, or any rasterizer: a lesson's own, an exhibit) and the
  * lesson it is an exercise of. */
 void exercise_use(const struct lesson *l, rasterize_fn fn);
+/* ... or, with draw, the results of the runner, a process of its own
+ * (remote.h; NULL: the code in this process again). */
+void exercise_use_remote(bool (*draw)(struct target *fb, struct trace *tr));
 
 /* The graded variant (VARIANT=, lesson_exercise.variants) that the exact
  * rule and the checks follow from now on; NULL, and exercise_use, return
@@ -80,11 +83,15 @@ struct clip_fault {
     bool reversed;              /* ... made walking the polygon the other way */
 };
 const struct clip_fault *exercise_clip_fault(void);
+/* The fault as the runner reports it (the judge's copy, remote.c). */
+void exercise_clip_fault_set(const struct clip_fault *f);
 
 /* Since the last exercise_front(): did every polygon the student's clipper
  * made of world triangle tri equal the lesson's clipper's, vertex for
  * vertex, as a cyclic sequence (perhaps starting at another vertex)? */
 bool exercise_clip_as_lesson(int tri);
+/* The same flags as a runner found them, one byte per world triangle (remote.c). */
+void exercise_clip_as_lesson_set(const unsigned char *flags, int n);
 
 /* Clip every polygon walked both ways, (v0, v1, ..., v(n-1)) and (v0,
  * v(n-1), ..., v1), as the two triangles sharing an edge walk it, and
@@ -127,6 +134,19 @@ struct texel_fault {
     int w, h;                       /* the level's size (0 x 0: no such level) */
 };
 const struct texel_fault *exercise_texel_fault(void);
+/* Both faults as the runner reports them (the judge's copy, remote.c). */
+void exercise_fault_set(const struct exercise_fault *f, const struct texel_fault *t);
+
+/* What went wrong with the runner, the process that runs the student's
+ * code when the judge is another (remote.h), since the scene began: it
+ * crashed or ended, drew for too long, or sent what no drawing sends. */
+enum runner_wrong { RUNNER_OK, RUNNER_CRASHED, RUNNER_TIMEOUT, RUNNER_GARBAGE };
+struct runner_fault {
+    enum runner_wrong what;
+    int signal;                     /* RUNNER_CRASHED by a signal: which */
+    char why[200];                  /* in plain words */
+};
+const struct runner_fault *exercise_runner_fault(void);
 
 /* The texels read through exercise_texel() since exercise_texel_reads_clear()
  * (or exercise_fault_clear()): how many, and the levels read (bit k: level
@@ -138,6 +158,8 @@ struct texel_reads {
 };
 const struct texel_reads *exercise_texel_reads(void);
 void exercise_texel_reads_clear(void);
+/* The reads a runner counted before an event it sent (remote.c), added to these. */
+void exercise_texel_reads_add(const struct texel_reads *r);
 
 /* --- make check ---------------------------------------------------------------- */
 
@@ -157,6 +179,16 @@ struct check_options {
     uint64_t seed;
     double search_seconds;
     int search_scenes;
+    bool all;                       /* run every check, not only up to the first failure (grading) */
+};
+
+/* One check's outcome, for a score (make grade). */
+#define CHECKS_MAX 24
+struct check_outcome {
+    char name[48];
+    bool ran, passed;
+    enum runner_wrong runner;       /* failed because the runner crashed, hung or sent garbage */
+    long from, to;                  /* its part of the report: ftell(out) before and after */
 };
 
 struct check_result {
@@ -168,12 +200,15 @@ struct check_result {
     int ntris;                      /* triangles in the counterexample */
     uint64_t searched;              /* scenes the search drew */
     bool found_by_search;           /* the counterexample's scene is the search's */
+    struct check_outcome check[CHECKS_MAX];     /* every check planned, in order */
 };
 
 /* Run every check of lesson l on the code given to exercise_use, in order,
  * stopping at the first failure. Returns true when all pass. False also for
  * an unreadable SCENE file or an unwritable counterexample (said on o->out). */
 bool exercise_check(const struct lesson *l, const struct check_options *o, struct check_result *r);
+/* The checks exercise_check would run, by name (r->nchecks, r->check[i].name). */
+bool exercise_check_plan(const struct lesson *l, const struct check_options *o, struct check_result *r);
 /* The same in a process of its own: code that crashes, or loops for
  * SCENE_SECONDS on one scene, fails with the scene it was drawing (shrunk
  * when it crashes) and the command that shows where under a debugger. */

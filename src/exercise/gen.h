@@ -13,6 +13,16 @@ struct rng {
     uint64_t s;
 };
 
+/* The seed of the random scenes (SEED=): 0, the scenes make check draws;
+ * another, scenes the students never checked against (make grade). */
+extern uint64_t check_seed;
+
+/* A generator's stream: its own start, moved by the seed. */
+static inline struct rng rng_start(uint64_t s)
+{
+    return (struct rng){ check_seed ? s ^ (check_seed * 0x9e3779b97f4a7c15u) : s };
+}
+
 static inline uint64_t rng_next(struct rng *r)
 {
     uint64_t z = (r->s += 0x9e3779b97f4a7c15u);

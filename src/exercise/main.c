@@ -6,28 +6,50 @@
  *     exercise-NN [--file NAME] [--exercise-variant V] [LESSON PROGRAM OPTIONS]      the explorer
  *     exercise-NN --check [--file NAME] [--exercise-variant V] [--check-scene FILE]... [--out DIR] [--open CMD]
  *                 [--seed N] [--search SECONDS]
+ *
+ * Compiled with EXERCISE_JUDGE it is build/judge-NN, which links no student
+ * code: the checks on a runner's results (make check), or a class graded
+ * (make grade, grade.c).
+ *
+ *     judge-NN --check --runner PROGRAM [--log FILE] [--seed N] [--file NAME] ...
+ *     judge-NN --grade [GRADE OPTIONS]                  (grade.h)
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
 #include "exercise/exercise.h"
+#include "exercise/gen.h"
+#include "exercise/grade.h"
+#include "exercise/remote.h"
 
 extern const struct lesson LESSON;
+#ifdef EXERCISE_JUDGE
+#define exercise_rasterize NULL
+#define exercise_clip NULL
+#else
 void exercise_rasterize(const struct tri_setup *t, const struct raster_params *p,
                         struct target *fb, struct trace *tr);
 /* the student's clipper (lesson 06), or the lesson's own from the library's
  * clip_default.c when the file has none */
 void exercise_clip(struct poly *out, const struct poly *in, const struct plane *pl);
+#endif
 
 int main(int argc, char **argv)
 {
     const char *file = "exercise.c", *out_dir = "build/check", *open_cmd = NULL, *variant = NULL;
+    const char *runner = NULL, *log = NULL;
     bool check = false;
-    unsigned long long seed = 1;
+    unsigned long long seed = 1;   /* the search's: the same scenes every run unless --seed */
     double search = 1.5;        /* seconds of search for the whole lesson */
+#ifdef EXERCISE_JUDGE
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--grade") == 0)
+            return exercise_grade_main(&LESSON, argc, argv);
+#endif
     const char **scenes = calloc((size_t)argc + 1, sizeof *scenes);
     char **rest = calloc((size_t)argc + 3, sizeof *rest);
     if (!scenes || !rest)
@@ -50,8 +72,12 @@ int main(int argc, char **argv)
             open_cmd = argv[++i];
         else if (strcmp(a, "--exercise-variant") == 0 && has_value)
             variant = argv[++i];
-        else if (strcmp(a, "--seed") == 0 && has_value)
-            seed = strtoull(argv[++i], NULL, 0);
+        else if (strcmp(a, "--runner") == 0 && has_value)
+            runner = argv[++i];
+        else if (strcmp(a, "--log") == 0 && has_value)
+            log = argv[++i];
+        else if (strcmp(a, "--seed") == 0 && has_value)   /* the fixed scenes' and the search's */
+            seed = check_seed = grade_seed(argv[++i]);
         else if (strcmp(a, "--search") == 0 && has_value)
             search = strtod(argv[++i], NULL);
         else {
@@ -96,6 +122,19 @@ int main(int argc, char **argv)
         }
         exercise_use_variant(v);
     }
+    char *runner_argv[] = { (char *)runner, NULL };
+    if (runner) {       /* the student's code in a process of its own */
+        if (log)
+            fclose(fopen(log, "w"));
+        remote_configure(&(struct remote_config){ .argv = runner_argv, .log = log });
+    }
+#ifdef EXERCISE_JUDGE
+    if (!check || !runner) {
+        fprintf(stderr, "%s: the judge only checks a runner's results (--check --runner PROGRAM) or grades (--grade)\n",
+                argv[0]);
+        return 2;
+    }
+#endif
     int status;
     if (check) {
         char cmd[600];
@@ -113,6 +152,12 @@ int main(int argc, char **argv)
         struct check_result r;
         bool ok = exercise_check_guarded(&LESSON, &o, &r);
         status = ok ? 0 : r.nchecks == 0 ? 2 : 1;     /* 2: a SCENE= file that does not load */
+        if (runner) {
+            remote_shutdown();
+            struct stat st;
+            if (log && !ok && stat(log, &st) == 0 && st.st_size > 0)
+                printf("(what your program printed: %s)\n", log);
+        }
     } else {
         /* the lesson program, on the exercise variant unless told otherwise */
         struct lesson l;

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "exercise/wire.h"
 #include "explore/replay.h"
 #include "front/front.h"      /* the view depths of a world triangle */
 #include "util/file.h"
@@ -223,6 +224,9 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
                 v->got_n, v->got_n == 1 ? "" : "s", v->got_class, v->got_class == 1 ? "" : "s", v->got_mask,
                 v->x, v->y, v->want_n);
         break;
+    case WRONG_RUNNER:
+        fprintf(out, "      %s\n      (what it printed is in its log)\n", v->runner.why);
+        break;
     case WRONG_NONE:
         break;
     }
@@ -270,16 +274,24 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         /* other triangles than the exact picture's: the explorer compares
          * the whole picture, at the end of the run */
         struct scene got;
-        if (!exercise_projected(&got, s))
+        if (!exercise_projected(C, &got, s)) {
+            student_end();
             return 0;
+        }
         struct raster_params p = C->p;
         p.at = &(struct run_place){ .scene = &got };
         uint64_t total = replay_init(&r, &got, &exercise_variant, &p) ? r.total : 0;
+        student_end();
         replay_free(&r);
         scene_free(&got);
         return total;
     }
-    if (!replay_init(&r, s, &exercise_variant, &C->p))
+    struct raster_params all = C->p;
+    all.checker = s->checker;
+    bool counted = student_begin(C, s, &all, 0, s->ntris, WIRE_TRACE_COUNT)
+                   && replay_init(&r, s, &exercise_variant, &all);
+    student_end();
+    if (!counted || exercise_runner_fault()->what != RUNNER_OK)
         return 0;
     uint64_t step = r.start[v->tri + 1];
     struct target fb;
@@ -290,7 +302,11 @@ uint64_t step_of(const struct checker *C, const struct scene *s, const struct ve
         trace_begin(&tr, (uint32_t)v->tri, TRACE_UNLIMITED);
         struct raster_params p = lesson_params_tri(&C->p, s, v->tri);
         p.checker = s->checker;
-        exercise_variant.rasterize(&t, &p, &fb, &tr);
+        struct raster_params asked = C->p;
+        asked.checker = s->checker;
+        if (student_begin(C, s, &asked, v->tri, 1, WIRE_TRACE_EVENTS))
+            exercise_variant.rasterize(&t, &p, &fb, &tr);
+        student_end();
         bool missing = v->what == WRONG_COUNT && v->got_n < v->want_n;
         if (!missing && f->written)
             step = r.start[v->tri] + f->write.index + 1;

@@ -51,6 +51,8 @@ bool gen_add_flipped(struct scene *s, struct vertex a, struct vertex b, struct v
     return flip ? gen_add(s, a, c, b) : gen_add(s, a, b, c);
 }
 
+uint64_t check_seed;
+
 void check_scene_start(struct scene *s, int w, int h)
 {
     memset(s, 0, sizeof *s);
@@ -244,7 +246,7 @@ void gen_grid_mesh(struct scene *s, struct rng *r, int nx, int ny, double x0, do
 
 bool gen_meshes(int i, struct scene *s, char *what, size_t n)
 {
-    struct rng r = { 0x3e5a11u + (uint64_t)i };
+    struct rng r = rng_start(0x3e5a11u + (uint64_t)i);
     switch (i) {
     case 0:
         check_scene_start(s, 48, 36);
@@ -281,7 +283,7 @@ bool gen_random(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= RANDOM_SCENES)
         return false;
-    struct rng r = { 0x7a11d0u * 31 + (uint64_t)i };
+    struct rng r = rng_start(0x7a11d0u * 31 + (uint64_t)i);
     int w = 64, h = 48;
     double cx = rng_range(&r, 0, w), cy = rng_range(&r, 0, h);
     struct vertex v[3];
@@ -359,7 +361,7 @@ bool gen_random(int i, struct scene *s, char *what, size_t n)
 
 bool gen_colour(int i, struct scene *s, char *what, size_t n)
 {
-    struct rng r = { 0xc0107u + (uint64_t)i };
+    struct rng r = rng_start(0xc0107u + (uint64_t)i);
     switch (i) {
     case 0:
         check_scene_start(s, 40, 30);
@@ -418,7 +420,7 @@ bool gen_colour(int i, struct scene *s, char *what, size_t n)
 
 bool gen_property(int i, struct scene *s, char *what, size_t n)
 {
-    struct rng r = { 0x9409e7u + (uint64_t)i };
+    struct rng r = rng_start(0x9409e7u + (uint64_t)i);
     switch (i) {
     case 0:
         check_scene_start(s, 160, 120);
@@ -452,7 +454,7 @@ bool gen_property(int i, struct scene *s, char *what, size_t n)
 #define TILE_SCENES_EDGES 16
 bool gen_tiles(int i, struct scene *s, char *what, size_t n)
 {
-    struct rng r = { 0x7113u + (uint64_t)i };
+    struct rng r = rng_start(0x7113u + (uint64_t)i);
     check_scene_start(s, 200, 150);
     switch (i) {
     case 0:

@@ -82,7 +82,7 @@ bool gen_no_clip(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 8)
         return false;
-    struct rng r = { 0x6c1e0u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e0u + (uint64_t)i);
     world_start(s, 48, 36, look_down_z, CULL_NONE);
     for (int k = 0; k <= i % 3; k++)
         cut_triangle(s, &r, i + k, 0, 0, 0, 1.2, 9.5);
@@ -94,7 +94,7 @@ bool gen_behind_one(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 24)
         return false;
-    struct rng r = { 0x6c1e1u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e1u + (uint64_t)i);
     world_start(s, 48, 36, look_down_z, CULL_NONE);
     cut_triangle(s, &r, i, 1, i < 6 ? -4 : 0.2, i < 6 ? -0.5 : 0.95, 1.5, 8);
     if (i % 8 == 7)             /* the vertex behind exactly at the eye's depth */
@@ -108,7 +108,7 @@ bool gen_behind_two(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 24)
         return false;
-    struct rng r = { 0x6c1e2u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e2u + (uint64_t)i);
     world_start(s, 48, 36, look_down_z, CULL_NONE);
     cut_triangle(s, &r, i, 2, i < 12 ? -3 : 0.3, 0.9, 1.5, 8);
     if (i >= 18)                /* one of them exactly on the near plane: kept, no new vertex */
@@ -122,7 +122,7 @@ bool gen_crossing_far(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 24)
         return false;
-    struct rng r = { 0x6c1e3u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e3u + (uint64_t)i);
     world_start(s, 48, 36, look_down_z, CULL_NONE);
     if (i < 16) {
         /* one or two vertices beyond far (cut_triangle's "behind" vertices) */
@@ -146,7 +146,7 @@ bool gen_shared_edge(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 16)
         return false;
-    struct rng r = { 0x6c1e4u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e4u + (uint64_t)i);
     world_start(s, 64, 48, look_down_z, CULL_NONE);
     double aspect = (double)s->w / s->h;
     if (i < 12) {
@@ -231,7 +231,7 @@ bool gen_box_inside(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 8)
         return false;
-    struct rng r = { 0x6c1e5u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e5u + (uint64_t)i);
     struct camera c = random_camera(&r, 1.5, 50, 110);
     c.near = rng_range(&r, 0.02, 0.4);
     c.far = 20;
@@ -246,7 +246,7 @@ bool gen_floor(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 6)
         return false;
-    struct rng r = { 0x6c1e6u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e6u + (uint64_t)i);
     double height = rng_range(&r, 0.05, 1.5), yaw = rng_range(&r, 0, 6.283185307179586);
     struct camera c = { { 0, height, 0 }, { sin(yaw) * 10, height - rng_range(&r, 0.5, 3), cos(yaw) * 10 },
                         { 0, 1, 0 }, rng_range(&r, 45, 90), rng_range(&r, 0.005, 0.05), rng_range(&r, 30, 200) };
@@ -270,7 +270,7 @@ bool gen_random_cameras(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 40)
         return false;
-    struct rng r = { 0x6c1e7u + (uint64_t)i };
+    struct rng r = rng_start(0x6c1e7u + (uint64_t)i);
     struct camera c = random_camera(&r, 5, 30, 120);
     c.near = rng_range(&r, 0.05, 2.5);
     c.far = c.near + rng_range(&r, 1, 8);

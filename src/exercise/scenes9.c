@@ -143,7 +143,7 @@ bool gen_tex_minify(int i, struct scene *s, char *what, size_t n)
         return false;
     struct gen_text x;
     gen_text_start(&x, 48, 36, m[i].texture);
-    struct rng r = { 0x70d5u + (uint64_t)i };
+    struct rng r = rng_start(0x70d5u + (uint64_t)i);
     spread(&x, rng_range(&r, -2, 2), rng_range(&r, -2, 2), m[i].ds, m[i].dt, 1, m[i].z1, m[i].turn, m[i].coloured);
     snprintf(what, n, "%s minified: s spans %g, t %g over some 44 pixels%s", m[i].texture, m[i].ds, m[i].dt,
              i == 7 ? " (lambda beyond the last level)" : "");
@@ -267,7 +267,7 @@ bool gen_tex_tiny(int i, struct scene *s, char *what, size_t n)
 {
     if (i >= 3)
         return false;
-    struct rng r = { 0x717e9u + (uint64_t)i };
+    struct rng r = rng_start(0x717e9u + (uint64_t)i);
     struct gen_text x;
     gen_text_start(&x, 48, 36, i == 1 ? "builtin:grid" : "builtin:checker-numbers");
     if (i == 0) {
