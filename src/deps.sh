@@ -12,7 +12,8 @@
 #           aarch64 need
 #   bench   the build packages and OSMesa for the llvmpipe peer  (make bench)
 #   fuzz    the test packages, clang and its libFuzzer  (make fuzz)
-#   grade   the build packages and bubblewrap, the sandbox of make grade
+#   grade   the build packages, bubblewrap (the sandbox of make grade), zip
+#           and unzip (make gradescope)
 #           (make test grades too: its packages include bubblewrap)
 #   simde   SIMDe's headers  (make simde-test: the exactness driver through SIMDe)
 #   aarch64 Debian's aarch64 cross compiler and C library, qemu-user, SIMDe  (make aarch64)
@@ -45,7 +46,7 @@ debs() {
     test)    echo "libcriterion-dev xvfb xdotool imagemagick patch" ;;
     bench)   echo "libosmesa6-dev" ;;
     fuzz)    echo "clang libclang-rt-dev" ;;
-    grade)   echo "bubblewrap" ;;
+    grade)   echo "bubblewrap zip unzip" ;;
     simde)   echo "libsimde-dev" ;;
     aarch64) echo "gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user libsimde-dev" ;;
   esac
@@ -56,7 +57,7 @@ names() {
     test)    echo "Criterion, Xvfb, xdotool, ImageMagick, patch" ;;
     bench)   echo "OSMesa (Mesa)" ;;
     fuzz)    echo "clang with its libFuzzer runtime" ;;
-    grade)   echo "bubblewrap (bwrap), the sandbox of make grade" ;;
+    grade)   echo "bubblewrap (bwrap), the sandbox of make grade; zip and unzip (make gradescope)" ;;
     simde)   echo "SIMDe (SIMD Everywhere, header-only)" ;;
     aarch64) echo "Debian's or Ubuntu's aarch64 cross compiler, qemu-user and SIMDe" ;;
   esac
@@ -79,7 +80,7 @@ missing_of() {
     bench)
       pc osmesa ;;
     grade)
-      has bwrap ;;
+      has bwrap; has zip; has unzip ;;
     fuzz)    # clang, and a program linked with libFuzzer
       printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { return !d + !n; }\n' |
         clang -fsanitize=fuzzer -x c - -o /dev/null >/dev/null 2>&1 || printf 'clang+libFuzzer ' ;;
@@ -129,12 +130,12 @@ elif [ -n "$need" ]; then
   echo "  Debian/Ubuntu: apt-get install $deb" >&2
   case $mode in
     aarch64) echo "  (the aarch64 target uses Debian's cross packages; on an ARM64 machine, make test runs natively)" >&2 ;;
-    grade) echo "  Fedora: dnf install bubblewrap; Arch: pacman -S bubblewrap" >&2
+    grade) echo "  Fedora: dnf install bubblewrap zip unzip; Arch: pacman -S bubblewrap zip unzip" >&2
            echo "  (make grade's sandbox needs Linux's namespaces; where it cannot run, make grade UNSAFE=1" >&2
            echo "  grades without isolation, and its CSV says so)" >&2 ;;
     simde) echo "  Fedora: dnf install simde-devel" >&2
            echo "  macOS (Homebrew): brew install simde" >&2 ;;
-    *) echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel simde-devel xorg-x11-server-Xvfb xdotool ImageMagick patch bubblewrap mesa-libOSMesa-devel (Fedora 43 on: mesa-compat-libOSMesa-devel)" >&2
+    *) echo "  Fedora: dnf install pkgconf SDL2-devel cairo-devel pango-devel dejavu-sans-mono-fonts criterion-devel simde-devel xorg-x11-server-Xvfb xdotool ImageMagick patch bubblewrap zip unzip mesa-libOSMesa-devel (Fedora 43 on: mesa-compat-libOSMesa-devel)" >&2
        echo "  macOS (Homebrew): brew install pkg-config sdl2 cairo pango criterion simde; brew install --cask font-dejavu (no OSMesa: make bench runs without the llvmpipe peer)" >&2 ;;
   esac
   exit 1
