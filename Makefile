@@ -257,7 +257,7 @@ $(B)/exercise-$(LESSON): $(B)/obj/main-exercise-$(LESSON).o $(B)/exercise/studen
 	@$(LD_ALL) $^ $(LIBS) -o $@
 exercise: $(B)/exercise-$(LESSON) ; $< --file $(FILE) $(EX_VARIANT) $(if $(SCENE),--scene $(SCENE)) $(if $(STEP),--step $(STEP)) $(if $(SAMPLES),--samples $(SAMPLES))
 
-# The judge and the runner (DESIGN.md, "Judging a student's code"): make
+# The judge and the runner (src/exercise/wire.h says what they say): make
 # check and make grade compile the student's file against the student
 # library of its lesson alone, $(B)/student/NN/ (src/exercise/student-library.txt
 # says what each lesson's holds and why), into a runner; the judge,

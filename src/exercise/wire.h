@@ -1,7 +1,7 @@
 /* wire.h - what the judge (the exercise program, which decides) and the
  * runner (the student's code and the student library, which only draws)
- * say to each other through two pipes (DESIGN.md, "Judging a student's
- * code").
+ * say to each other through two pipes (lessons/README.md, "How to
+ * assess": what is isolated and what is trusted).
  *
  * Every message is a record: a header (type, length of what follows) and
  * that many bytes. The judge asks for a scene drawn; the runner answers
