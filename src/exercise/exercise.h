@@ -163,6 +163,12 @@ void exercise_texel_reads_add(const struct texel_reads *r);
 
 /* --- make check ---------------------------------------------------------------- */
 
+/* The search draws at least this many scenes of each check that searches
+ * (when it searches at all), however long they take: the mistakes that the
+ * first scenes of a seed show fail on every machine alike (the mutation
+ * suite holds every classic mistake to this many). */
+#define SEARCH_FLOOR 64
+
 struct check_options {
     const char *file;               /* the code checked, as the report names it */
     const char *const *scenes;      /* scenes of the student's own (SCENE=), NULL-terminated */
