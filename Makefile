@@ -301,6 +301,8 @@ $(B)/student/$(LESSON)/file.o: FORCE $(B)/student/$(LESSON)/include.stamp | $(FI
 	@mkdir -p $(@D)/src && { printf '#line 1 "%s"\n' "$$(printf '%s' '$(FILE)' | sed 's/[\\"]/\\&/g')"; cat '$(FILE)'; } > $(@D)/src/exercise.c && \
 	  $(SL_CC) -c $(@D)/src/exercise.c -o $@
 $(B)/student/$(LESSON)/runner: $(B)/student/$(LESSON)/file.o $(B)/student/$(LESSON)/library.o
+	@for f in $(call sl_col,$(LESSON),need); do nm --defined-only $< | grep -q " T $$f$$" || \
+	  { echo "your file defines no $$f(), the function lesson $(LESSON)'s exercise is (src/exercise/student-library.txt)"; exit 1; }; done
 	@$(CC) $(LDFLAGS) -Wl,--gc-sections $^ -lm -pthread -o $@ 2> $@.log || { sh src/exercise/unlinked.sh $(LESSON) < $@.log; exit 1; }
 $(B)/obj/judge-%.o: src/exercise/main.c | $(FIRST) ; @mkdir -p $(@D) && $(CC_ALL) -DLESSON=lesson_$* -DEXERCISE_JUDGE -c $< -o $@
 $(B)/judge-%: $(B)/obj/judge-%.o $(B)/obj/lessons.o $(ALL_LES) $(B)/libtristep.a

@@ -192,8 +192,9 @@ Test(exercise, every_worked_answer_passes_its_check)
 /* The exercise_rasterize form is the same for every lesson: a rasterizer
  * written for one is checked by another lesson's check like its own. The
  * linear lessons accept lesson 03's answer, the perspective ones lesson
- * 04's; and lesson 02's linear answer is told, by name, that lesson 04
- * wants perspective. */
+ * 04's, but for the lessons of blocks (05, 07), which want its blocks
+ * classified; and lesson 02's linear answer is told, by name, that lesson
+ * 04 wants perspective. */
 Test(exercise, any_lessons_check_accepts_a_whole_rasterizer)
 {
     rasterize_fn linear = NULL, perspective = NULL, bary = NULL;
@@ -222,6 +223,12 @@ Test(exercise, any_lessons_check_accepts_a_whole_rasterizer)
              * whole rasterizer too, passes: above) */
             cr_expect_not(run.ok, "%s accepts a rasterizer that draws no image texture", l->id);
             cr_expect_str_eq(run.r.failed, "texels magnified", "%s", run.report);
+        } else if (l->exercise.full_blocks) {
+            /* a lesson of blocks (05, 07) holds a pixel to the block
+             * classified before it: a rasterizer that classifies none draws
+             * the right picture without the lesson's idea */
+            cr_expect_not(run.ok, "%s accepts a rasterizer that classifies no block", l->id);
+            cr_expect_not_null(strstr(run.report, "before it classified any block"), "%s", run.report);
         } else {
             cr_expect(run.ok, "%s rejects a correct rasterizer written for another lesson:\n%s", l->id,
                       run.report);
@@ -445,9 +452,10 @@ Test(exercise, lesson05_property_holds_blocks_to_their_class)
     check(&run, l05, blocks_tested, NULL);
     cr_expect(run.ok, "%s", run.report);
     run_free(&run);
-    /* lesson 04 narrates no blocks: it claims nothing, and passes */
+    /* lesson 04 classifies no blocks: its pixels lie in no classified block */
     check(&run, l05, lesson_nn("04")->variants[0].rasterize, NULL);
-    cr_expect(run.ok, "%s", run.report);
+    cr_expect_str_eq(run.r.failed, "corner classes", "%s", run.report);
+    cr_expect_not_null(strstr(run.report, "before it classified any block"), "%s", run.report);
     run_free(&run);
 }
 

@@ -38,7 +38,7 @@ enum check_kind { CK_COVERAGE, CK_COLOUR, CK_PROPERTY, CK_ALL, CK_ORDER };
 enum wrong {
     WRONG_NONE, WRONG_COUNT, WRONG_COLOUR, WRONG_DEPTH, WRONG_OUTSIDE, WRONG_MUL,
     WRONG_BLOCK_CLASS, WRONG_MASK, WRONG_CLIP, WRONG_LOD, WRONG_TEXEL, WRONG_ORDER, WRONG_TILES,
-    WRONG_READS, WRONG_RUNNER,
+    WRONG_READS, WRONG_RUNNER, WRONG_UNBLOCKED,
 };
 
 struct verdict {
@@ -99,6 +99,10 @@ struct checker {
     /* CK_ORDER: the last pixel tested or written */
     bool order_any;
     int order_x, order_y;
+    /* a lesson of blocks (full_blocks): the block narrated last, which
+     * holds the pixels written after it */
+    bool block_any;
+    int block[4];
     int only_count;             /* > 0: draw at this sample count alone (lesson 08's random scenes) */
     uint8_t *tie;               /* pixels whose nearest surface two triangles tie for (either colour is right) */
     double *zexact;             /* the exact depth of the surface nearest at each pixel */

@@ -178,6 +178,19 @@ static void watch(void *ctx, const struct trace_event *ev)
         watch_lod(C, ev, v);
         return;
     }
+    if (C->l->exercise.full_blocks && ev->kind == TRACE_BLOCK && ev->x <= ev->x1 && ev->y <= ev->y1) {
+        C->block_any = true;
+        C->block[0] = ev->x, C->block[1] = ev->y, C->block[2] = ev->x1, C->block[3] = ev->y1;
+    }
+    /* the lesson's idea is the classification of blocks: a pixel is
+     * written inside the block classified before it, never by a walk of
+     * the box that classifies nothing */
+    if (C->l->exercise.full_blocks && ev->kind == TRACE_PIXEL_WRITE
+        && (!C->block_any || ev->x < C->block[0] || ev->x > C->block[2] || ev->y < C->block[1] || ev->y > C->block[3])) {
+        *v = (struct verdict){ .what = WRONG_UNBLOCKED, .x = ev->x, .y = ev->y, .edge = C->block_any,
+                               .bx = C->block[0], .by = C->block[1], .bx1 = C->block[2], .by1 = C->block[3] };
+        return;
+    }
     switch (ev->kind) {
     case TRACE_ROW:
     case TRACE_SETUP:
@@ -472,6 +485,7 @@ static bool evaluate_at_drawn(struct checker *C, const struct scene *s, struct v
         C->t = &t;
         C->in_row = false;
         C->order_any = false;
+        C->block_any = false;
         trace_begin(&tr, (uint32_t)i, TRACE_UNLIMITED);
         exercise_fault_clear();
         if (check_guard)

@@ -224,6 +224,16 @@ static void say_pixels(const struct checker *C, FILE *out, const struct verdict 
                 v->got_n, v->got_n == 1 ? "" : "s", v->got_class, v->got_class == 1 ? "" : "s", v->got_mask,
                 v->x, v->y, v->want_n);
         break;
+    case WRONG_UNBLOCKED:
+        if (!v->edge)
+            fprintf(out, "      your code wrote pixel (%d, %d) before it classified any block: no block of the\n"
+                    "      triangle's box was narrated (NARRATE .kind = TRACE_BLOCK); the lesson's rasterizer\n"
+                    "      classifies each q x q block by its corners and writes a pixel only inside one\n", v->x, v->y);
+        else
+            fprintf(out, "      your code wrote pixel (%d, %d) outside the block it classified last,\n"
+                    "      (%d, %d)-(%d, %d): a pixel is written inside the block it belongs to, after that\n"
+                    "      block's class (NARRATE .kind = TRACE_BLOCK)\n", v->x, v->y, v->bx, v->by, v->bx1, v->by1);
+        break;
     case WRONG_RUNNER:
         fprintf(out, "      %s\n      (what it printed is in its log)\n", v->runner.why);
         break;

@@ -322,11 +322,14 @@ bool search_colour(const struct search_for *l, uint64_t seed, struct scene *s, c
         return true;
     }
     default: {
-        int count = (int)irange(&r, 2, 6);
-        double zmax = pick(&r, 0.5) ? 1000 : 3;
+        /* near, to 1000, or far away (the scene format allows depths to
+         * 10^6): there a depth kept to a fixed bound instead of relative to
+         * itself is lost, and the colour with it */
+        int count = (int)irange(&r, 2, 6), range = (int)irange(&r, 0, 2);
+        double zmin = range == 2 ? 1e4 : 1, zmax = range == 0 ? 3 : range == 1 ? 1000 : 1e6;
         for (int i = 0; i < count; i++)
-            near_tri(&r, s, rng_range(&r, 0, w), rng_range(&r, 0, h), rng_range(&r, 3, 50), 1, zmax);
-        snprintf(what, n, "%d random coloured triangles, depths 1 to %g", count, zmax);
+            near_tri(&r, s, rng_range(&r, 0, w), rng_range(&r, 0, h), rng_range(&r, 3, 50), zmin, zmax);
+        snprintf(what, n, "%d random coloured triangles, depths %g to %g", count, zmin, zmax);
         return true;
     }
     }
