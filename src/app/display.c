@@ -7,6 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef SDL_VIDEO_DRIVER_X11     /* SDL's X11 driver: Xlib's headers come with it */
+#include <X11/Xlib.h>
+#include <dlfcn.h>
+#endif
+
 static bool no_display(const char *id, const char *why)
 {
     fprintf(stderr,
@@ -19,6 +24,70 @@ static bool no_display(const char *id, const char *why)
             id, why, id, id);
     return false;
 }
+
+#ifdef SDL_VIDEO_DRIVER_X11
+/* An X request fails asynchronously: its error comes back later, while the
+ * program goes on. Xlib's default handler then prints it and exits, which
+ * SDL keeps (its handler passes errors on to it). Requests on a window that
+ * another client resizes, moves or closes at the same moment can fail so,
+ * without anything wrong in the program: here the error is told in Xlib's
+ * words and the window goes on. At most X_ERRORS_SHOWN are printed. */
+#define X_ERRORS_SHOWN 8
+
+static const char *x_id;
+static int x_errors;
+static int (*x_error_text)(Display *, int, char *, int);
+static int (*x_database_text)(Display *, const char *, const char *, const char *, char *, int);
+
+static int x_error(Display *dpy, XErrorEvent *e)
+{
+    if (++x_errors > X_ERRORS_SHOWN)
+        return 0;
+    /* no requests here (Xlib forbids them in a handler): names from its database */
+    char text[160] = "", request[160] = "", number[16];
+    x_error_text(dpy, e->error_code, text, sizeof text);
+    snprintf(number, sizeof number, "%d", e->request_code);
+    if (e->request_code < 128)
+        x_database_text(dpy, "XRequest", number, "", request, sizeof request);
+    fprintf(stderr,
+            "%s: X Error of failed request:  %s\n"
+            "  Major opcode of failed request:  %d%s%s%s\n"
+            "  Minor opcode of failed request:  %d\n"
+            "  Resource id in failed request:  0x%lx\n"
+            "  Serial number of failed request:  %lu\n"
+            "%s: the window goes on%s\n",
+            x_id, text, e->request_code, *request ? " (" : "", request, *request ? ")" : "",
+            e->minor_code, (unsigned long)e->resourceid, e->serial, x_id,
+            x_errors == X_ERRORS_SHOWN ? "; further X errors are not shown" : "");
+    return 0;
+}
+
+/* A function of a library opened with dlopen (POSIX: a dlsym result fits a
+ * function pointer; ISO C has no cast from one to the other). */
+static bool symbol(void *lib, const char *name, void *fn, size_t size)
+{
+    void *p = dlsym(lib, name);
+    if (p && size == sizeof p)
+        memcpy(fn, &p, size);
+    return p && size == sizeof p;
+}
+
+/* Xlib is the one SDL loaded (RTLD_NOLOAD): its handler is replaced, not
+ * chained; SDL_Quit puts Xlib's default back. */
+static void x_errors_not_fatal(const char *id)
+{
+    void *xlib = dlopen("libX11.so.6", RTLD_LAZY | RTLD_NOLOAD);
+    XErrorHandler (*set)(XErrorHandler) = NULL;
+    if (xlib && symbol(xlib, "XSetErrorHandler", &set, sizeof set)
+        && symbol(xlib, "XGetErrorText", &x_error_text, sizeof x_error_text)
+        && symbol(xlib, "XGetErrorDatabaseText", &x_database_text, sizeof x_database_text)) {
+        x_id = id;
+        set(x_error);
+    }
+    if (xlib)
+        dlclose(xlib);          /* SDL keeps it loaded until SDL_Quit */
+}
+#endif
 
 bool display_init(const char *id)
 {
@@ -42,6 +111,10 @@ bool display_init(const char *id)
                  named ? "" : "; DISPLAY and WAYLAND_DISPLAY are not set");
         return no_display(id, why);
     }
+#ifdef SDL_VIDEO_DRIVER_X11
+    if (driver && strcmp(driver, "x11") == 0)
+        x_errors_not_fatal(id);
+#endif
     return true;
 }
 
