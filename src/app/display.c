@@ -28,10 +28,14 @@ static bool no_display(const char *id, const char *why)
 #ifdef SDL_VIDEO_DRIVER_X11
 /* An X request fails asynchronously: its error comes back later, while the
  * program goes on. Xlib's default handler then prints it and exits, which
- * SDL keeps (its handler passes errors on to it). Requests on a window that
- * another client resizes, moves or closes at the same moment can fail so,
- * without anything wrong in the program: here the error is told in Xlib's
- * words and the window goes on. At most X_ERRORS_SHOWN are printed. */
+ * SDL keeps (its handler passes errors on to the one before it). A request
+ * can fail so with nothing wrong in the program: SDL talks to the server
+ * over two connections (the second sends the window a message that wakes
+ * the event loop), and the server may take a request of one after a later
+ * request of the other, which may have closed the window; or another
+ * client resizes or closes the window at the same moment. Here the error
+ * is told in Xlib's words and the window goes on. At most X_ERRORS_SHOWN
+ * are printed. */
 #define X_ERRORS_SHOWN 8
 
 static const char *x_id;
@@ -72,25 +76,34 @@ static bool symbol(void *lib, const char *name, void *fn, size_t size)
     return p && size == sizeof p;
 }
 
-/* Xlib is the one SDL loaded (RTLD_NOLOAD): its handler is replaced, not
- * chained; SDL_Quit puts Xlib's default back. */
-static void x_errors_not_fatal(const char *id)
+/* The handler goes in before SDL_Init where Xlib is loaded already (SDL
+ * linked with it): SDL's own handler then passes errors on to it (after
+ * putting back the screen modes it changed), and SDL_Quit puts it back.
+ * Where SDL loads Xlib itself, it goes in
+ * after SDL_Init and lasts until SDL_Quit. RTLD_NOLOAD: only the Xlib
+ * already there, never a second one. */
+static bool x_errors_not_fatal(const char *id)
 {
     void *xlib = dlopen("libX11.so.6", RTLD_LAZY | RTLD_NOLOAD);
     XErrorHandler (*set)(XErrorHandler) = NULL;
-    if (xlib && symbol(xlib, "XSetErrorHandler", &set, sizeof set)
-        && symbol(xlib, "XGetErrorText", &x_error_text, sizeof x_error_text)
-        && symbol(xlib, "XGetErrorDatabaseText", &x_database_text, sizeof x_database_text)) {
+    bool done = xlib && symbol(xlib, "XSetErrorHandler", &set, sizeof set)
+                && symbol(xlib, "XGetErrorText", &x_error_text, sizeof x_error_text)
+                && symbol(xlib, "XGetErrorDatabaseText", &x_database_text, sizeof x_database_text);
+    if (done) {
         x_id = id;
         set(x_error);
     }
     if (xlib)
-        dlclose(xlib);          /* SDL keeps it loaded until SDL_Quit */
+        dlclose(xlib);          /* the reference SDL holds keeps it loaded */
+    return done;
 }
 #endif
 
 bool display_init(const char *id)
 {
+#ifdef SDL_VIDEO_DRIVER_X11
+    bool x_handled = x_errors_not_fatal(id);
+#endif
     const char *chosen = SDL_getenv("SDL_VIDEODRIVER");
     bool explicit = chosen && *chosen;
     bool named = SDL_getenv("DISPLAY") || SDL_getenv("WAYLAND_DISPLAY");
@@ -112,7 +125,7 @@ bool display_init(const char *id)
         return no_display(id, why);
     }
 #ifdef SDL_VIDEO_DRIVER_X11
-    if (driver && strcmp(driver, "x11") == 0)
+    if (!x_handled && driver && strcmp(driver, "x11") == 0)
         x_errors_not_fatal(id);
 #endif
     return true;
