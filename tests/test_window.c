@@ -17,6 +17,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -527,39 +528,44 @@ static long cpu_ticks(pid_t pid)
     return r;
 }
 
-/* Start Xvfb on the first free display from :91; returns its name. */
+/* Start Xvfb on a display it picks itself and names on a pipe once it
+ * accepts connections (-displayfd); returns its name. Two test runs at once
+ * never take the same display, as they could when each looked for a free
+ * number first. `timeout` ends it even if this process dies before cleanup. */
 static const char *start_xvfb(void)
 {
     static char display[16];
-    for (int n = 91; n < 140; n++) {
-        char lock[64], sock[64];
-        snprintf(lock, sizeof lock, "/tmp/.X%d-lock", n);
-        snprintf(sock, sizeof sock, "/tmp/.X11-unix/X%d", n);
-        if (access(lock, F_OK) == 0 || access(sock, F_OK) == 0)
-            continue;
-        snprintf(display, sizeof display, ":%d", n);
-        /* `timeout` ends it even if this process dies before cleanup */
-        char *argv[] = { "timeout", "120", "Xvfb", display, "-screen", "0", "1280x800x24",
-                         "-nolisten", "tcp", NULL };
-        xvfb_pid = start(argv, NULL, NULL, "xvfb.err");
-        for (int t = 0; t < 5000; t += 50) {
-            if (access(sock, F_OK) == 0)
-                return display;
-            int st;
-            if (waitpid(xvfb_pid, &st, WNOHANG) == xvfb_pid) {
-                xvfb_pid = -1;
-                cr_assert(!(WIFEXITED(st) && WEXITSTATUS(st) == 127),
-                          "Xvfb is not installed (make test installs it)");
-                break;          /* display taken after all: try the next */
-            }
-            sleep_ms(50);
-        }
-        if (xvfb_pid > 0) {
-            kill(xvfb_pid, SIGTERM);
-            finish(&xvfb_pid, 2000);
-        }
+    int fds[2];
+    cr_assert_eq(pipe(fds), 0, "pipe: %s", strerror(errno));
+    char fd[16];
+    snprintf(fd, sizeof fd, "%d", fds[1]);
+    char *argv[] = { "timeout", "120", "Xvfb", "-displayfd", fd, "-screen", "0", "1280x800x24",
+                     "-nolisten", "tcp", NULL };
+    xvfb_pid = start(argv, NULL, NULL, "xvfb.err");
+    close(fds[1]);
+    char line[16];
+    size_t n = 0;
+    struct pollfd in = { .fd = fds[0], .events = POLLIN };
+    while (n < sizeof line - 1 && !memchr(line, '\n', n) && poll(&in, 1, 30000) > 0) {
+        ssize_t got = read(fds[0], line + n, sizeof line - 1 - n);
+        if (got <= 0)
+            break;
+        n += (size_t)got;
     }
-    cr_assert_fail("no display number for Xvfb in :91..:139");
+    close(fds[0]);
+    line[n] = '\0';
+    if (n > 1 && line[n - 1] == '\n') {
+        snprintf(display, sizeof display, ":%d", atoi(line));
+        return display;
+    }
+    int st;
+    if (xvfb_pid > 0 && waitpid(xvfb_pid, &st, WNOHANG) == xvfb_pid) {
+        xvfb_pid = -1;
+        cr_assert(!(WIFEXITED(st) && WEXITSTATUS(st) == 127),
+                  "Xvfb is not installed (make test installs it)");
+    }
+    char *err = read_all(in_dir("xvfb.err"), NULL);
+    cr_assert_fail("Xvfb did not name its display within 30 s; its stderr:\n%s", err ? err : "");
     return NULL;
 }
 

@@ -7,6 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef SDL_VIDEO_DRIVER_X11     /* SDL's X11 driver: Xlib's headers come with it */
+#include <X11/Xlib.h>
+#include <dlfcn.h>
+#endif
+
 static bool no_display(const char *id, const char *why)
 {
     fprintf(stderr,
@@ -20,8 +25,85 @@ static bool no_display(const char *id, const char *why)
     return false;
 }
 
+#ifdef SDL_VIDEO_DRIVER_X11
+/* An X request fails asynchronously: its error comes back later, while the
+ * program goes on. Xlib's default handler then prints it and exits, which
+ * SDL keeps (its handler passes errors on to the one before it). A request
+ * can fail so with nothing wrong in the program: SDL talks to the server
+ * over two connections (the second sends the window a message that wakes
+ * the event loop), and the server may take a request of one after a later
+ * request of the other, which may have closed the window; or another
+ * client resizes or closes the window at the same moment. Here the error
+ * is told in Xlib's words and the window goes on. At most X_ERRORS_SHOWN
+ * are printed. */
+#define X_ERRORS_SHOWN 8
+
+static const char *x_id;
+static int x_errors;
+static int (*x_error_text)(Display *, int, char *, int);
+static int (*x_database_text)(Display *, const char *, const char *, const char *, char *, int);
+
+static int x_error(Display *dpy, XErrorEvent *e)
+{
+    if (++x_errors > X_ERRORS_SHOWN)
+        return 0;
+    /* no requests here (Xlib forbids them in a handler): names from its database */
+    char text[160] = "", request[160] = "", number[16];
+    x_error_text(dpy, e->error_code, text, sizeof text);
+    snprintf(number, sizeof number, "%d", e->request_code);
+    if (e->request_code < 128)
+        x_database_text(dpy, "XRequest", number, "", request, sizeof request);
+    fprintf(stderr,
+            "%s: X Error of failed request:  %s\n"
+            "  Major opcode of failed request:  %d%s%s%s\n"
+            "  Minor opcode of failed request:  %d\n"
+            "  Resource id in failed request:  0x%lx\n"
+            "  Serial number of failed request:  %lu\n"
+            "%s: the window goes on%s\n",
+            x_id, text, e->request_code, *request ? " (" : "", request, *request ? ")" : "",
+            e->minor_code, (unsigned long)e->resourceid, e->serial, x_id,
+            x_errors == X_ERRORS_SHOWN ? "; further X errors are not shown" : "");
+    return 0;
+}
+
+/* A function of a library opened with dlopen (POSIX: a dlsym result fits a
+ * function pointer; ISO C has no cast from one to the other). */
+static bool symbol(void *lib, const char *name, void *fn, size_t size)
+{
+    void *p = dlsym(lib, name);
+    if (p && size == sizeof p)
+        memcpy(fn, &p, size);
+    return p && size == sizeof p;
+}
+
+/* The handler goes in before SDL_Init where Xlib is loaded already (SDL
+ * linked with it): SDL's own handler then passes errors on to it (after
+ * putting back the screen modes it changed), and SDL_Quit puts it back.
+ * Where SDL loads Xlib itself, it goes in
+ * after SDL_Init and lasts until SDL_Quit. RTLD_NOLOAD: only the Xlib
+ * already there, never a second one. */
+static bool x_errors_not_fatal(const char *id)
+{
+    void *xlib = dlopen("libX11.so.6", RTLD_LAZY | RTLD_NOLOAD);
+    XErrorHandler (*set)(XErrorHandler) = NULL;
+    bool done = xlib && symbol(xlib, "XSetErrorHandler", &set, sizeof set)
+                && symbol(xlib, "XGetErrorText", &x_error_text, sizeof x_error_text)
+                && symbol(xlib, "XGetErrorDatabaseText", &x_database_text, sizeof x_database_text);
+    if (done) {
+        x_id = id;
+        set(x_error);
+    }
+    if (xlib)
+        dlclose(xlib);          /* the reference SDL holds keeps it loaded */
+    return done;
+}
+#endif
+
 bool display_init(const char *id)
 {
+#ifdef SDL_VIDEO_DRIVER_X11
+    bool x_handled = x_errors_not_fatal(id);
+#endif
     const char *chosen = SDL_getenv("SDL_VIDEODRIVER");
     bool explicit = chosen && *chosen;
     bool named = SDL_getenv("DISPLAY") || SDL_getenv("WAYLAND_DISPLAY");
@@ -42,6 +124,10 @@ bool display_init(const char *id)
                  named ? "" : "; DISPLAY and WAYLAND_DISPLAY are not set");
         return no_display(id, why);
     }
+#ifdef SDL_VIDEO_DRIVER_X11
+    if (!x_handled && driver && strcmp(driver, "x11") == 0)
+        x_errors_not_fatal(id);
+#endif
     return true;
 }
 

@@ -7,7 +7,8 @@
  * with another status than 0, or writes a sanitizer report (AddressSanitizer,
  * UndefinedBehaviorSanitizer, LeakSanitizer: the program looks for leaks
  * before SDL unloads its libraries); a failure names the program's last
- * words on stderr. Two failures are not the lesson's and are told apart:
+ * words on stderr (all of an X error's: the failed request and the error;
+ * an X error the program told and survived is shown beside its result). Two failures are not the lesson's and are told apart:
  * Xvfb ending under the program (the soak starts it again), and
  * LeakSanitizer's own fatal error, "Tracer caught signal 11", when its
  * tracer crashes while it stops the program's threads to look for leaks
@@ -319,7 +320,8 @@ struct result {
     char program[64];
     bool ok;
     bool not_the_lesson;        /* failed for the display or the leak checker, not for the lesson */
-    char why[320];
+    char why[640];
+    char note[640];             /* an X error the program survived (its handler went on) */
     long events;
     double seconds;
     double rss_1min, rss_end, rss_max_after;    /* MiB; rss_1min < 0: ran less than a minute */
@@ -365,10 +367,32 @@ static float *read_frames(const char *path, size_t *n)
     return f;
 }
 
+/* Xlib's error message, from its first line on, as one line: each of its
+ * indented lines ("  Major opcode of failed request: ...", "  Minor
+ * opcode ...", "  Serial number ...", "  Current serial number ...")
+ * joined to the one before by "; ". What follows them stays apart. */
+static void join_lines(char *t)
+{
+    char *w = t;
+    for (const char *r = t; *r;) {
+        if (r[0] == '\n' && r[1] == ' ') {
+            while (*r == '\n' || *r == ' ')
+                r++;
+            *w++ = ';', *w++ = ' ';
+        } else if (*r == ' ' && r[1] == ' ') {
+            r++;                        /* Xlib's two spaces after each colon */
+        } else {
+            *w++ = *r++;
+        }
+    }
+    *w = '\0';
+}
+
 /* A program's end judged from its exit status (128 + signal; -1: it did
  * not end and was killed) and its stderr (the file err): res->ok when all
  * is well, else res->why says what failed, in the program's own words (a
- * sanitizer's report, else its last line on stderr), and
+ * sanitizer's report, Xlib's error message whole, else its last line on
+ * stderr), and
  * res->not_the_lesson when the display or the leak checker failed under it. */
 static void judge(struct result *res, int status, const char *what, const char *err)
 {
@@ -384,6 +408,12 @@ static void judge(struct result *res, int status, const char *what, const char *
         const char *caught = strstr(e, "Tracer caught signal");
         report = caught && caught < tracer ? caught : tracer;
     }
+    /* Xlib's default error handler: five lines or more, then exit(1) */
+    char *xerror = e && !report ? strstr(e, "X Error of failed request:") : NULL;
+    if (xerror) {
+        join_lines(xerror);
+        report = xerror;
+    }
     if (!report && status != 0 && e && *e) {   /* no sanitizer's: the program's own last words */
         char *table = strstr(e, "-----\nSuppressions used:");  /* LeakSanitizer's, at exit */
         if (table)
@@ -396,6 +426,7 @@ static void judge(struct result *res, int status, const char *what, const char *
         report = last ? last + 1 : e;
     }
     int len = report ? (int)strcspn(report, "\n") : 0;
+    int shown = xerror ? len : len < 120 ? len : 120;
     int xst = 0;
     if (status != 0 && !xvfb_alive(&xst)) {
         res->not_the_lesson = true;
@@ -403,7 +434,7 @@ static void judge(struct result *res, int status, const char *what, const char *
                  "%s (exit status %d) when Xvfb had ended (%s %d): the display went away, not the "
                  "lesson's fault%s%.*s", what, status, WIFSIGNALED(xst) ? "signal" : "exit status",
                  WIFSIGNALED(xst) ? WTERMSIG(xst) : WEXITSTATUS(xst), report ? "; its stderr: " : "",
-                 len < 120 ? len : 120, report ? report : "");
+                 shown, report ? report : "");
     } else if (status != 0 && tracer) {
         res->not_the_lesson = true;
         snprintf(res->why, sizeof res->why,
@@ -412,7 +443,11 @@ static void judge(struct result *res, int status, const char *what, const char *
                  what, status, len < 120 ? len : 120, report);
     } else if (status != 0) {
         snprintf(res->why, sizeof res->why, "%s (exit status %d)%s%.*s", what, status,
-                 report ? ": " : "", len < 120 ? len : 120, report ? report : "");
+                 report ? ": " : "", shown, report ? report : "");
+    } else if (report && report == xerror) {
+        res->ok = true;
+        snprintf(res->note, sizeof res->note, "an X error, and the window went on: %.*s", len,
+                 report);
     } else if (report) {
         snprintf(res->why, sizeof res->why, "a sanitizer report: %.160s", report);
     } else {
@@ -623,8 +658,8 @@ int main(int argc, char **argv)
                " RSS %s MiB at 1 min, %.1f MiB at the end%s%s\n",
                r->program, r->ok ? "ok  " : "FAIL", r->seconds, r->events, r->nframes,
                quantile(r->frames, r->nframes, 0.5), quantile(r->frames, r->nframes, 0.99),
-               quantile(r->frames, r->nframes, 1), m1, r->rss_end, r->ok ? "" : "\n      ",
-               r->ok ? "" : r->why);
+               quantile(r->frames, r->nframes, 1), m1, r->rss_end,
+               r->ok && !r->note[0] ? "" : "\n      ", r->ok ? r->note : r->why);
         fflush(stdout);
         all_ok &= r->ok;
         events += r->events;
