@@ -6,7 +6,7 @@
 # step: what was installed by hand is still there. This builds a minimal
 # Debian 12 (debootstrap --variant=minbase, plus git, make, gcc, libc6-dev
 # and ca-certificates: nothing else), clones the repository's last commit
-# into it and runs, inside a chroot:
+# into it and runs, with that system as their root:
 #   make test                    the first run on that system must pass
 #   make run                     under Xvfb, until lesson 01's window shows;
 #                                then q closes it (exit status 0)
@@ -109,6 +109,18 @@ if [ ! -s "$base" ]; then
   say "base system built in ${SECONDS}s"
 fi
 
+# Run a command with $1 as its root: in a mount namespace of its own whose
+# root the system is (pivot_root), not a chroot. The kernel lets no
+# chrooted process make a user namespace, and make grade's sandbox
+# (bubblewrap, run as an unprivileged user) needs one, as on a real machine.
+# A pid namespace too: when the commands end, every process they started
+# ends with them.
+inside() {
+  unshare --mount --pid --fork --kill-child -- /bin/sh -c 'r=$1; shift
+    mount --make-rprivate / && mount --rbind "$r" "$r" && cd "$r" && mkdir -p .oldroot &&
+      pivot_root . .oldroot && umount -l /.oldroot && rmdir /.oldroot && exec "$@"' sh "$@"
+}
+
 # --- a new copy, the clone, the commands ---------------------------------------
 root=$(mktemp -d /var/tmp/tristep-fresh.XXXXXX)
 dirs+=("$root"); keep=("$root")
@@ -174,7 +186,7 @@ EOF
 
 log=$root.log
 SECONDS=0
-timeout -s KILL "${FRESH_TIMEOUT:-3600}" chroot "$root" /usr/bin/env -i HOME=/root \
+timeout -s KILL "${FRESH_TIMEOUT:-3600}" inside "$root" /usr/bin/env -i HOME=/root \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb LANG=C.UTF-8 \
   /bin/bash /root/commands.sh > "$log" 2>&1 & child=$!
 wait $child
