@@ -115,8 +115,9 @@ fi
 # (bubblewrap, run as an unprivileged user) needs one, as on a real machine.
 # A pid namespace too: when the commands end, every process they started
 # ends with them.
-inside() {
-  unshare --mount --pid --fork --kill-child -- /bin/sh -c 'r=$1; shift
+inside() {          # inside SECONDS ROOT COMMAND...: killed after SECONDS
+  local t=$1; shift
+  timeout -s KILL "$t" unshare --mount --pid --fork --kill-child -- /bin/sh -c 'r=$1; shift
     mount --make-rprivate / && mount --rbind "$r" "$r" && cd "$r" && mkdir -p .oldroot &&
       pivot_root . .oldroot && umount -l /.oldroot && rmdir /.oldroot && exec "$@"' sh "$@"
 }
@@ -186,7 +187,7 @@ EOF
 
 log=$root.log
 SECONDS=0
-timeout -s KILL "${FRESH_TIMEOUT:-3600}" inside "$root" /usr/bin/env -i HOME=/root \
+inside "${FRESH_TIMEOUT:-3600}" "$root" /usr/bin/env -i HOME=/root \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb LANG=C.UTF-8 \
   /bin/bash /root/commands.sh > "$log" 2>&1 & child=$!
 wait $child
