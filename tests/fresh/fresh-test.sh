@@ -113,11 +113,9 @@ fi
 # root the system is (pivot_root), not a chroot. The kernel lets no
 # chrooted process make a user namespace, and make grade's sandbox
 # (bubblewrap, run as an unprivileged user) needs one, as on a real machine.
-# A pid namespace too: when the commands end, every process they started
-# ends with them.
 inside() {          # inside SECONDS ROOT COMMAND...: killed after SECONDS
   local t=$1; shift
-  timeout -s KILL "$t" unshare --mount --pid --fork --kill-child -- /bin/sh -c 'r=$1; shift
+  timeout -s KILL "$t" unshare --mount --fork --kill-child -- /bin/sh -c 'r=$1; shift
     mount --make-rprivate / && mount --rbind "$r" "$r" && cd "$r" && mkdir -p .oldroot &&
       pivot_root . .oldroot && umount -l /.oldroot && rmdir /.oldroot && exec "$@"' sh "$@"
 }
